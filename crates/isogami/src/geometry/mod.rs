@@ -1,0 +1,13 @@
+//! Plane geometry on simple polygons: areas, simplicity, containment and interior overlap.
+//!
+//! Pure functions on slices of points; tolerances are absolute lengths chosen by the caller
+//! from its length scale. Nothing here knows about tilings or mechanisms.
+
+mod polygon;
+mod segment;
+
+pub use polygon::{
+    centroid, interiors_overlap, is_simple_problem, point_in_polygon_strict, signed_area,
+    SimplicityProblem,
+};
+pub use segment::{point_segment_distance, segment_distance, segments_properly_cross};

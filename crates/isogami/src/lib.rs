@@ -1,0 +1,20 @@
+//! isogami: rigid-deployable kirigami sheets from isohedral tilings.
+//!
+//! The pipeline, one module per stage, data flowing one way:
+//! [`tiling`] (family + shape parameters) → [`cell`] (unit cell / supercell, tiles, unique
+//! edges with cell offsets, tiling vectors) → [`topology`] (a joint choice per edge, design
+//! specs) → [`kinematics`] (rigid tiles + pin joints + periodic lattice: residuals,
+//! Jacobian, Hessian) → [`mobility`] (spectrum of H = JᵀJ, degrees of freedom, motion).
+//! [`render`] turns results into SVG text. The library does no I/O: front ends read and write.
+
+pub mod cell;
+pub mod error;
+pub mod geometry;
+pub mod kinematics;
+pub mod math;
+pub mod mobility;
+pub mod render;
+pub mod tiling;
+pub mod topology;
+
+pub use error::{Error, Result};

@@ -1,0 +1,12 @@
+//! Isohedral tiling families (IH1…IH93, Kaplan's numbering) and validated tilings.
+//!
+//! Wraps the `tactile` crate's tables: prototile vertices, aspect transforms, translation
+//! vectors and edge shapes, converted at the boundary to this crate's types. Never uses the
+//! crate's `fill_region` iterator (it can loop forever on degenerate boxes); cells are built
+//! from aspects and translation vectors in `cell`. No I/O.
+
+mod family;
+mod shape;
+
+pub use family::{EdgeShapeKind, Family, FamilyInfo, PrototileEdge};
+pub use shape::{Affine, Tiling};
