@@ -1,1 +1,43 @@
-fn main() {}
+//! `isogami`: the command line. Parses arguments, calls the library, prints or writes the
+//! results. No pipeline logic lives here.
+
+#[macro_use]
+mod output;
+mod commands;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Rigid-deployable kirigami sheets from isohedral tilings.
+#[derive(Debug, Parser)]
+#[command(name = "isogami", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// List the 81 isohedral tiling families.
+    Families(commands::families::Args),
+    /// Build a unit cell or supercell and show its tiles, edges and tiling vectors.
+    Cell(commands::cell::Args),
+    /// Mobility analysis of a design: degrees of freedom, spectrum, first-order motion.
+    Analyze(commands::analyze::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Families(a) => commands::families::run(a),
+        Command::Cell(a) => commands::cell::run(a),
+        Command::Analyze(a) => commands::analyze::run(a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,11 +1,26 @@
-use isogami::cell::{CellDims, UnitCell};
-use isogami::tiling::{Family, Tiling};
+use isogami::kinematics::Mechanism;
+use isogami::mobility::{analyze, MobilitySettings};
+use isogami::topology::{Design, JointChoice};
 fn main() {
-    for f in Family::all() {
-        let info = f.info();
-        let t = Tiling::default_for(f);
-        let c = UnitCell::new(&t, CellDims::MINIMAL);
-        let status = match &c { Ok(c) => format!("m={} geom={:?}", c.edges.len(), c.check_geometry().err()), Err(e) => format!("ERR {e}") };
-        println!("{} np={} nv={} na={} t1={:?} t2={:?} proto={:?} {}", info.name, info.param_count, info.vertex_count, info.aspect_count, t.t1().as_slice(), t.t2().as_slice(), if info.vertex_count==4 && info.aspect_count==1 {format!("{:?}", t.prototile().iter().map(|p| (p.x,p.y)).collect::<Vec<_>>())} else {String::new()}, status);
+    let d = Design::resolve("rotating-squares").unwrap();
+    println!("{d}");
+    let cell = d.cell().unwrap();
+    for e in &cell.edges {
+        println!("{:?}", e);
+    }
+    let m = Mechanism::new(&cell, &d.joints).unwrap();
+    let mob = analyze(&m, &m.rest, MobilitySettings::default()).unwrap();
+    println!(
+        "dof {} eig {:?} gap {:?}",
+        mob.dof,
+        &mob.eigenvalues[..4],
+        mob.gap_decades
+    );
+    println!("{:?}", mob.motion.as_ref().unwrap().tiles);
+    for choice in [JointChoice::Both, JointChoice::None] {
+        let j = vec![choice; cell.edges.len()];
+        let m = Mechanism::new(&cell, &j).unwrap();
+        let mob = analyze(&m, &m.rest, MobilitySettings::default()).unwrap();
+        println!("{choice:?} dof {}", mob.dof);
     }
 }

@@ -47,7 +47,9 @@ pub enum Error {
     #[error("bad design spec: {0}")]
     BadSpec(String),
     /// A joint that names an edge the cell does not have.
-    #[error("joint on edge {index} is out of range: the cell has {edges} unique edges (0..{edges})")]
+    #[error(
+        "joint on edge {index} is out of range: the cell has {edges} unique edges (0..{edges})"
+    )]
     JointIndex {
         /// The edge index given.
         index: usize,

@@ -1,1 +1,159 @@
-//! placeholder
+//! Kinematic mobility (paper §3.2): the spectrum of H = JᵀJ with tile 0's three degrees of
+//! freedom eliminated. Zero eigenvalues are counted against a relative tolerance on the
+//! non-dimensional model and the spectral gap is reported, so that a count is never decided
+//! by a hair. The zero-eigenvalue eigenvectors are the first-order motions. No deployment here.
+
+use crate::error::{Error, Result};
+use crate::kinematics::Mechanism;
+use crate::math::{cross, symmetric_eigen, DMat, DVec, Real, Vec2};
+use serde::Serialize;
+
+/// Settings of the mobility analysis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MobilitySettings {
+    /// An eigenvalue counts as zero when below `rel_tol · max(λ_max, 1)` (non-dimensional H).
+    pub rel_tol: Real,
+}
+
+impl Default for MobilitySettings {
+    fn default() -> Self {
+        MobilitySettings { rel_tol: 1e-9 }
+    }
+}
+
+/// First-order velocity of one tile.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TileVelocity {
+    /// ẋ (units of L).
+    pub vx: Real,
+    /// ẏ (units of L).
+    pub vy: Real,
+    /// θ̇ (radians).
+    pub omega: Real,
+}
+
+/// One first-order motion: a unit vector of the non-dimensional state space.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Motion {
+    /// Velocity of every tile (tile 0 is held fixed).
+    pub tiles: Vec<TileVelocity>,
+    /// u̇.
+    pub u: [Real; 2],
+    /// ẇ.
+    pub w: [Real; 2],
+    /// Rate of change of the cell area det[u w] along this motion (positive: opening).
+    pub area_rate: Real,
+    /// The whole vector in state order.
+    #[serde(skip)]
+    pub vector: DVec,
+}
+
+/// The result of a mobility analysis.
+#[derive(Debug, Clone, Serialize)]
+pub struct Mobility {
+    /// Degrees of freedom: the number of zero eigenvalues.
+    pub dof: usize,
+    /// All eigenvalues of the reduced H, ascending.
+    pub eigenvalues: Vec<Real>,
+    /// The zero threshold used.
+    pub threshold: Real,
+    /// Largest eigenvalue counted as zero (None if dof = 0).
+    pub largest_zero: Option<Real>,
+    /// Smallest eigenvalue counted as non-zero (None if all are zero).
+    pub smallest_nonzero: Option<Real>,
+    /// log10(smallest_nonzero / largest_zero): how many decades separate the two groups
+    /// (None when one group is empty; capped at 300).
+    pub gap_decades: Option<Real>,
+    /// The deployment direction: the first null vector, signed to open the sheet (None if
+    /// rigid).
+    pub motion: Option<Motion>,
+    /// A basis of all first-order motions (dof vectors).
+    pub modes: Vec<Motion>,
+}
+
+/// The reduced Hessian H = JᵀJ without tile 0's columns, at state q.
+pub fn reduced_hessian(mech: &Mechanism, q: &DVec) -> DMat {
+    let jac = mech.jacobian(q);
+    let jr = jac.columns(3, jac.ncols() - 3);
+    jr.transpose() * jr
+}
+
+/// Mobility of `mech` at state q.
+pub fn analyze(mech: &Mechanism, q: &DVec, settings: MobilitySettings) -> Result<Mobility> {
+    if q.iter().any(|x| !x.is_finite()) {
+        return Err(Error::Numerical("state holds NaN or infinity".into()));
+    }
+    let h = reduced_hessian(mech, q);
+    let spec = symmetric_eigen(h)
+        .ok_or_else(|| Error::Numerical("eigen-decomposition did not converge".into()))?;
+    let lmax = spec.values.last().copied().unwrap_or(0.0);
+    let threshold = settings.rel_tol * lmax.max(1.0);
+    let dof = spec.values.iter().take_while(|&&l| l < threshold).count();
+    let largest_zero = dof.checked_sub(1).map(|k| spec.values[k]);
+    let smallest_nonzero = spec.values.get(dof).copied();
+    let gap_decades = match (largest_zero, smallest_nonzero) {
+        (Some(z), Some(nz)) => Some((nz / z.abs().max(1e-300)).log10().min(300.0)),
+        _ => None,
+    };
+    let modes: Vec<Motion> = (0..dof)
+        .map(|k| {
+            let mut v = DVec::zeros(mech.layout.len());
+            v.rows_mut(3, v.len() - 3)
+                .copy_from(&spec.vectors.column(k));
+            to_motion(mech, q, v)
+        })
+        .collect();
+    Ok(Mobility {
+        dof,
+        eigenvalues: spec.values,
+        threshold,
+        largest_zero,
+        smallest_nonzero,
+        gap_decades,
+        motion: modes.first().cloned(),
+        modes,
+    })
+}
+
+/// Rate of change of det[u w] along v.
+pub fn area_rate(mech: &Mechanism, q: &DVec, v: &DVec) -> Real {
+    let (u, w) = mech.lattice(q);
+    let (iu, iw) = (mech.layout.u(), mech.layout.w());
+    let du = Vec2::new(v[iu], v[iu + 1]);
+    let dw = Vec2::new(v[iw], v[iw + 1]);
+    cross(&du, &w) + cross(&u, &dw)
+}
+
+/// Signs a unit vector so that it opens the sheet (or, when the area does not change to
+/// first order, so that its largest component is positive) and splits it per tile.
+fn to_motion(mech: &Mechanism, q: &DVec, mut v: DVec) -> Motion {
+    let norm = v.norm();
+    if norm > 0.0 {
+        v /= norm;
+    }
+    let mut rate = area_rate(mech, q, &v);
+    let flip = if rate.abs() > 1e-9 {
+        rate < 0.0
+    } else {
+        let k = v.iamax();
+        v[k] < 0.0
+    };
+    if flip {
+        v = -v;
+        rate = -rate;
+    }
+    let l = mech.layout;
+    Motion {
+        tiles: (0..l.tiles)
+            .map(|i| TileVelocity {
+                vx: v[l.tile(i)],
+                vy: v[l.tile(i) + 1],
+                omega: v[l.tile(i) + 2],
+            })
+            .collect(),
+        u: [v[l.u()], v[l.u() + 1]],
+        w: [v[l.w()], v[l.w() + 1]],
+        area_rate: rate,
+        vector: v,
+    }
+}

@@ -163,7 +163,9 @@ impl UnitCell {
     pub fn mean_edge_length(&self) -> Real {
         let (sum, count) = self.tiles.iter().fold((0.0, 0usize), |(s, c), t| {
             let n = t.polygon.len();
-            let len: Real = (0..n).map(|k| (t.polygon[(k + 1) % n] - t.polygon[k]).norm()).sum();
+            let len: Real = (0..n)
+                .map(|k| (t.polygon[(k + 1) % n] - t.polygon[k]).norm())
+                .sum();
             (s + len, c + n)
         });
         sum / count as Real
@@ -204,14 +206,19 @@ fn match_edges(tiles: &[Tile], u: Vec2, w: Vec2) -> Result<(Vec<CellEdge>, Vec<V
     let mean_len = {
         let (s, c) = tiles.iter().fold((0.0, 0usize), |(s, c), t| {
             let n = t.polygon.len();
-            let l: Real = (0..n).map(|k| (t.polygon[(k + 1) % n] - t.polygon[k]).norm()).sum();
+            let l: Real = (0..n)
+                .map(|k| (t.polygon[(k + 1) % n] - t.polygon[k]).norm())
+                .sum();
             (s + l, c + n)
         });
         s / c as Real
     };
     let tol = MATCH_REL_TOL * mean_len;
     let ends = |t: &Tile, k: usize| (t.polygon[k], t.polygon[(k + 1) % t.polygon.len()]);
-    let mut tile_edges: Vec<Vec<usize>> = tiles.iter().map(|t| vec![usize::MAX; t.polygon.len()]).collect();
+    let mut tile_edges: Vec<Vec<usize>> = tiles
+        .iter()
+        .map(|t| vec![usize::MAX; t.polygon.len()])
+        .collect();
     let mut edges = Vec::new();
     for (i, ti) in tiles.iter().enumerate() {
         for k in 0..ti.polygon.len() {
@@ -243,7 +250,10 @@ fn match_edges(tiles: &[Tile], u: Vec2, w: Vec2) -> Result<(Vec<CellEdge>, Vec<V
                 )));
             }
             let (j, l, offset) = found[0];
-            match (tile_edges[i][k] == usize::MAX, tile_edges[j][l] == usize::MAX) {
+            match (
+                tile_edges[i][k] == usize::MAX,
+                tile_edges[j][l] == usize::MAX,
+            ) {
                 (true, true) => {
                     tile_edges[i][k] = edges.len();
                     tile_edges[j][l] = edges.len();

@@ -84,7 +84,9 @@ mod tests {
         let d: CellDims = "2x1".parse().unwrap();
         assert_eq!((d.a(), d.b()), (2, 1));
         assert_eq!(d.to_string(), "2x1");
-        for bad in ["0x1", "5x1", "2", "x", "2x", "ax1", "2x1x1", "22x1", " ", "-1x1"] {
+        for bad in [
+            "0x1", "5x1", "2", "x", "2x", "ax1", "2x1x1", "22x1", " ", "-1x1",
+        ] {
             assert!(bad.parse::<CellDims>().is_err(), "{bad}");
         }
     }

@@ -18,8 +18,14 @@ impl UnitCell {
                 "tile areas sum to {area} but the cell has area {lattice}"
             )));
         }
-        if let Some(t) = self.tiles.iter().position(|t| signed_area(&t.polygon) <= 0.0) {
-            return Err(Error::CellGeometry(format!("tile {t} is not counter-clockwise")));
+        if let Some(t) = self
+            .tiles
+            .iter()
+            .position(|t| signed_area(&t.polygon) <= 0.0)
+        {
+            return Err(Error::CellGeometry(format!(
+                "tile {t} is not counter-clockwise"
+            )));
         }
         let tol = 1e-7 * scale;
         for i in 0..self.tiles.len() {

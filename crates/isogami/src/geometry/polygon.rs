@@ -54,7 +54,9 @@ impl std::fmt::Display for SimplicityProblem {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::TooFewVertices => write!(f, "polygon with fewer than three vertices"),
-            Self::DegenerateEdge { edge } => write!(f, "degenerate tile (edge {edge} has zero length)"),
+            Self::DegenerateEdge { edge } => {
+                write!(f, "degenerate tile (edge {edge} has zero length)")
+            }
             Self::ZeroArea => write!(f, "degenerate tile (zero area)"),
             Self::SelfIntersection { a, b } => {
                 write!(f, "self-intersecting tile (edges {a} and {b} meet)")
@@ -125,7 +127,12 @@ pub fn point_in_polygon_strict(p: &Vec2, poly: &[Vec2], tol: Real) -> bool {
 fn bounding_boxes_apart(p: &[Vec2], q: &[Vec2], tol: Real) -> bool {
     let bb = |s: &[Vec2]| {
         s.iter().fold(
-            (Real::INFINITY, Real::INFINITY, Real::NEG_INFINITY, Real::NEG_INFINITY),
+            (
+                Real::INFINITY,
+                Real::INFINITY,
+                Real::NEG_INFINITY,
+                Real::NEG_INFINITY,
+            ),
             |(x0, y0, x1, y1), v| (x0.min(v.x), y0.min(v.y), x1.max(v.x), y1.max(v.y)),
         )
     };
@@ -180,7 +187,12 @@ mod tests {
     use crate::math::vec2;
 
     fn square(x: Real, y: Real, s: Real) -> Vec<Vec2> {
-        vec![vec2(x, y), vec2(x + s, y), vec2(x + s, y + s), vec2(x, y + s)]
+        vec![
+            vec2(x, y),
+            vec2(x + s, y),
+            vec2(x + s, y + s),
+            vec2(x, y + s),
+        ]
     }
 
     #[test]
@@ -195,20 +207,40 @@ mod tests {
     #[test]
     fn simplicity() {
         assert_eq!(is_simple_problem(&square(0.0, 0.0, 1.0), 1e-9), None);
-        let bowtie = vec![vec2(0.0, 0.0), vec2(1.0, 1.0), vec2(1.0, 0.0), vec2(0.0, 1.0)];
+        let bowtie = vec![
+            vec2(0.0, 0.0),
+            vec2(1.0, 1.0),
+            vec2(1.0, 0.0),
+            vec2(0.0, 1.0),
+        ];
         assert!(matches!(
             is_simple_problem(&bowtie, 1e-9),
             Some(SimplicityProblem::SelfIntersection { .. })
         ));
-        let degenerate = vec![vec2(0.0, 0.0), vec2(0.0, 0.0), vec2(1.0, 0.0), vec2(0.0, 1.0)];
+        let degenerate = vec![
+            vec2(0.0, 0.0),
+            vec2(0.0, 0.0),
+            vec2(1.0, 0.0),
+            vec2(0.0, 1.0),
+        ];
         assert_eq!(
             is_simple_problem(&degenerate, 1e-9),
             Some(SimplicityProblem::DegenerateEdge { edge: 0 })
         );
         // A collinear vertex is fine; a fold-back spike is not.
-        let collinear = vec![vec2(0.0, 0.0), vec2(0.5, 0.0), vec2(1.0, 0.0), vec2(0.0, 1.0)];
+        let collinear = vec![
+            vec2(0.0, 0.0),
+            vec2(0.5, 0.0),
+            vec2(1.0, 0.0),
+            vec2(0.0, 1.0),
+        ];
         assert_eq!(is_simple_problem(&collinear, 1e-9), None);
-        let spike = vec![vec2(0.0, 0.0), vec2(1.0, 0.0), vec2(0.5, 0.0), vec2(0.0, 1.0)];
+        let spike = vec![
+            vec2(0.0, 0.0),
+            vec2(1.0, 0.0),
+            vec2(0.5, 0.0),
+            vec2(0.0, 1.0),
+        ];
         assert!(is_simple_problem(&spike, 1e-9).is_some());
     }
 
@@ -222,10 +254,20 @@ mod tests {
         assert!(interiors_overlap(&a, &a, 1e-9));
         assert!(interiors_overlap(&a, &square(0.25, 0.25, 0.5), 1e-9));
         assert!(interiors_overlap(&a, &square(0.5, 0.5, 1.0), 1e-9));
-        let diamond = vec![vec2(0.5, -0.2), vec2(1.2, 0.5), vec2(0.5, 1.2), vec2(-0.2, 0.5)];
+        let diamond = vec![
+            vec2(0.5, -0.2),
+            vec2(1.2, 0.5),
+            vec2(0.5, 1.2),
+            vec2(-0.2, 0.5),
+        ];
         assert!(interiors_overlap(&a, &diamond, 1e-9));
         // Inscribed diamond touching only at the square's edge midpoints.
-        let inscribed = vec![vec2(0.5, 0.0), vec2(1.0, 0.5), vec2(0.5, 1.0), vec2(0.0, 0.5)];
+        let inscribed = vec![
+            vec2(0.5, 0.0),
+            vec2(1.0, 0.5),
+            vec2(0.5, 1.0),
+            vec2(0.0, 0.5),
+        ];
         assert!(interiors_overlap(&a, &inscribed, 1e-9));
         // Separated by a gap.
         assert!(!interiors_overlap(&a, &square(1.01, 0.0, 1.0), 1e-9));

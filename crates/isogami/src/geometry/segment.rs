@@ -49,12 +49,33 @@ mod tests {
     #[test]
     fn crossing_and_touching() {
         let (a, b) = (vec2(0.0, 0.0), vec2(2.0, 2.0));
-        assert!(segments_properly_cross(&a, &b, &vec2(0.0, 2.0), &vec2(2.0, 0.0), 1e-9));
+        assert!(segments_properly_cross(
+            &a,
+            &b,
+            &vec2(0.0, 2.0),
+            &vec2(2.0, 0.0),
+            1e-9
+        ));
         // Touching at an endpoint is not a proper crossing.
-        assert!(!segments_properly_cross(&a, &b, &vec2(1.0, 1.0), &vec2(2.0, 0.0), 1e-9));
+        assert!(!segments_properly_cross(
+            &a,
+            &b,
+            &vec2(1.0, 1.0),
+            &vec2(2.0, 0.0),
+            1e-9
+        ));
         // Collinear overlap is not a proper crossing either.
-        assert!(!segments_properly_cross(&a, &b, &vec2(1.0, 1.0), &vec2(3.0, 3.0), 1e-9));
-        assert_eq!(segment_distance(&a, &b, &vec2(0.0, 2.0), &vec2(2.0, 0.0)), 0.0);
+        assert!(!segments_properly_cross(
+            &a,
+            &b,
+            &vec2(1.0, 1.0),
+            &vec2(3.0, 3.0),
+            1e-9
+        ));
+        assert_eq!(
+            segment_distance(&a, &b, &vec2(0.0, 2.0), &vec2(2.0, 0.0)),
+            0.0
+        );
         let d = segment_distance(&a, &vec2(1.0, 0.0), &vec2(0.0, 1.0), &vec2(1.0, 1.0));
         assert!((d - 1.0).abs() < 1e-15);
     }

@@ -146,8 +146,23 @@ impl FromStr for Family {
         if digits.is_empty() || digits.len() > 3 || !digits.bytes().all(|b| b.is_ascii_digit()) {
             return Err(Error::UnknownFamily(s.to_string()));
         }
-        let n: u32 = digits.parse().map_err(|_| Error::UnknownFamily(s.to_string()))?;
+        let n: u32 = digits
+            .parse()
+            .map_err(|_| Error::UnknownFamily(s.to_string()))?;
         Family::from_number(n).map_err(|_| Error::UnknownFamily(s.to_string()))
+    }
+}
+
+impl serde::Serialize for Family {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.serialize_str(&self.name())
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for Family {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Family, D::Error> {
+        let s = String::deserialize(d)?;
+        s.parse().map_err(serde::de::Error::custom)
     }
 }
 
@@ -165,18 +180,5 @@ mod tests {
         assert!("IH".parse::<Family>().is_err());
         assert!("IH-1".parse::<Family>().is_err());
         assert!("IH99999999999".parse::<Family>().is_err());
-    }
-}
-
-impl serde::Serialize for Family {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        s.serialize_str(&self.name())
-    }
-}
-
-impl<'de> serde::Deserialize<'de> for Family {
-    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Family, D::Error> {
-        let s = String::deserialize(d)?;
-        s.parse().map_err(serde::de::Error::custom)
     }
 }

@@ -59,7 +59,12 @@ fn raw(family: Family, params: &[Real]) -> (Vec<Vec2>, Vec<Affine>, Vec2, Vec2) 
     let aspects = (0..t.num_aspects())
         .map(|i| Affine::from_glam(t.aspect_transform(i)))
         .collect();
-    (proto, aspects, vec2(t.t1().x, t.t1().y), vec2(t.t2().x, t.t2().y))
+    (
+        proto,
+        aspects,
+        vec2(t.t1().x, t.t1().y),
+        vec2(t.t2().x, t.t2().y),
+    )
 }
 
 /// What is wrong with the tile at these parameters, if anything.
@@ -220,6 +225,12 @@ mod tests {
         assert!(matches!(e, Error::ParamCount { .. }), "{e}");
         p[0] = Real::NAN;
         let e = Tiling::new(f, &p).unwrap_err();
-        assert_eq!(e, Error::ParamNotFinite { index: 0, value: p[0] });
+        assert_eq!(
+            e,
+            Error::ParamNotFinite {
+                index: 0,
+                value: p[0]
+            }
+        );
     }
 }

@@ -1,1 +1,13 @@
-//! placeholder
+//! Joint topologies: a joint choice per unique edge of a cell, and whole designs (family,
+//! shape parameters, supercell, joints) with a compact spec string that round-trips exactly,
+//! a JSON form, and a few named classic designs. Parsing only; no geometry beyond building the
+//! cell a design names.
+
+mod design;
+mod json;
+mod named;
+mod spec;
+
+pub use design::{Design, JointChoice};
+pub use json::{DesignJson, JointJson};
+pub use named::{named_design, NAMED_DESIGNS};

@@ -1,0 +1,120 @@
+//! `isogami analyze`.
+
+use crate::output::{emit, print_json, CliResult};
+use isogami::kinematics::Mechanism;
+use isogami::mobility::{analyze, Mobility, MobilitySettings};
+use isogami::topology::Design;
+
+/// Arguments of `analyze`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The design: a name (rotating-squares), a spec string FAMILY:PARAMS:CELL:JOINTS, or
+    /// design JSON.
+    #[arg(long, allow_hyphen_values = true)]
+    design: String,
+    /// Relative zero tolerance on the eigenvalues of the non-dimensional H.
+    #[arg(long, default_value_t = MobilitySettings::default().rel_tol)]
+    tol: f64,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(serde::Serialize)]
+struct AnalyzeOut<'a> {
+    design: String,
+    tiles: usize,
+    edges: usize,
+    joints: usize,
+    length_scale: f64,
+    #[serde(flatten)]
+    mobility: &'a Mobility,
+}
+
+/// Runs the mobility analysis of one design.
+pub fn run(args: Args) -> CliResult {
+    if !(args.tol.is_finite() && args.tol > 0.0) {
+        return Err(format!("--tol must be a positive number, got {}", args.tol));
+    }
+    let design = Design::resolve(&args.design).map_err(|e| e.to_string())?;
+    let cell = design.cell().map_err(|e| e.to_string())?;
+    let mech = Mechanism::new(&cell, &design.joints).map_err(|e| e.to_string())?;
+    let settings = MobilitySettings { rel_tol: args.tol };
+    let mob = analyze(&mech, &mech.rest, settings).map_err(|e| e.to_string())?;
+    let out = AnalyzeOut {
+        design: design.to_string(),
+        tiles: cell.tiles.len(),
+        edges: cell.edges.len(),
+        joints: mech.joints.len(),
+        length_scale: mech.length_scale,
+        mobility: &mob,
+    };
+    if args.json {
+        return print_json(&out);
+    }
+    let mut o = String::new();
+    outln!(o, "design      {}", out.design);
+    outln!(
+        o,
+        "cell        {} tiles, {} edges, {} joints",
+        out.tiles,
+        out.edges,
+        out.joints
+    );
+    outln!(
+        o,
+        "dof         {}{}",
+        mob.dof,
+        match mob.dof {
+            0 => "  (rigid)",
+            1 => "  (self-deployable)",
+            _ => "  (under-constrained)",
+        }
+    );
+    let shown: Vec<String> = mob
+        .eigenvalues
+        .iter()
+        .take(6)
+        .map(|l| format!("{l:.3e}"))
+        .collect();
+    outln!(
+        o,
+        "eigenvalues {} (smallest of {}; zero below {:.1e})",
+        shown.join(" "),
+        mob.eigenvalues.len(),
+        mob.threshold
+    );
+    match mob.gap_decades {
+        Some(g) => outln!(
+            o,
+            "gap         {g:.1} decades between zero and non-zero eigenvalues"
+        ),
+        None => outln!(o, "gap         n/a"),
+    }
+    if let Some(m) = &mob.motion {
+        outln!(
+            o,
+            "motion      (unit vector, lengths in units of L = {:.6}; area rate {:+.4})",
+            mech.length_scale,
+            m.area_rate
+        );
+        for (i, t) in m.tiles.iter().enumerate() {
+            outln!(
+                o,
+                "  tile {i:>2}   v = ({:+.6}, {:+.6})  omega = {:+.6}",
+                t.vx,
+                t.vy,
+                t.omega
+            );
+        }
+        outln!(
+            o,
+            "  u̇ = ({:+.6}, {:+.6})  ẇ = ({:+.6}, {:+.6})",
+            m.u[0],
+            m.u[1],
+            m.w[0],
+            m.w[1]
+        );
+    }
+    emit(&o)
+}

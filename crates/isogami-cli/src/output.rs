@@ -1,0 +1,74 @@
+//! Printing and file writing shared by the commands.
+
+use serde::Serialize;
+use std::io::Write;
+use std::path::Path;
+
+/// A command's failure, printed as one line.
+pub type CliResult = Result<(), String>;
+
+/// Prints a value as pretty JSON on stdout.
+pub fn print_json<T: Serialize>(value: &T) -> CliResult {
+    let text = serde_json::to_string_pretty(value).map_err(|e| format!("JSON output: {e}"))?;
+    emit(&(text + "\n"))
+}
+
+/// Writes `contents` to `path` atomically: a temporary file beside it, then a rename, so a
+/// failure never leaves a partial file.
+pub fn write_atomic(path: &Path, contents: &[u8]) -> CliResult {
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .ok_or_else(|| format!("{}: not a file path", path.display()))?;
+    let tmp = dir.join(format!(
+        ".{}.tmp{}",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(contents)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    result.map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        format!("cannot write {}: {e}", path.display())
+    })
+}
+
+/// Parses a comma-separated parameter list.
+pub fn parse_params(text: &str) -> Result<Vec<f64>, String> {
+    if text.trim().is_empty() {
+        return Ok(Vec::new());
+    }
+    text.split(',')
+        .enumerate()
+        .map(|(i, p)| {
+            p.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("--params: v{i} '{}' is not a number", p.trim()))
+        })
+        .collect()
+}
+
+/// Appends a formatted line to a `String` buffer.
+macro_rules! outln {
+    ($buf:expr, $($arg:tt)*) => {{
+        use std::fmt::Write as _;
+        let _ = writeln!($buf, $($arg)*);
+    }};
+}
+
+/// Writes a finished text to stdout; a closed pipe (`| head`) is not an error.
+pub fn emit(text: &str) -> CliResult {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        Err(e) => Err(format!("cannot write to stdout: {e}")),
+    }
+}

@@ -1,0 +1,99 @@
+//! The compact spec string `FAMILY:PARAMS:CELL:JOINTS`, e.g. `IH28:0.1,0.2:2x1:ab-ba-ab-b`.
+//!
+//! PARAMS are comma-separated numbers in Rust's shortest round-trip form (empty for families
+//! without parameters, or `default`); JOINTS has one character per unique edge: `-` none,
+//! `a`/`b` a pin at that endpoint, `x` both. Formatting then parsing gives back the same
+//! design bit for bit.
+
+use super::design::{Design, JointChoice};
+use crate::cell::CellDims;
+use crate::error::{Error, Result};
+use crate::tiling::Family;
+use std::fmt;
+use std::str::FromStr;
+
+impl fmt::Display for Design {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let params: Vec<String> = self.params.iter().map(|p| format!("{p}")).collect();
+        let joints: String = self.joints.iter().map(|j| j.to_char()).collect();
+        write!(
+            f,
+            "{}:{}:{}:{}",
+            self.family,
+            params.join(","),
+            self.dims,
+            joints
+        )
+    }
+}
+
+impl FromStr for Design {
+    type Err = Error;
+
+    fn from_str(s: &str) -> Result<Design> {
+        let fields: Vec<&str> = s.trim().split(':').collect();
+        if fields.len() != 4 {
+            return Err(Error::BadSpec(format!(
+                "expected FAMILY:PARAMS:CELL:JOINTS (4 fields separated by ':'), got {} field(s) in '{}'",
+                fields.len(),
+                truncate(s)
+            )));
+        }
+        let family: Family = fields[0].parse()?;
+        let params = parse_params(family, fields[1])?;
+        let dims: CellDims = fields[2].parse()?;
+        let joints = fields[3]
+            .chars()
+            .enumerate()
+            .map(|(i, c)| {
+                JointChoice::from_char(c).ok_or_else(|| {
+                    Error::BadSpec(format!(
+                        "joint character {i} is '{}'; use '-', 'a', 'b' or 'x'",
+                        c.escape_debug()
+                    ))
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok(Design {
+            family,
+            params,
+            dims,
+            joints,
+        })
+    }
+}
+
+fn parse_params(family: Family, text: &str) -> Result<Vec<f64>> {
+    let t = text.trim();
+    if t == "default" {
+        return Ok(family.default_params());
+    }
+    if t.is_empty() {
+        return Ok(Vec::new());
+    }
+    t.split(',')
+        .enumerate()
+        .map(|(i, p)| {
+            let v: f64 = p.trim().parse().map_err(|_| {
+                Error::BadSpec(format!(
+                    "shape parameter v{i} '{}' is not a number",
+                    truncate(p)
+                ))
+            })?;
+            if v.is_finite() {
+                Ok(v)
+            } else {
+                Err(Error::ParamNotFinite { index: i, value: v })
+            }
+        })
+        .collect()
+}
+
+/// At most 40 characters of user input, for error messages.
+pub(crate) fn truncate(s: &str) -> String {
+    let mut out: String = s.chars().take(40).collect();
+    if s.chars().count() > 40 {
+        out.push('…');
+    }
+    out.escape_debug().to_string()
+}
