@@ -8,10 +8,12 @@
 //! [`render`] turns results into SVG text. The library does no I/O: front ends read and write.
 
 pub mod cell;
+pub mod contact;
 pub mod error;
 pub mod geometry;
 pub mod kinematics;
 pub mod math;
+pub mod measure;
 pub mod mobility;
 pub mod render;
 pub mod tiling;

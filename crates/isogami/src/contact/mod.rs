@@ -1,0 +1,1 @@
+//! Contact between kerf-inset tile polygons (placeholder, being written).

@@ -1,0 +1,1 @@
+//! Expansion measures along a deployment (placeholder, being written).
