@@ -13,7 +13,7 @@ pub struct Args {
     #[arg(long, allow_hyphen_values = true)]
     design: String,
     /// Relative zero tolerance on the eigenvalues of the non-dimensional H.
-    #[arg(long, default_value_t = MobilitySettings::default().rel_tol)]
+    #[arg(long, default_value_t = MobilitySettings::default().rel_tol, allow_hyphen_values = true)]
     tol: f64,
     /// Print JSON.
     #[arg(long)]

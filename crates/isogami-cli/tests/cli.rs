@@ -1,0 +1,149 @@
+//! The `isogami` binary end to end: outputs, JSON contracts and exit codes.
+
+use std::process::{Command, Output};
+
+fn isogami(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_isogami"))
+        .args(args)
+        .output()
+        .expect("binary runs")
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let out = isogami(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("valid JSON")
+}
+
+#[test]
+fn families_lists_all_81() {
+    let v = json(&["families", "--json"]);
+    let list = v.as_array().unwrap();
+    assert_eq!(list.len(), 81);
+    let ih28 = list.iter().find(|f| f["name"] == "IH28").unwrap();
+    assert_eq!(ih28["param_count"], 2);
+    assert_eq!(ih28["vertex_count"], 5);
+    assert_eq!(ih28["aspect_count"], 4);
+    assert_eq!(ih28["edges"].as_array().unwrap().len(), 5);
+    let table = isogami(&["families"]);
+    assert!(String::from_utf8_lossy(&table.stdout).lines().count() >= 82);
+}
+
+#[test]
+fn cell_json_and_svg() {
+    let dir = std::env::temp_dir().join(format!("isogami-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = dir.join("cell.svg");
+    let v = json(&[
+        "cell",
+        "--family",
+        "IH28",
+        "--params",
+        "0.4,0.5",
+        "--cell",
+        "2x1",
+        "--json",
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(v["tiles"].as_array().unwrap().len(), 8);
+    assert_eq!(v["edges"].as_array().unwrap().len(), 20);
+    let poly = v["tiles"][0]["polygon"].as_array().unwrap();
+    assert_eq!(poly.len(), 5);
+    assert_eq!(poly[0].as_array().unwrap().len(), 2);
+    assert_eq!(v["u"].as_array().unwrap().len(), 2);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(
+        text.starts_with("<?xml") && text.contains("<svg") && text.trim_end().ends_with("</svg>")
+    );
+    // 3×3 cells of 8 tiles plus the cell outline and arrow heads.
+    assert!(text.matches("<polygon").count() >= 72);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn analyze_rotating_squares() {
+    let v = json(&["analyze", "--design", "rotating-squares", "--json"]);
+    assert_eq!(v["dof"], 1);
+    let eig: Vec<f64> = v["eigenvalues"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert!(eig.windows(2).all(|w| w[0] <= w[1]));
+    assert!(eig[0].abs() < 1e-12 && eig[1] > 0.1);
+    assert_eq!(v["motion"]["tiles"].as_array().unwrap().len(), 4);
+    assert!(v["motion"]["u"].is_array() && v["motion"]["w"].is_array());
+    let text = isogami(&["analyze", "--design", "rotating-squares"]);
+    assert!(String::from_utf8_lossy(&text.stdout).contains("dof         1"));
+}
+
+#[test]
+fn spec_and_json_designs_agree() {
+    let spec = json(&["analyze", "--design", "rotating-squares", "--json"])["design"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    let a = json(&["analyze", "--design", &spec, "--json"]);
+    assert_eq!(a["dof"], 1);
+}
+
+/// Every malformed input: one line on stderr starting with "error", exit code 2, no panic.
+#[test]
+fn malformed_inputs_exit_2_with_one_line() {
+    let cases: &[&[&str]] = &[
+        &["cell", "--family", "IH19"],
+        &["cell", "--family", "banana"],
+        &["cell", "--family", "IH28", "--params", "0.1"],
+        &["cell", "--family", "IH28", "--params", "0.1,nan"],
+        &["cell", "--family", "IH28", "--params", "0.1,inf"],
+        &["cell", "--family", "IH28", "--params", "0.1,x"],
+        &["cell", "--family", "IH28", "--cell", "0x1"],
+        &["cell", "--family", "IH28", "--cell", "5x5"],
+        &["cell", "--family", "IH28", "--cell", "2by1"],
+        &["cell", "--family", "IH41", "--params", "-5,0.5"],
+        &[
+            "cell",
+            "--family",
+            "IH28",
+            "--svg",
+            "/nonexistent-dir/x.svg",
+        ],
+        &["analyze", "--design", "no-such-design"],
+        &["analyze", "--design", "IH76::2x2:ab"],
+        &["analyze", "--design", "IH76::2x2:abab?aba"],
+        &["analyze", "--design", "IH76:1:2x2:abababab"],
+        &[
+            "analyze",
+            "--design",
+            r#"{"family":"IH76","cell":[2,2],"joints":[{"edge":99,"at":"a"}]}"#,
+        ],
+        &["analyze", "--design", "{not json"],
+        &["analyze", "--design", "rotating-squares", "--tol", "-1"],
+        &["analyze"],
+        &["frobnicate"],
+    ];
+    for args in cases {
+        let out = isogami(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert!(err.starts_with("error"), "{args:?}: {err}");
+        // Our own errors are one line; clap's usage errors add a usage hint.
+        if args.len() > 1 && args[0] != "frobnicate" {
+            assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        }
+    }
+}
+
+#[test]
+fn refused_parameter_is_named() {
+    let out = isogami(&["cell", "--family", "IH41", "--params", "-5,0.5"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("v0"), "{err}");
+}

@@ -1,0 +1,168 @@
+//! Design specs: exact round trips, the JSON form, and a parser that never panics.
+
+mod common;
+
+use isogami::cell::CellDims;
+use isogami::tiling::Family;
+use isogami::topology::{Design, JointChoice, NAMED_DESIGNS};
+use isogami::Error;
+use proptest::prelude::*;
+
+fn family_strategy() -> impl Strategy<Value = Family> {
+    let all: Vec<Family> = Family::all().collect();
+    (0..all.len()).prop_map(move |i| all[i])
+}
+
+fn joint_strategy() -> impl Strategy<Value = JointChoice> {
+    prop_oneof![
+        Just(JointChoice::None),
+        Just(JointChoice::A),
+        Just(JointChoice::B),
+        Just(JointChoice::Both)
+    ]
+}
+
+fn design_strategy() -> impl Strategy<Value = Design> {
+    (
+        family_strategy(),
+        1u8..=4,
+        1u8..=4,
+        prop::collection::vec(joint_strategy(), 0..60),
+        prop::collection::vec(any::<f64>().prop_filter("finite", |v| v.is_finite()), 6),
+    )
+        .prop_map(|(family, a, b, joints, raw)| Design {
+            family,
+            params: raw[..family.param_count()].to_vec(),
+            dims: CellDims::new(a, b).unwrap(),
+            joints,
+        })
+}
+
+fn same_bits(a: &Design, b: &Design) -> bool {
+    a.family == b.family
+        && a.dims == b.dims
+        && a.joints == b.joints
+        && a.params.len() == b.params.len()
+        && a.params
+            .iter()
+            .zip(&b.params)
+            .all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
+proptest! {
+    #[test]
+    fn spec_strings_round_trip_exactly(d in design_strategy()) {
+        let s = d.to_string();
+        let back: Design = s.parse().unwrap();
+        prop_assert!(same_bits(&d, &back), "{s}");
+        prop_assert_eq!(back.to_string(), s);
+    }
+
+    #[test]
+    fn random_strings_never_panic(s in "\\PC{0,80}") {
+        let _ = s.parse::<Design>();
+        let _ = Design::resolve(&s);
+    }
+
+    #[test]
+    fn near_valid_strings_never_panic(
+        fam in "(IH|ih)?[0-9]{0,3}",
+        params in "[-0-9.,eE+naifNI]{0,30}",
+        cell in "[0-9xX]{0,4}",
+        joints in "[-abxAB0-9?]{0,20}",
+        sep in prop::sample::select(vec![":", "::", ";", ""]),
+    ) {
+        let s = format!("{fam}{sep}{params}{sep}{cell}{sep}{joints}");
+        if let Ok(d) = Design::resolve(&s) {
+            // Whatever parses must build its cell or fail with an error, not a panic.
+            let _ = d.cell();
+        }
+    }
+
+    #[test]
+    fn json_round_trips_for_valid_designs(
+        family in family_strategy(),
+        a in 1u8..=2, b in 1u8..=2,
+        seed in any::<u64>(),
+    ) {
+        let dims = CellDims::new(a, b).unwrap();
+        let cell = isogami::cell::UnitCell::new(
+            &isogami::tiling::Tiling::default_for(family), dims).unwrap();
+        let mut rng = common::Rng::new(seed);
+        let joints = common::random_joints(&mut rng, cell.edges.len());
+        let d = Design::with_defaults(family, dims, joints);
+        let text = serde_json::to_string(&d.to_json()).unwrap();
+        let back = Design::from_json(&text).unwrap();
+        prop_assert!(same_bits(&d, &back), "{text}");
+        prop_assert_eq!(Design::resolve(&text).unwrap(), d);
+    }
+}
+
+#[test]
+fn named_designs_resolve_and_build() {
+    for name in NAMED_DESIGNS {
+        let d = Design::resolve(name).unwrap();
+        let cell = d.cell().unwrap();
+        assert_eq!(d.joints.len(), cell.edges.len());
+        assert_eq!(Design::resolve(&d.to_string()).unwrap(), d);
+    }
+}
+
+#[test]
+fn malformed_specs_give_specific_errors() {
+    let rs = Design::resolve("rotating-squares").unwrap().to_string();
+    let bad_family = rs.replace("IH76", "IH19");
+    assert!(matches!(
+        Design::resolve(&bad_family),
+        Err(Error::UnknownFamily(_))
+    ));
+    assert!(Design::resolve("IH28:0.1:1x1:-").is_ok());
+    assert!(matches!(
+        Design::resolve("IH28:0.1:1x1:-").unwrap().cell(),
+        Err(Error::ParamCount {
+            expected: 2,
+            got: 1,
+            ..
+        })
+    ));
+    assert!(matches!(
+        Design::resolve("IH28:0.1,nan:1x1:-"),
+        Err(Error::ParamNotFinite { index: 1, .. })
+    ));
+    assert!(matches!(
+        Design::resolve("IH28:0.1,zz:1x1:-"),
+        Err(Error::BadSpec(_))
+    ));
+    assert!(matches!(
+        Design::resolve("IH28:default:5x1:-"),
+        Err(Error::BadCell(_))
+    ));
+    assert!(matches!(
+        Design::resolve("IH28:default:1x1:ab?"),
+        Err(Error::BadSpec(_))
+    ));
+    assert!(matches!(
+        Design::resolve("IH28:default:1x1"),
+        Err(Error::BadSpec(_))
+    ));
+    assert!(matches!(
+        Design::resolve("IH28:default:1x1:ab").unwrap().cell(),
+        Err(Error::BadSpec(_))
+    ));
+    let json = r#"{"family":"IH76","cell":[2,2],"joints":[{"edge":8,"at":"a"}]}"#;
+    assert!(matches!(
+        Design::resolve(json),
+        Err(Error::JointIndex { index: 8, edges: 8 })
+    ));
+    let json =
+        r#"{"family":"IH76","cell":[2,2],"joints":[{"edge":1,"at":"a"},{"edge":1,"at":"b"}]}"#;
+    assert!(matches!(Design::resolve(json), Err(Error::BadSpec(_))));
+    let json = r#"{"family":"IH76","cell":[0,2],"joints":[]}"#;
+    assert!(matches!(Design::resolve(json), Err(Error::BadSpec(_))));
+    for e in [
+        Design::resolve("nonsense").unwrap_err(),
+        Design::resolve("{").unwrap_err(),
+    ] {
+        assert!(!e.to_string().contains('\n'), "one line: {e}");
+    }
+}
