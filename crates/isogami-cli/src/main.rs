@@ -24,6 +24,8 @@ enum Command {
     Cell(commands::cell::Args),
     /// Mobility analysis of a design: degrees of freedom, spectrum, first-order motion.
     Analyze(commands::analyze::Args),
+    /// Deploy a design from its closed state to the contact limit.
+    Deploy(commands::deploy::Args),
 }
 
 fn main() -> ExitCode {
@@ -32,6 +34,7 @@ fn main() -> ExitCode {
         Command::Families(a) => commands::families::run(a),
         Command::Cell(a) => commands::cell::run(a),
         Command::Analyze(a) => commands::analyze::run(a),
+        Command::Deploy(a) => commands::deploy::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -59,6 +59,12 @@ pub enum Error {
     /// A cell whose geometry does not tile the plane (a bug or an extreme parameter).
     #[error("cell geometry check failed: {0}")]
     CellGeometry(String),
+    /// A design with nothing to deploy.
+    #[error("{0}")]
+    Rigid(String),
+    /// Rendering (SVG parsing, rasterising, encoding) failed.
+    #[error("render: {0}")]
+    Render(String),
     /// A numerical routine that failed (non-convergence, non-finite values).
     #[error("numerical failure: {0}")]
     Numerical(String),

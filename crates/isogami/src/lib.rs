@@ -9,6 +9,7 @@
 
 pub mod cell;
 pub mod contact;
+pub mod deploy;
 pub mod error;
 pub mod geometry;
 pub mod kinematics;

@@ -2,4 +2,5 @@
 
 pub mod analyze;
 pub mod cell;
+pub mod deploy;
 pub mod families;

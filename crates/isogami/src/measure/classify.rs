@@ -1,19 +1,18 @@
 //! The behaviour class of a whole deployment trajectory.
 //!
 //! Rule (decided on all frames together, with per-frame tolerance
-//! tol = rel · max(|ε_min|, |ε_max|) + abs, defaults rel = 1e-3, abs = 1e-6):
+//! tol = rel · max(|ε_min|, |ε_max|) + abs, defaults rel = 1e-3, abs = 1e-6). Only *open*
+//! frames count: those stretched in some direction (ε_max > abs). Frames contracted in every
+//! direction, such as a sheet closing again past its second closed state by up to a kerf,
+//! say nothing about how it opens.
 //!
-//! 1. A trajectory that never opens (ε_max ≤ abs at every frame), or that is empty, has no
-//!    class (`None`).
-//! 2. Auxetic when no frame has a clearly negative principal expansion: ε_min ≥ −tol at
-//!    every frame (both principal stretches grow, Poisson ratio ≤ 0).
-//!    - Isotropic auxetic when moreover ε_max − ε_min ≤ tol at every frame (U stays a
-//!      multiple of I: threefold-symmetric designs, rotating squares).
-//!    - Anisotropic auxetic otherwise.
-//! 3. Orthotropic with positive Poisson ratio when some frame has ε_min < −tol while
-//!    ε_max > abs there (one direction shrinks while the other grows).
-//! 4. A trajectory that shrinks in some direction but never grows where it shrinks has no
-//!    class (`None`): it is not an opening sheet.
+//! 1. No open frame (or no frame): no class (`None`).
+//! 2. Orthotropic with positive Poisson ratio when some open frame has ε_min < −tol (one
+//!    direction shrinks while the other grows).
+//! 3. Otherwise auxetic (both principal stretches ≥ 0 wherever the sheet is open):
+//!    - isotropic auxetic when ε_max − ε_min ≤ tol at every open frame (U stays a multiple
+//!      of I: threefold-symmetric designs, rotating squares);
+//!    - anisotropic auxetic otherwise.
 //!
 //! abs = 1e-6 sits well above the noise of a converged frame (joint residuals ≤ 1e-8 of the
 //! edge length perturb F by about that much) and far below any expansion worth reporting.
@@ -76,8 +75,7 @@ pub fn classify(frames: &[FrameMeasures]) -> Option<BehaviourClass> {
     classify_with(frames, ClassifyTolerances::default())
 }
 
-/// Classifies a trajectory; `None` when it never opens, shrinks without growing, or holds a
-/// non-finite expansion.
+/// Classifies a trajectory; `None` when it never opens or holds a non-finite expansion.
 pub fn classify_with(frames: &[FrameMeasures], tol: ClassifyTolerances) -> Option<BehaviourClass> {
     let pairs: Vec<(Real, Real)> = frames
         .iter()
@@ -87,24 +85,19 @@ pub fn classify_with(frames: &[FrameMeasures], tol: ClassifyTolerances) -> Optio
         return None;
     }
     let tol_at = |(lo, hi): (Real, Real)| tol.relative * lo.abs().max(hi.abs()) + tol.absolute;
-    if !pairs.iter().any(|&(_, hi)| hi > tol.absolute) {
+    // Only frames where the sheet is stretched in some direction say how it opens; frames
+    // that are contracted in every direction (a sheet closing again past its second closed
+    // state, by up to a kerf) are left out.
+    let open: Vec<(Real, Real)> = pairs.iter().copied().filter(|&(_, hi)| hi > tol.absolute).collect();
+    if open.is_empty() {
         return None;
     }
-    let shrinking: Vec<(Real, Real)> = pairs
-        .iter()
-        .copied()
-        .filter(|&p| p.0 < -tol_at(p))
-        .collect();
-    if shrinking.is_empty() {
-        if pairs.iter().all(|&p| p.1 - p.0 <= tol_at(p)) {
-            Some(BehaviourClass::IsotropicAuxetic)
-        } else {
-            Some(BehaviourClass::AnisotropicAuxetic)
-        }
-    } else if shrinking.iter().any(|&(_, hi)| hi > tol.absolute) {
+    if open.iter().any(|&p| p.0 < -tol_at(p)) {
         Some(BehaviourClass::OrthotropicPositivePoisson)
+    } else if open.iter().all(|&p| p.1 - p.0 <= tol_at(p)) {
+        Some(BehaviourClass::IsotropicAuxetic)
     } else {
-        None
+        Some(BehaviourClass::AnisotropicAuxetic)
     }
 }
 

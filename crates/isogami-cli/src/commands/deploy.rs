@@ -1,0 +1,218 @@
+//! `isogami deploy`.
+
+use crate::output::{emit, print_json, write_atomic, CliResult};
+use indicatif::{ProgressBar, ProgressStyle};
+use isogami::contact::{ContactModel, ContactSettings};
+use isogami::deploy::{build_report, deploy, frame_records, select_frames, DeploySettings, Method};
+use isogami::kinematics::Mechanism;
+use isogami::measure::expansion_profile;
+use isogami::render::{
+    expansion_plot_svg, frame_svg, gif_from_svgs, polar_plot_svg, view_box_for, FrameStyle,
+};
+use isogami::topology::Design;
+use std::path::{Path, PathBuf};
+
+/// Arguments of `deploy`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The design: a name (rotating-squares), a spec string, or design JSON.
+    #[arg(long, allow_hyphen_values = true)]
+    design: String,
+    /// Deployment method.
+    #[arg(long, default_value = "rigid-modes", value_parser = ["rigid-modes", "ncm", "springs"])]
+    method: String,
+    /// Cut width relative to the mean edge length.
+    #[arg(long, default_value_t = ContactSettings::default().kerf, allow_hyphen_values = true)]
+    kerf: f64,
+    /// Number of frames to report (picked evenly in t).
+    #[arg(long, default_value_t = 60)]
+    frame_count: usize,
+    /// Print the report as JSON.
+    #[arg(long)]
+    json: bool,
+    /// Write the JSON report to this file.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Write one SVG per frame (3×3 cells) into this directory.
+    #[arg(long)]
+    frames: Option<PathBuf>,
+    /// Write an animated GIF of the deployment.
+    #[arg(long)]
+    gif: Option<PathBuf>,
+    /// Write an SVG plot of min/max expansion versus t; the polar plot goes beside it
+    /// (FILE-polar.svg).
+    #[arg(long)]
+    plot: Option<PathBuf>,
+}
+
+/// Deploys one design and writes what was asked.
+pub fn run(args: Args) -> CliResult {
+    let method: Method = args
+        .method
+        .parse()
+        .map_err(|e: isogami::Error| e.to_string())?;
+    if args.frame_count < 2 || args.frame_count > 10_000 {
+        return Err(format!(
+            "--frame-count must lie in 2..=10000, got {}",
+            args.frame_count
+        ));
+    }
+    let settings = DeploySettings {
+        method,
+        contact: ContactSettings::with_kerf(args.kerf),
+        ..DeploySettings::default()
+    };
+    settings.validate().map_err(|e| e.to_string())?;
+    let design = Design::resolve(&args.design).map_err(|e| e.to_string())?;
+    let cell = design.cell().map_err(|e| e.to_string())?;
+    let mech = Mechanism::new(&cell, &design.joints).map_err(|e| e.to_string())?;
+    let contact = ContactModel::new(&mech, settings.contact).map_err(|e| e.to_string())?;
+
+    let bar = ProgressBar::new_spinner();
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} deploying: {pos} states, {elapsed}")
+            .expect("valid template"),
+    );
+    let traj =
+        deploy(&mech, &settings, &mut |n| bar.set_position(n as u64)).map_err(|e| e.to_string())?;
+    bar.finish_and_clear();
+
+    let indices = select_frames(&traj, args.frame_count);
+    let frames =
+        frame_records(&mech, &contact, &traj, &indices, 1e-8).map_err(|e| e.to_string())?;
+    let report = build_report(&design.to_string(), &mech, &settings, &traj, &frames);
+
+    if let Some(dir) = &args.frames {
+        write_frames(dir, &mech, &contact, &frames)?;
+    }
+    if let Some(path) = &args.gif {
+        let svgs = frame_svgs(&mech, &contact, &frames, 480.0);
+        let bytes = gif_from_svgs(&svgs, 480, 6).map_err(|e| e.to_string())?;
+        write_atomic(path, &bytes)?;
+    }
+    if let Some(path) = &args.plot {
+        let t: Vec<f64> = frames.iter().map(|f| f.t).collect();
+        let lo: Vec<f64> = frames.iter().map(|f| f.measures.min_expansion).collect();
+        let hi: Vec<f64> = frames.iter().map(|f| f.measures.max_expansion).collect();
+        let svg = expansion_plot_svg(&t, &lo, &hi, &report.design).map_err(|e| e.to_string())?;
+        write_atomic(path, svg.as_bytes())?;
+        let profiles: Vec<(String, Vec<(f64, f64)>)> = [0.25, 0.5, 0.75, 1.0]
+            .iter()
+            .map(|&target| {
+                let f = frames
+                    .iter()
+                    .min_by(|a, b| (a.t - target).abs().total_cmp(&(b.t - target).abs()))
+                    .expect("at least one frame");
+                (
+                    format!("t = {:.2}", f.t),
+                    expansion_profile(&f.measures.u_matrix(), 180),
+                )
+            })
+            .collect();
+        let polar = polar_plot_svg(&profiles).map_err(|e| e.to_string())?;
+        write_atomic(&sibling(path, "-polar"), polar.as_bytes())?;
+    }
+    let json = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
+    if let Some(path) = &args.out {
+        write_atomic(path, json.as_bytes())?;
+    }
+    if args.json {
+        return print_json(&report);
+    }
+    let mut o = String::new();
+    outln!(o, "design       {}", report.design);
+    outln!(
+        o,
+        "method       {}  (kerf {} L)",
+        report.method,
+        report.kerf
+    );
+    outln!(o, "end          {}", report.end_reason);
+    outln!(
+        o,
+        "states       {} accepted of {} attempted, arc length {:.4}",
+        report.steps,
+        report.attempts,
+        report.arc_length
+    );
+    outln!(
+        o,
+        "behaviour    {}",
+        report
+            .behaviour
+            .map_or("none (does not expand)".to_string(), |b| b.to_string())
+    );
+    outln!(
+        o,
+        "expansion    min {:+.4}  max {:+.4}  area ratio up to {:.4}",
+        report.min_expansion,
+        report.max_expansion,
+        report.max_area_ratio
+    );
+    outln!(
+        o,
+        "rotation     up to {:.2}°",
+        report.max_tile_rotation.to_degrees()
+    );
+    outln!(
+        o,
+        "invariants   max joint residual {:.2e} L, min clearance {:.4} L",
+        report.max_joint_residual,
+        report.min_clearance
+    );
+    emit(&o)
+}
+
+fn frame_svgs(
+    mech: &Mechanism,
+    contact: &ContactModel,
+    frames: &[isogami::deploy::FrameRecord],
+    width: f64,
+) -> Vec<String> {
+    let states: Vec<_> = frames.iter().map(|f| f.q.clone()).collect();
+    let view = view_box_for(mech, &states);
+    frames
+        .iter()
+        .map(|f| {
+            let style = FrameStyle {
+                width_px: width,
+                view_box: Some(view),
+                extra_polygons: contact
+                    .collision_polygons(mech, &f.q)
+                    .into_iter()
+                    .filter(|(_, o, _)| *o == [0, 0])
+                    .map(|(_, _, p)| p)
+                    .collect(),
+                label: Some(format!("t = {:.2}", f.t)),
+                ..FrameStyle::default()
+            };
+            frame_svg(mech, &f.q, &style)
+        })
+        .collect()
+}
+
+fn write_frames(
+    dir: &Path,
+    mech: &Mechanism,
+    contact: &ContactModel,
+    frames: &[isogami::deploy::FrameRecord],
+) -> CliResult {
+    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    for (k, svg) in frame_svgs(mech, contact, frames, 600.0).iter().enumerate() {
+        write_atomic(&dir.join(format!("frame-{k:04}.svg")), svg.as_bytes())?;
+    }
+    Ok(())
+}
+
+/// `path` with `suffix` inserted before the extension.
+fn sibling(path: &Path, suffix: &str) -> PathBuf {
+    let stem = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().to_string())
+        .unwrap_or_default();
+    let ext = path
+        .extension()
+        .map(|e| format!(".{}", e.to_string_lossy()))
+        .unwrap_or_default();
+    path.with_file_name(format!("{stem}{suffix}{ext}"))
+}

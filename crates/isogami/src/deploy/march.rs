@@ -1,0 +1,138 @@
+//! The step loop shared by every method: try a step of target length β, accept it or halve
+//! β, grow β after successes, stop after too many halvings.
+
+use super::newton::SolveOutcome;
+use super::settings::DeploySettings;
+use super::trajectory::{EndReason, RawStep};
+use crate::contact::ContactModel;
+use crate::error::Result;
+use crate::kinematics::Mechanism;
+use crate::math::{DVec, Real};
+
+/// One attempted step.
+pub(super) struct StepTry {
+    pub outcome: SolveOutcome,
+    pub direction: DVec,
+    pub nullity: usize,
+    /// |achieved progress − β| / β.
+    pub progress_error: Real,
+}
+
+/// How a method turns (state, previous direction, β) into a candidate state.
+pub(super) trait StepPolicy {
+    /// Attempts a step of target length `beta` from `q`; `initial` is the signed opening
+    /// direction at t = 0, `previous` the last accepted direction, `s` the method's progress
+    /// coordinate so far (the sum of accepted β).
+    #[allow(clippy::too_many_arguments)]
+    fn solve(
+        &self,
+        mech: &Mechanism,
+        contact: &ContactModel,
+        settings: &DeploySettings,
+        q: &DVec,
+        initial: &DVec,
+        previous: &DVec,
+        beta: Real,
+        s: Real,
+    ) -> Result<StepTry>;
+}
+
+/// How a march ended.
+pub(super) enum MarchEnd {
+    /// The arc-length limit was reached.
+    Reached,
+    /// The deployment is over.
+    Ended(EndReason),
+}
+
+/// The closed state as the first step.
+pub(super) fn rest_step(mech: &Mechanism, contact: &ContactModel) -> RawStep {
+    RawStep {
+        q: mech.rest.clone(),
+        arc: 0.0,
+        beta: 0.0,
+        iterations: 0,
+        joint_residual: mech.residual(&mech.rest).amax(),
+        min_clearance: contact.min_clearance(mech, &mech.rest),
+        direction: DVec::zeros(mech.rest.len()),
+        nullity: 0,
+    }
+}
+
+/// Steps from the last state in `steps` until contact, step exhaustion, the step limit, or
+/// (when given) until the arc length reaches `arc_limit`.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn march(
+    mech: &Mechanism,
+    contact: &ContactModel,
+    settings: &DeploySettings,
+    policy: &dyn StepPolicy,
+    steps: &mut Vec<RawStep>,
+    initial: &DVec,
+    previous: &DVec,
+    arc_limit: Option<Real>,
+    attempts: &mut usize,
+    progress: &mut dyn FnMut(usize),
+) -> Result<MarchEnd> {
+    let dhat = settings.contact.dhat;
+    let mut prev = previous.clone();
+    let mut beta = settings.initial_step;
+    let mut halvings = 0;
+    let mut s: Real = steps.iter().map(|st| st.beta).sum();
+    loop {
+        if steps.len() > settings.max_steps {
+            return Ok(MarchEnd::Ended(EndReason::MaxSteps));
+        }
+        let last = steps.last().expect("march starts from a state");
+        let q = last.q.clone();
+        *attempts += 1;
+        let tried = policy.solve(mech, contact, settings, &q, initial, &prev, beta, s)?;
+        let out = &tried.outcome;
+        if out.q.iter().any(|x| !x.is_finite()) {
+            return Ok(MarchEnd::Ended(EndReason::SolverFailure {
+                diagnostics: format!(
+                    "non-finite state after step {} (beta {beta:.3e})",
+                    steps.len()
+                ),
+            }));
+        }
+        let accepted = tried.progress_error <= settings.step_tolerance
+            && out.joint_residual <= settings.joint_tolerance
+            && contact.overlapping_pair(mech, &out.q).is_none();
+        if accepted {
+            let arc = last.arc + (&out.q - &q).norm();
+            let min_clearance = contact.min_clearance(mech, &out.q);
+            steps.push(RawStep {
+                q: out.q.clone(),
+                arc,
+                beta,
+                iterations: out.iterations,
+                joint_residual: out.joint_residual,
+                min_clearance,
+                direction: tried.direction.clone(),
+                nullity: tried.nullity,
+            });
+            progress(steps.len());
+            s += beta;
+            prev = tried.direction;
+            halvings = 0;
+            beta = (beta * settings.growth).min(settings.max_step);
+            if arc_limit.is_some_and(|limit| arc >= limit) {
+                return Ok(MarchEnd::Reached);
+            }
+        } else {
+            if halvings >= settings.max_halvings {
+                let contact_blocked = out.barrier > 0.0
+                    || contact.min_clearance(mech, &out.q) < dhat
+                    || last.min_clearance < dhat;
+                return Ok(MarchEnd::Ended(if contact_blocked {
+                    EndReason::ContactLimit
+                } else {
+                    EndReason::StepSizeExhausted
+                }));
+            }
+            halvings += 1;
+            beta *= 0.5;
+        }
+    }
+}

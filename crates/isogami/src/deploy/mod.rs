@@ -1,0 +1,66 @@
+//! Deployment: the trajectory of a one-degree-of-freedom sheet from its closed state to the
+//! contact-limited open state (paper §3.2), plus the two baselines of §5 on the same model.
+//!
+//! - [`Method::RigidModes`] (the paper's method): every step minimises
+//!   E_joints + E_coll + w·E_step with Newton's method, E_step = ½((q − qⁱ)ᵀvⁱ − β)², where vⁱ
+//!   is the motion vector recomputed at every step (sign kept; at turning points the
+//!   null-space direction closest to the previous one). β halves when a step fails and grows
+//!   after successes; ten halvings in a row end the deployment.
+//! - [`Method::Ncm`] (Duenser et al. 2022): the same step problem, but always projected on
+//!   the *initial* eigenvector v⁰ and measured from the closed state.
+//! - [`Method::Springs`] (Liu et al. 2022a): springs pull the tiling vectors towards an
+//!   isotropically enlarged cell; each load step is a relaxation.
+//!
+//! Every accepted state keeps every joint closed to 1e-9 L and is checked free of overlap by
+//! the exact polygon test of `contact`. The line search never leaves the intersection-free
+//! set (conservative advancement). This module solves; `measure` characterises the result
+//! and `render` draws it. No I/O.
+
+mod compare;
+mod direction;
+mod frames;
+mod march;
+mod ncm;
+mod newton;
+mod opening;
+mod report;
+mod rigid_modes;
+mod settings;
+mod springs;
+mod trajectory;
+
+pub use compare::{compare_methods, MethodResult};
+pub use frames::{frame_records, select_frames, FrameRecord};
+pub use newton::{minimize, Objective, SolveOutcome};
+pub use report::{build_report, DeploymentReport, FrameReport, TilePose};
+pub use settings::{DeploySettings, Method};
+pub use trajectory::{EndReason, RawStep, Trajectory};
+
+use crate::contact::ContactModel;
+use crate::error::{Error, Result};
+use crate::kinematics::Mechanism;
+use crate::mobility::{analyze, MobilitySettings};
+
+/// Deploys `mech` with `settings`. Refuses rigid designs with a clear error; a design whose
+/// opening is blocked by contact at once comes back with [`EndReason::Locked`].
+///
+/// `progress` is called after every accepted step with the number of states so far.
+pub fn deploy(
+    mech: &Mechanism,
+    settings: &DeploySettings,
+    progress: &mut dyn FnMut(usize),
+) -> Result<Trajectory> {
+    settings.validate()?;
+    let contact = ContactModel::new(mech, settings.contact)?;
+    let mob = analyze(mech, &mech.rest, MobilitySettings::default())?;
+    if mob.dof == 0 {
+        return Err(Error::Rigid(
+            "the design is rigid (0 degrees of freedom): nothing to deploy".into(),
+        ));
+    }
+    match settings.method {
+        Method::RigidModes => rigid_modes::run(mech, &contact, settings, &mob, progress),
+        Method::Ncm => ncm::run(mech, &contact, settings, &mob, progress),
+        Method::Springs => springs::run(mech, &contact, settings, &mob, progress),
+    }
+}

@@ -1,0 +1,74 @@
+//! Nonlinear compliant modes (Duenser et al. 2022) as a baseline: the step problem of rigid
+//! modes, but the progress is always the projection of q − q⁰ on the *initial* eigenvector.
+//! Where the path turns away from that eigenvector the projection stops growing and the
+//! method cannot go on.
+
+use super::march::{StepPolicy, StepTry};
+use super::newton::{minimize, Objective};
+use super::opening::open_and_march;
+use super::settings::DeploySettings;
+use super::trajectory::Trajectory;
+use crate::contact::ContactModel;
+use crate::error::Result;
+use crate::kinematics::Mechanism;
+use crate::math::{DVec, Real};
+use crate::mobility::Mobility;
+
+struct Ncm;
+
+impl StepPolicy for Ncm {
+    fn solve(
+        &self,
+        mech: &Mechanism,
+        contact: &ContactModel,
+        settings: &DeploySettings,
+        q: &DVec,
+        initial: &DVec,
+        previous: &DVec,
+        beta: Real,
+        s: Real,
+    ) -> Result<StepTry> {
+        // Predict along the last direction actually travelled.
+        let predictor = previous * beta;
+        let alpha = contact.max_safe_step(mech, q, &predictor);
+        let start = q + &predictor * alpha;
+        let target = s + beta;
+        let obj = Objective {
+            progress: Some((
+                initial.clone(),
+                mech.rest.clone(),
+                target,
+                settings.step_weight,
+            )),
+            springs: Vec::new(),
+            spring_k: 0.0,
+        };
+        let out = minimize(mech, contact, &obj, &start, 50);
+        let achieved = (&out.q - &mech.rest).dot(initial);
+        let progress_error = (achieved - target).abs() / beta;
+        let moved = &out.q - q;
+        let norm = moved.norm();
+        let direction = if norm > 0.0 {
+            moved / norm
+        } else {
+            previous.clone()
+        };
+        Ok(StepTry {
+            outcome: out,
+            direction,
+            nullity: 1,
+            progress_error,
+        })
+    }
+}
+
+/// Deploys with nonlinear compliant modes.
+pub(super) fn run(
+    mech: &Mechanism,
+    contact: &ContactModel,
+    settings: &DeploySettings,
+    mob: &Mobility,
+    progress: &mut dyn FnMut(usize),
+) -> Result<Trajectory> {
+    open_and_march(mech, contact, settings, mob, &Ncm, progress)
+}

@@ -1,0 +1,146 @@
+//! The serialisable summary of a deployment: what `isogami deploy --json` prints and what the
+//! design database will store. Physical lengths (tile positions, u, w) are in the tiling's
+//! units; F, U and expansions are dimensionless.
+
+use super::frames::FrameRecord;
+use super::settings::{DeploySettings, Method};
+use super::trajectory::{EndReason, Trajectory};
+use crate::kinematics::Mechanism;
+use crate::math::Real;
+use crate::measure::{classify, BehaviourClass, FrameMeasures};
+use serde::Serialize;
+
+/// Pose of one tile in a frame.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct TilePose {
+    /// Centroid x (tiling units).
+    pub x: Real,
+    /// Centroid y (tiling units).
+    pub y: Real,
+    /// Rotation from the closed state (radians; tile 0 is held fixed).
+    pub theta: Real,
+}
+
+/// One frame of the report.
+#[derive(Debug, Clone, Serialize)]
+pub struct FrameReport {
+    /// Raw step index.
+    pub step: usize,
+    /// Normalised arc length.
+    #[serde(rename = "t")]
+    pub t: Real,
+    /// Deformation gradient, rows.
+    #[serde(rename = "F")]
+    pub f: [[Real; 2]; 2],
+    /// Tiling vector u (tiling units).
+    pub u: [Real; 2],
+    /// Tiling vector w (tiling units).
+    pub w: [Real; 2],
+    /// Tile poses.
+    pub tiles: Vec<TilePose>,
+    /// All expansion measures.
+    pub measures: FrameMeasures,
+    /// Largest joint residual relative to the mean edge length.
+    pub joint_residual: Real,
+    /// Smallest clearance between collision polygons, relative to the mean edge length.
+    pub min_clearance: Real,
+}
+
+/// Summary of the whole trajectory.
+#[derive(Debug, Clone, Serialize)]
+pub struct DeploymentReport {
+    /// Design spec string.
+    pub design: String,
+    /// Method.
+    pub method: Method,
+    /// Kerf relative to the mean edge length.
+    pub kerf: Real,
+    /// Mean edge length L (tiling units).
+    pub length_scale: Real,
+    /// Why the deployment ended.
+    pub end_reason: EndReason,
+    /// Accepted states.
+    pub steps: usize,
+    /// Attempted steps.
+    pub attempts: usize,
+    /// Arc length of the path (non-dimensional).
+    pub arc_length: Real,
+    /// Largest joint residual over every accepted state (relative to L).
+    pub max_joint_residual: Real,
+    /// Smallest clearance over every accepted state (relative to L).
+    pub min_clearance: Real,
+    /// Behaviour class over the frames (None when the sheet does not expand).
+    pub behaviour: Option<BehaviourClass>,
+    /// Largest principal expansion reached.
+    pub max_expansion: Real,
+    /// Smallest principal expansion reached.
+    pub min_expansion: Real,
+    /// Largest area ratio reached.
+    pub max_area_ratio: Real,
+    /// Largest tile rotation reached (radians).
+    pub max_tile_rotation: Real,
+    /// The frames.
+    pub frames: Vec<FrameReport>,
+}
+
+/// Builds the report from checked frame records.
+pub fn build_report(
+    design: &str,
+    mech: &Mechanism,
+    settings: &DeploySettings,
+    traj: &Trajectory,
+    frames: &[FrameRecord],
+) -> DeploymentReport {
+    let l = mech.length_scale;
+    let measures: Vec<FrameMeasures> = frames.iter().map(|f| f.measures.clone()).collect();
+    let fold = |init: Real, pick: &dyn Fn(&FrameMeasures) -> Real, max: bool| {
+        measures
+            .iter()
+            .map(pick)
+            .fold(init, |a, b| if max { a.max(b) } else { a.min(b) })
+    };
+    let frame_reports = frames
+        .iter()
+        .map(|f| {
+            let (u, w) = mech.lattice(&f.q);
+            FrameReport {
+                step: f.step,
+                t: f.t,
+                f: f.measures.f,
+                u: [u.x * l, u.y * l],
+                w: [w.x * l, w.y * l],
+                tiles: (0..mech.tile_count())
+                    .map(|i| {
+                        let (p, th) = mech.pose(&f.q, i);
+                        TilePose {
+                            x: p.x * l,
+                            y: p.y * l,
+                            theta: th,
+                        }
+                    })
+                    .collect(),
+                measures: f.measures.clone(),
+                joint_residual: f.joint_residual,
+                min_clearance: f.min_clearance,
+            }
+        })
+        .collect();
+    DeploymentReport {
+        design: design.to_string(),
+        method: settings.method,
+        kerf: settings.contact.kerf,
+        length_scale: l,
+        end_reason: traj.end_reason.clone(),
+        steps: traj.steps.len(),
+        attempts: traj.attempts,
+        arc_length: traj.total_arc(),
+        max_joint_residual: traj.max_joint_residual(),
+        min_clearance: traj.min_clearance(),
+        behaviour: classify(&measures),
+        max_expansion: fold(Real::NEG_INFINITY, &|m| m.max_expansion, true),
+        min_expansion: fold(Real::INFINITY, &|m| m.min_expansion, false),
+        max_area_ratio: fold(Real::NEG_INFINITY, &|m| m.area_ratio, true),
+        max_tile_rotation: fold(0.0, &|m| m.max_tile_rotation, true),
+        frames: frame_reports,
+    }
+}

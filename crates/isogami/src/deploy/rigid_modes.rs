@@ -1,0 +1,60 @@
+//! Nonlinear rigid modes (paper §3.2): the eigenvector is recomputed at every step.
+
+use super::direction::motion_direction;
+use super::march::{StepPolicy, StepTry};
+use super::newton::{minimize, Objective};
+use super::opening::open_and_march;
+use super::settings::DeploySettings;
+use super::trajectory::Trajectory;
+use crate::contact::ContactModel;
+use crate::error::Result;
+use crate::kinematics::Mechanism;
+use crate::math::{DVec, Real};
+use crate::mobility::Mobility;
+
+/// The rigid-modes step: direction from the current null space, progress measured from the
+/// current state.
+pub(super) struct RigidModes;
+
+impl StepPolicy for RigidModes {
+    fn solve(
+        &self,
+        mech: &Mechanism,
+        contact: &ContactModel,
+        settings: &DeploySettings,
+        q: &DVec,
+        _initial: &DVec,
+        previous: &DVec,
+        beta: Real,
+        _s: Real,
+    ) -> Result<StepTry> {
+        let (v, nullity) = motion_direction(mech, q, previous)?;
+        let predictor = &v * beta;
+        let alpha = contact.max_safe_step(mech, q, &predictor);
+        let start = q + &predictor * alpha;
+        let obj = Objective {
+            progress: Some((v.clone(), q.clone(), beta, settings.step_weight)),
+            springs: Vec::new(),
+            spring_k: 0.0,
+        };
+        let out = minimize(mech, contact, &obj, &start, 50);
+        let progress_error = ((&out.q - q).dot(&v) - beta).abs() / beta;
+        Ok(StepTry {
+            outcome: out,
+            direction: v,
+            nullity,
+            progress_error,
+        })
+    }
+}
+
+/// Deploys with nonlinear rigid modes.
+pub(super) fn run(
+    mech: &Mechanism,
+    contact: &ContactModel,
+    settings: &DeploySettings,
+    mob: &Mobility,
+    progress: &mut dyn FnMut(usize),
+) -> Result<Trajectory> {
+    open_and_march(mech, contact, settings, mob, &RigidModes, progress)
+}

@@ -1,0 +1,115 @@
+//! Deployment settings.
+
+use crate::contact::ContactSettings;
+use crate::error::{Error, Result};
+use crate::math::Real;
+
+/// Which deployment algorithm to run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// Nonlinear rigid modes: eigenvector recomputed every step (the paper's method).
+    RigidModes,
+    /// Nonlinear compliant modes: projection on the initial eigenvector only.
+    Ncm,
+    /// Springs pulling the cell open, a relaxation per load step.
+    Springs,
+}
+
+impl std::str::FromStr for Method {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Method> {
+        match s {
+            "rigid-modes" => Ok(Method::RigidModes),
+            "ncm" => Ok(Method::Ncm),
+            "springs" => Ok(Method::Springs),
+            _ => Err(Error::BadSpec(format!(
+                "unknown method '{s}': use rigid-modes, ncm or springs"
+            ))),
+        }
+    }
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Method::RigidModes => "rigid-modes",
+            Method::Ncm => "ncm",
+            Method::Springs => "springs",
+        })
+    }
+}
+
+/// Settings of a deployment. Lengths are in units of the mean edge length L.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DeploySettings {
+    /// Algorithm.
+    pub method: Method,
+    /// Contact model (kerf, barrier).
+    pub contact: ContactSettings,
+    /// Weight w of the progress term E_step (paper: 1e-4).
+    pub step_weight: Real,
+    /// First target step length β.
+    pub initial_step: Real,
+    /// Largest β.
+    pub max_step: Real,
+    /// Consecutive halvings of β that end the deployment (paper: 10).
+    pub max_halvings: u32,
+    /// β grows by this factor after a success.
+    pub growth: Real,
+    /// Largest number of accepted steps.
+    pub max_steps: usize,
+    /// A step is accepted when its projection on the motion vector is within this fraction
+    /// of β (the paper's ε threshold on E_step, made relative).
+    pub step_tolerance: Real,
+    /// Largest joint residual of an accepted state (units of L).
+    pub joint_tolerance: Real,
+}
+
+impl Default for DeploySettings {
+    fn default() -> Self {
+        DeploySettings {
+            method: Method::RigidModes,
+            contact: ContactSettings::default(),
+            step_weight: 1e-4,
+            initial_step: 0.02,
+            max_step: 0.1,
+            max_halvings: 10,
+            growth: 1.5,
+            max_steps: 5000,
+            step_tolerance: 1e-3,
+            joint_tolerance: 1e-9,
+        }
+    }
+}
+
+impl DeploySettings {
+    /// Checks every field.
+    pub fn validate(&self) -> Result<()> {
+        self.contact.validate()?;
+        let positive = |name: &str, v: Real| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(Error::BadSpec(format!(
+                    "deploy setting {name} must be positive, got {v}"
+                )))
+            }
+        };
+        positive("step_weight", self.step_weight)?;
+        positive("initial_step", self.initial_step)?;
+        positive("max_step", self.max_step)?;
+        positive("step_tolerance", self.step_tolerance)?;
+        positive("joint_tolerance", self.joint_tolerance)?;
+        if !(self.growth.is_finite() && self.growth >= 1.0) {
+            return Err(Error::BadSpec(format!(
+                "growth must be >= 1, got {}",
+                self.growth
+            )));
+        }
+        if self.max_steps == 0 {
+            return Err(Error::BadSpec("max_steps must be at least 1".into()));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,97 @@
+//! Spring-based opening (Liu et al. 2022a) as a baseline: at every load step, springs pull the
+//! tiling vectors from their current values towards an isotropically enlarged cell,
+//! (1 + β)·u and (1 + β)·w, like a biaxial rig pulling at the sheet's boundary. Each load step
+//! relaxes the sheet under the springs, then closes the joints exactly again (the springs
+//! only say where to go). Where the mechanism's path no longer lets the cell grow the way the
+//! springs pull, the sheet stops moving: stalled.
+
+use super::march::{StepPolicy, StepTry};
+use super::newton::{minimize, Objective};
+use super::opening::open_and_march;
+use super::settings::DeploySettings;
+use super::trajectory::{EndReason, Trajectory};
+use crate::contact::ContactModel;
+use crate::error::Result;
+use crate::kinematics::Mechanism;
+use crate::math::{DVec, Real};
+use crate::mobility::Mobility;
+
+/// A load step that grows the cell area by less than this fraction of the load increment
+/// (relative to the area) counts as no motion.
+const STALL_FRACTION: Real = 1e-4;
+
+fn cell_area(mech: &Mechanism, q: &DVec) -> Real {
+    let (u, w) = mech.lattice(q);
+    crate::math::cross(&u, &w).abs()
+}
+
+struct Springs;
+
+impl StepPolicy for Springs {
+    fn solve(
+        &self,
+        mech: &Mechanism,
+        contact: &ContactModel,
+        settings: &DeploySettings,
+        q: &DVec,
+        _initial: &DVec,
+        _previous: &DVec,
+        beta: Real,
+        _s: Real,
+    ) -> Result<StepTry> {
+        let l = mech.layout;
+        let springs = [l.u(), l.u() + 1, l.w(), l.w() + 1]
+            .into_iter()
+            .map(|i| (i, (1.0 + beta) * q[i]))
+            .collect();
+        let relax = Objective {
+            progress: None,
+            springs,
+            spring_k: settings.step_weight,
+        };
+        let relaxed = minimize(mech, contact, &relax, q, 50);
+        let out = minimize(
+            mech,
+            contact,
+            &Objective::constraints_only(),
+            &relaxed.q,
+            50,
+        );
+        let moved = &out.q - q;
+        let norm = moved.norm();
+        let direction = if norm > 0.0 {
+            moved / norm
+        } else {
+            DVec::zeros(q.len())
+        };
+        // "Progress error" 0 when the springs opened the cell further, ∞ when they did not:
+        // a stall halves the load step, and repeated stalls end the run like a blocked step.
+        let (a0, a1) = (cell_area(mech, q), cell_area(mech, &out.q));
+        let progress_error = if a1 - a0 > STALL_FRACTION * beta * a0 {
+            0.0
+        } else {
+            Real::INFINITY
+        };
+        Ok(StepTry {
+            outcome: out,
+            direction,
+            nullity: 1,
+            progress_error,
+        })
+    }
+}
+
+/// Deploys by springs.
+pub(super) fn run(
+    mech: &Mechanism,
+    contact: &ContactModel,
+    settings: &DeploySettings,
+    mob: &Mobility,
+    progress: &mut dyn FnMut(usize),
+) -> Result<Trajectory> {
+    let mut traj = open_and_march(mech, contact, settings, mob, &Springs, progress)?;
+    if traj.end_reason == EndReason::StepSizeExhausted {
+        traj.end_reason = EndReason::Stalled;
+    }
+    Ok(traj)
+}
