@@ -1,0 +1,88 @@
+//! Clearance between collision polygons and the exact overlap test (independent of the
+//! barrier).
+
+use super::model::ContactModel;
+use super::narrow::{min_vertex_edge_distance, polygon_distance, shifted_into, OVERLAP_TOL};
+use super::pairs::CandidatePair;
+use super::placement::Placement;
+use crate::geometry::interiors_overlap;
+use crate::kinematics::Mechanism;
+use crate::math::{DVec, Real, Vec2};
+
+/// Pairs whose bounding boxes are farther apart than this (units of L) get the box gap as
+/// their clearance in [`pair_clearance`] instead of the exact distance.
+const EXACT_WITHIN: Real = 0.25;
+
+impl ContactModel {
+    /// Smallest distance between the collision polygons of any candidate pair at q
+    /// (non-dimensional). For polygons that do not overlap this is the smallest vertex–edge
+    /// distance; overlapping polygons count as 0, and so does a q that does not fit.
+    pub fn min_clearance(&self, mech: &Mechanism, q: &DVec) -> Real {
+        let Some(placed) = self.place(mech, q) else {
+            return 0.0;
+        };
+        let mut best = Real::INFINITY;
+        let mut other = Vec::new();
+        for pair in &self.pairs {
+            let shift = placed.shift(pair.offset);
+            let (ta, tb) = (&placed.tiles[pair.a], &placed.tiles[pair.b]);
+            if ta.aabb.gap(&tb.aabb.shifted(shift)) >= best {
+                continue;
+            }
+            shifted_into(&tb.world, shift, &mut other);
+            best = best.min(polygon_distance(&ta.world, &other));
+        }
+        best
+    }
+
+    /// The first candidate pair whose collision polygons overlap at q, as
+    /// (tile, [0, 0], tile, [k_u, k_w]), by the exact polygon test
+    /// [`crate::geometry::interiors_overlap`] with a 10⁻¹² L tolerance. `None` when no pair
+    /// overlaps (or when `mech`, q do not fit; see [`ContactModel::check`]).
+    pub fn overlapping_pair(
+        &self,
+        mech: &Mechanism,
+        q: &DVec,
+    ) -> Option<(usize, [i32; 2], usize, [i32; 2])> {
+        let placed = self.place(mech, q)?;
+        let mut other = Vec::new();
+        self.pairs.iter().find_map(|pair| {
+            let ta = &placed.tiles[pair.a];
+            shifted_into(
+                &placed.tiles[pair.b].world,
+                placed.shift(pair.offset),
+                &mut other,
+            );
+            interiors_overlap(&ta.world, &other, OVERLAP_TOL).then_some((
+                pair.a,
+                [0, 0],
+                pair.b,
+                pair.offset,
+            ))
+        })
+    }
+}
+
+/// A lower bound of one pair's distance at a placement: the box gap when the boxes are
+/// farther apart than [`EXACT_WITHIN`], else the exact distance. With `check_overlap` the
+/// exact distance is 0 for overlapping polygons; without it, it is the smallest vertex–edge
+/// distance (valid only when the polygons are known not to overlap).
+pub(crate) fn pair_clearance(
+    placed: &Placement,
+    pair: &CandidatePair,
+    check_overlap: bool,
+    other: &mut Vec<Vec2>,
+) -> Real {
+    let shift = placed.shift(pair.offset);
+    let (ta, tb) = (&placed.tiles[pair.a], &placed.tiles[pair.b]);
+    let gap = ta.aabb.gap(&tb.aabb.shifted(shift));
+    if gap > EXACT_WITHIN {
+        return gap;
+    }
+    shifted_into(&tb.world, shift, other);
+    if check_overlap {
+        polygon_distance(&ta.world, other)
+    } else {
+        min_vertex_edge_distance(&ta.world, other)
+    }
+}

@@ -1,0 +1,167 @@
+//! The contact model of one mechanism: inset collision polygons and candidate pairs.
+
+use super::inset::inset_polygon;
+use super::narrow::{min_vertex_edge_distance, shifted_into};
+use super::pairs::{candidate_pairs, CandidatePair};
+use super::placement::Placement;
+use super::settings::ContactSettings;
+use crate::error::{Error, Result};
+use crate::kinematics::{Mechanism, StateLayout};
+use crate::math::{DVec, Real, Vec2};
+
+/// Tiles closer than this in the closed state (units of L) touch.
+const TOUCH_TOL: Real = 1e-7;
+
+/// Collision geometry and barrier of one mechanism, precomputed once.
+///
+/// Every query takes the mechanism the model was built from and a state q. When they do not
+/// fit (another tile count, a q of the wrong length or with NaN/∞ entries; see
+/// [`ContactModel::check`]) the queries do not panic: they answer conservatively (energy
+/// +∞, clearance 0, safe step 0, nothing added to gradient and Hessian, no polygons).
+#[derive(Debug, Clone)]
+pub struct ContactModel {
+    pub(crate) settings: ContactSettings,
+    pub(crate) layout: StateLayout,
+    /// Inset polygons in each tile's frame (counter-clockwise, units of L).
+    pub(crate) shapes: Vec<Vec<Vec2>>,
+    /// Largest |s| over each inset polygon's vertices: the lever arm of a rotation.
+    pub(crate) extents: Vec<Real>,
+    pub(crate) pairs: Vec<CandidatePair>,
+}
+
+impl ContactModel {
+    /// Insets every tile of `mech` by kerf / 2 and lists the candidate pairs: every pair of
+    /// the 3×3 block of cells, plus any tile farther out (up to [`super::SEARCH_RING`] cells)
+    /// that touches a tile of the centre cell in the closed state `mech.rest`. The 3×3 block
+    /// holds every touching tile in most families, but not in IH38–IH40, whose cells are
+    /// skewed enough that a tile shares a vertex with a tile two cells away.
+    ///
+    /// Fails on invalid settings, or naming the tile whose inset polygon is not simple,
+    /// flips orientation or loses an edge (the kerf is too wide for that tile).
+    pub fn new(mech: &Mechanism, settings: ContactSettings) -> Result<ContactModel> {
+        settings.validate()?;
+        let layout = mech.layout;
+        if mech.tile_shapes.len() != layout.tiles || mech.rest.len() != layout.len() {
+            return Err(Error::CellGeometry(format!(
+                "mechanism has {} tile shapes and a closed state of length {} for {} tiles",
+                mech.tile_shapes.len(),
+                mech.rest.len(),
+                layout.tiles
+            )));
+        }
+        if mech.rest.iter().any(|x| !x.is_finite()) {
+            return Err(Error::Numerical(
+                "mechanism's closed state holds NaN or infinity".into(),
+            ));
+        }
+        let shapes = inset_all(&mech.tile_shapes, 0.5 * settings.kerf)?;
+        let extents = shapes
+            .iter()
+            .map(|s| s.iter().map(|v| v.norm()).fold(0.0, Real::max))
+            .collect();
+        Ok(ContactModel {
+            settings,
+            layout,
+            shapes,
+            extents,
+            pairs: touching_candidates(mech),
+        })
+    }
+
+    /// The settings the model was built with.
+    pub fn settings(&self) -> &ContactSettings {
+        &self.settings
+    }
+
+    /// Each tile's collision polygon in its own frame (vertex k is the inset of the tile's
+    /// vertex k).
+    pub fn collision_shapes(&self) -> &[Vec<Vec2>] {
+        &self.shapes
+    }
+
+    /// The candidate pairs (see [`ContactModel::new`]), fixed at construction.
+    pub fn pairs(&self) -> &[CandidatePair] {
+        &self.pairs
+    }
+
+    /// Checks that `mech` and `q` fit this model: same number of tiles, q of length 3n + 4,
+    /// every entry finite.
+    pub fn check(&self, mech: &Mechanism, q: &DVec) -> Result<()> {
+        if mech.layout != self.layout {
+            return Err(Error::Numerical(format!(
+                "contact model built for {} tiles used with a mechanism of {}",
+                self.layout.tiles, mech.layout.tiles
+            )));
+        }
+        if q.len() != self.layout.len() {
+            return Err(Error::Numerical(format!(
+                "state of length {} for a mechanism with {} coordinates",
+                q.len(),
+                self.layout.len()
+            )));
+        }
+        if q.iter().any(|x| !x.is_finite()) {
+            return Err(Error::Numerical("state holds NaN or infinity".into()));
+        }
+        Ok(())
+    }
+
+    /// The collision polygons placed at q, or `None` when `mech`, q do not fit.
+    pub(crate) fn place(&self, mech: &Mechanism, q: &DVec) -> Option<Placement> {
+        self.check(mech, q).ok()?;
+        Some(Placement::new(self.layout, &self.shapes, q))
+    }
+
+    /// World collision polygons of every tile in every cell of the 3×3 block at state q
+    /// (for rendering): (tile, [k_u, k_w], polygon). Empty when `mech`, q do not fit.
+    pub fn collision_polygons(
+        &self,
+        mech: &Mechanism,
+        q: &DVec,
+    ) -> Vec<(usize, [i32; 2], Vec<Vec2>)> {
+        let Some(placed) = self.place(mech, q) else {
+            return Vec::new();
+        };
+        let mut out = Vec::with_capacity(9 * self.layout.tiles);
+        for ku in -1..=1 {
+            for kw in -1..=1 {
+                for i in 0..self.layout.tiles {
+                    out.push((i, [ku, kw], placed.polygon(i, [ku, kw])));
+                }
+            }
+        }
+        out
+    }
+}
+
+/// Every tile inset by `h`, or an error naming the first tile that cannot be.
+fn inset_all(tiles: &[Vec<Vec2>], h: Real) -> Result<Vec<Vec<Vec2>>> {
+    tiles
+        .iter()
+        .enumerate()
+        .map(|(i, poly)| {
+            inset_polygon(poly, h).map_err(|p| {
+                Error::CellGeometry(format!(
+                    "tile {i}: collision polygon inset by kerf/2 = {h}: {p} (try a smaller kerf)"
+                ))
+            })
+        })
+        .collect()
+}
+
+/// The candidate pairs of `mech`: the 3×3 block plus tiles farther out that touch a tile of
+/// the centre cell in the closed state (the tiles themselves, not their insets).
+fn touching_candidates(mech: &Mechanism) -> Vec<CandidatePair> {
+    let rest = Placement::new(mech.layout, &mech.tile_shapes, &mech.rest);
+    let mut other = Vec::new();
+    let touching = |a: usize, b: usize, o: [i32; 2]| {
+        let (ta, tb) = (&rest.tiles[a], &rest.tiles[b]);
+        let shift = rest.shift(o);
+        if ta.aabb.gap(&tb.aabb.shifted(shift)) > TOUCH_TOL {
+            return false;
+        }
+        shifted_into(&tb.world, shift, &mut other);
+        min_vertex_edge_distance(&ta.world, &other) <= TOUCH_TOL
+    };
+    candidate_pairs(mech.layout.tiles, touching)
+}

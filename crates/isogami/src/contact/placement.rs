@@ -1,0 +1,59 @@
+//! Collision polygons placed in the world at a state q: x = R(θ)s + p + k_u u + k_w w.
+
+use super::aabb::Aabb;
+use crate::kinematics::StateLayout;
+use crate::math::{rotation, DVec, Real, Vec2};
+
+/// One tile's collision polygon in the centre cell at state q.
+#[derive(Debug, Clone)]
+pub(crate) struct PlacedTile {
+    /// R(θ)s for every vertex s (the lever arms of the rotation).
+    pub(crate) arms: Vec<Vec2>,
+    /// World vertices R(θ)s + p.
+    pub(crate) world: Vec<Vec2>,
+    /// Bounding box of `world`.
+    pub(crate) aabb: Aabb,
+}
+
+/// Every tile's collision polygon in the centre cell, plus the tiling vectors.
+#[derive(Debug, Clone)]
+pub(crate) struct Placement {
+    pub(crate) tiles: Vec<PlacedTile>,
+    pub(crate) u: Vec2,
+    pub(crate) w: Vec2,
+}
+
+impl Placement {
+    /// Places the tile-frame polygons `shapes` at state q (q.len() must fit `layout`).
+    pub(crate) fn new(layout: StateLayout, shapes: &[Vec<Vec2>], q: &DVec) -> Placement {
+        let tiles = shapes
+            .iter()
+            .enumerate()
+            .map(|(i, shape)| {
+                let k = layout.tile(i);
+                let (p, r) = (Vec2::new(q[k], q[k + 1]), rotation(q[k + 2]));
+                let arms: Vec<Vec2> = shape.iter().map(|s| r * s).collect();
+                let world: Vec<Vec2> = arms.iter().map(|a| a + p).collect();
+                let aabb = Aabb::of(&world);
+                PlacedTile { arms, world, aabb }
+            })
+            .collect();
+        let (iu, iw) = (layout.u(), layout.w());
+        Placement {
+            tiles,
+            u: Vec2::new(q[iu], q[iu + 1]),
+            w: Vec2::new(q[iw], q[iw + 1]),
+        }
+    }
+
+    /// Translation of the cell at `offset`.
+    pub(crate) fn shift(&self, offset: [i32; 2]) -> Vec2 {
+        self.u * Real::from(offset[0]) + self.w * Real::from(offset[1])
+    }
+
+    /// Tile `i`'s world collision polygon in the cell at `offset`.
+    pub(crate) fn polygon(&self, i: usize, offset: [i32; 2]) -> Vec<Vec2> {
+        let s = self.shift(offset);
+        self.tiles[i].world.iter().map(|v| v + s).collect()
+    }
+}
