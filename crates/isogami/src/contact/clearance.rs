@@ -18,6 +18,18 @@ impl ContactModel {
     /// (non-dimensional). For polygons that do not overlap this is the smallest vertex–edge
     /// distance; overlapping polygons count as 0, and so does a q that does not fit.
     pub fn min_clearance(&self, mech: &Mechanism, q: &DVec) -> Real {
+        self.clearance(mech, q, true)
+    }
+
+    /// [`ContactModel::min_clearance`] for a state already known to be intersection-free
+    /// (every state a conservatively advanced line search reaches from an intersection-free
+    /// one): skips the exact overlap test, which dominates the cost. On an overlapping state
+    /// the result is meaningless.
+    pub fn min_clearance_in_free_set(&self, mech: &Mechanism, q: &DVec) -> Real {
+        self.clearance(mech, q, false)
+    }
+
+    fn clearance(&self, mech: &Mechanism, q: &DVec, check_overlap: bool) -> Real {
         let Some(placed) = self.place(mech, q) else {
             return 0.0;
         };
@@ -30,7 +42,12 @@ impl ContactModel {
                 continue;
             }
             shifted_into(&tb.world, shift, &mut other);
-            best = best.min(polygon_distance(&ta.world, &other));
+            let d = if check_overlap {
+                polygon_distance(&ta.world, &other)
+            } else {
+                min_vertex_edge_distance(&ta.world, &other)
+            };
+            best = best.min(d);
         }
         best
     }

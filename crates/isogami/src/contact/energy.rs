@@ -17,6 +17,16 @@ impl ContactModel {
     /// not fit the model. Pairs whose bounding boxes are farther apart than d̂ cost one box
     /// test.
     pub fn energy(&self, mech: &Mechanism, q: &DVec) -> Real {
+        self.barrier_sum(mech, q, true)
+    }
+
+    /// [`ContactModel::energy`] for a state already known to be intersection-free (see
+    /// [`ContactModel::min_clearance_in_free_set`]): skips the exact overlap test.
+    pub fn energy_in_free_set(&self, mech: &Mechanism, q: &DVec) -> Real {
+        self.barrier_sum(mech, q, false)
+    }
+
+    fn barrier_sum(&self, mech: &Mechanism, q: &DVec, check_overlap: bool) -> Real {
         let Some(placed) = self.place(mech, q) else {
             return Real::INFINITY;
         };
@@ -34,7 +44,9 @@ impl ContactModel {
             for_each_close(&ta.world, &other, dhat, |c| {
                 e += barrier_energy(c.d, dhat, kappa);
             });
-            if !e.is_finite() || interiors_overlap(&ta.world, &other, OVERLAP_TOL) {
+            if !e.is_finite()
+                || (check_overlap && interiors_overlap(&ta.world, &other, OVERLAP_TOL))
+            {
                 return Real::INFINITY;
             }
             total += e;

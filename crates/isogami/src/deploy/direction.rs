@@ -13,9 +13,22 @@ use crate::mobility::reduced_hessian;
 pub const TURN_TOLERANCE: Real = 1e-7;
 
 /// Unit motion vector (full state length, zero for tile 0) and the null-space dimension.
+///
+/// Fast path: away from turning points the null space of H is one-dimensional and the
+/// direction is the solution of (H + v̂v̂ᵀ) v = v̂ (v̂ the previous direction), one Cholesky
+/// solve: then Hv = v̂(1 − v̂ᵀv) forces v̂ᵀv = 1 and Hv = 0. It is used only when the
+/// factorisation is well conditioned and the result is a null vector to 1e-10; otherwise
+/// (turning points, several zero eigenvalues) the full eigen-decomposition decides.
 pub fn motion_direction(mech: &Mechanism, q: &DVec, previous: &DVec) -> Result<(DVec, usize)> {
     let n = q.len();
-    let spec = symmetric_eigen(reduced_hessian(mech, q))
+    let h = reduced_hessian(mech, q);
+    let prev = previous.rows(3, n - 3).into_owned();
+    if let Some(v) = tangent_by_solve(&h, &prev) {
+        let mut full = DVec::zeros(n);
+        full.rows_mut(3, n - 3).copy_from(&v);
+        return Ok((full, 1));
+    }
+    let spec = symmetric_eigen(h)
         .ok_or_else(|| Error::Numerical("eigen-decomposition did not converge".into()))?;
     let lmax = spec.values.last().copied().unwrap_or(0.0).max(1.0);
     let nullity = spec
@@ -24,7 +37,6 @@ pub fn motion_direction(mech: &Mechanism, q: &DVec, previous: &DVec) -> Result<(
         .take_while(|&&l| l < TURN_TOLERANCE * lmax)
         .count()
         .max(1);
-    let prev = previous.rows(3, n - 3);
     // Project the previous direction on the (near-)null space.
     let mut v = DVec::zeros(n - 3);
     for k in 0..nullity {
@@ -45,4 +57,33 @@ pub fn motion_direction(mech: &Mechanism, q: &DVec, previous: &DVec) -> Result<(
     let mut full = DVec::zeros(n);
     full.rows_mut(3, n - 3).copy_from(&v);
     Ok((full, nullity))
+}
+
+/// The fast path of [`motion_direction`]; `None` when it cannot be trusted.
+fn tangent_by_solve(h: &crate::math::DMat, prev: &DVec) -> Option<DVec> {
+    let pn = prev.norm();
+    if pn.is_nan() || pn <= 0.5 {
+        return None;
+    }
+    let vp = prev / pn;
+    let mut a = h.clone();
+    a.ger(1.0, &vp, &vp, 1.0);
+    let chol = nalgebra::Cholesky::new(a)?;
+    let l = chol.l_dirty();
+    let diag = (0..l.nrows()).map(|i| l[(i, i)] * l[(i, i)]);
+    let (lo, hi) = diag.fold((Real::INFINITY, 0.0 as Real), |(lo, hi), d| {
+        (lo.min(d), hi.max(d))
+    });
+    // A pivot this small means a second (near-)zero eigenvalue: a turning point.
+    if lo.is_nan() || lo <= TURN_TOLERANCE * hi.max(1.0) {
+        return None;
+    }
+    let v = chol.solve(&vp);
+    let norm = v.norm();
+    if !norm.is_finite() || norm == 0.0 {
+        return None;
+    }
+    let v = v / norm;
+    let hv = (h * &v).amax();
+    (hv < 1e-10 * h.diagonal().amax().max(1.0)).then_some(v)
 }

@@ -1,5 +1,5 @@
 //! The step loop shared by every method: try a step of target length β, accept it or halve
-//! β, grow β after successes, stop after too many halvings.
+//! β, grow β after successes, stop when a step fails at the smallest allowed β.
 
 use super::newton::SolveOutcome;
 use super::settings::DeploySettings;
@@ -18,22 +18,31 @@ pub(super) struct StepTry {
     pub progress_error: Real,
 }
 
-/// How a method turns (state, previous direction, β) into a candidate state.
+/// Where a step starts from.
+pub(super) struct StepInput<'a> {
+    /// The current (accepted) state.
+    pub q: &'a DVec,
+    /// Its clearance.
+    pub clearance: Real,
+    /// The signed opening direction at t = 0.
+    pub initial: &'a DVec,
+    /// The last accepted direction.
+    pub previous: &'a DVec,
+    /// Target step length.
+    pub beta: Real,
+    /// The method's progress coordinate so far (the sum of accepted β).
+    pub s: Real,
+}
+
+/// How a method turns a [`StepInput`] into a candidate state.
 pub(super) trait StepPolicy {
-    /// Attempts a step of target length `beta` from `q`; `initial` is the signed opening
-    /// direction at t = 0, `previous` the last accepted direction, `s` the method's progress
-    /// coordinate so far (the sum of accepted β).
-    #[allow(clippy::too_many_arguments)]
+    /// Attempts one step.
     fn solve(
         &self,
         mech: &Mechanism,
         contact: &ContactModel,
         settings: &DeploySettings,
-        q: &DVec,
-        initial: &DVec,
-        previous: &DVec,
-        beta: Real,
-        s: Real,
+        input: &StepInput,
     ) -> Result<StepTry>;
 }
 
@@ -77,7 +86,10 @@ pub(super) fn march(
     let dhat = settings.contact.dhat;
     let mut prev = previous.clone();
     let mut beta = settings.initial_step;
-    let mut halvings = 0;
+    // Ten halvings of the initial step is the smallest step ever tried (paper: "if we cannot
+    // take a full step after 10 bisections"); successes at tiny steps do not reset that floor,
+    // so grinding towards contact with ever smaller steps ends.
+    let min_beta = settings.initial_step / Real::powi(2.0, settings.max_halvings as i32);
     let mut s: Real = steps.iter().map(|st| st.beta).sum();
     loop {
         if steps.len() > settings.max_steps {
@@ -86,7 +98,15 @@ pub(super) fn march(
         let last = steps.last().expect("march starts from a state");
         let q = last.q.clone();
         *attempts += 1;
-        let tried = policy.solve(mech, contact, settings, &q, initial, &prev, beta, s)?;
+        let input = StepInput {
+            q: &q,
+            clearance: last.min_clearance,
+            initial,
+            previous: &prev,
+            beta,
+            s,
+        };
+        let tried = policy.solve(mech, contact, settings, &input)?;
         let out = &tried.outcome;
         if out.q.iter().any(|x| !x.is_finite()) {
             return Ok(MarchEnd::Ended(EndReason::SolverFailure {
@@ -96,12 +116,23 @@ pub(super) fn march(
                 ),
             }));
         }
+        // The line search only accepts intersection-free states (the barrier is infinite on
+        // overlap); the exact overlap test runs again on every stored frame.
         let accepted = tried.progress_error <= settings.step_tolerance
-            && out.joint_residual <= settings.joint_tolerance
-            && contact.overlapping_pair(mech, &out.q).is_none();
+            && out.joint_residual <= settings.joint_tolerance;
+        if std::env::var_os("ISOGAMI_TRACE").is_some() {
+            eprintln!(
+                "beta {beta:.4e} ok {accepted} perr {:.2e} res {:.2e} barrier {:.2e} it {} conv {}",
+                tried.progress_error,
+                out.joint_residual,
+                out.barrier,
+                out.iterations,
+                out.converged
+            );
+        }
         if accepted {
             let arc = last.arc + (&out.q - &q).norm();
-            let min_clearance = contact.min_clearance(mech, &out.q);
+            let min_clearance = contact.min_clearance_in_free_set(mech, &out.q);
             steps.push(RawStep {
                 q: out.q.clone(),
                 arc,
@@ -115,15 +146,14 @@ pub(super) fn march(
             progress(steps.len());
             s += beta;
             prev = tried.direction;
-            halvings = 0;
             beta = (beta * settings.growth).min(settings.max_step);
             if arc_limit.is_some_and(|limit| arc >= limit) {
                 return Ok(MarchEnd::Reached);
             }
         } else {
-            if halvings >= settings.max_halvings {
+            if beta * 0.5 < min_beta * (1.0 - 1e-12) {
                 let contact_blocked = out.barrier > 0.0
-                    || contact.min_clearance(mech, &out.q) < dhat
+                    || contact.min_clearance_in_free_set(mech, &out.q) < dhat
                     || last.min_clearance < dhat;
                 return Ok(MarchEnd::Ended(if contact_blocked {
                     EndReason::ContactLimit
@@ -131,7 +161,6 @@ pub(super) fn march(
                     EndReason::StepSizeExhausted
                 }));
             }
-            halvings += 1;
             beta *= 0.5;
         }
     }

@@ -5,7 +5,8 @@
 //!   E_joints + E_coll + w·E_step with Newton's method, E_step = ½((q − qⁱ)ᵀvⁱ − β)², where vⁱ
 //!   is the motion vector recomputed at every step (sign kept; at turning points the
 //!   null-space direction closest to the previous one). β halves when a step fails and grows
-//!   after successes; ten halvings in a row end the deployment.
+//!   after successes; a step that fails at ten halvings below the initial β ends the
+//!   deployment.
 //! - [`Method::Ncm`] (Duenser et al. 2022): the same step problem, but always projected on
 //!   the *initial* eigenvector v⁰ and measured from the closed state.
 //! - [`Method::Springs`] (Liu et al. 2022a): springs pull the tiling vectors towards an

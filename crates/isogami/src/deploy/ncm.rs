@@ -3,15 +3,14 @@
 //! Where the path turns away from that eigenvector the projection stops growing and the
 //! method cannot go on.
 
-use super::march::{StepPolicy, StepTry};
-use super::newton::{minimize, Objective};
+use super::march::{StepInput, StepPolicy, StepTry};
+use super::newton::{minimize, Objective, SafeStepper};
 use super::opening::open_and_march;
 use super::settings::DeploySettings;
 use super::trajectory::Trajectory;
 use crate::contact::ContactModel;
 use crate::error::Result;
 use crate::kinematics::Mechanism;
-use crate::math::{DVec, Real};
 use crate::mobility::Mobility;
 
 struct Ncm;
@@ -22,15 +21,21 @@ impl StepPolicy for Ncm {
         mech: &Mechanism,
         contact: &ContactModel,
         settings: &DeploySettings,
-        q: &DVec,
-        initial: &DVec,
-        previous: &DVec,
-        beta: Real,
-        s: Real,
+        input: &StepInput,
     ) -> Result<StepTry> {
+        let StepInput {
+            q,
+            clearance,
+            initial,
+            previous,
+            beta,
+            s,
+        } = *input;
         // Predict along the last direction actually travelled.
         let predictor = previous * beta;
-        let alpha = contact.max_safe_step(mech, q, &predictor);
+        let mut stepper = SafeStepper::new(mech, Some(clearance));
+        let alpha = stepper.fraction(mech, contact, q, &predictor);
+        stepper.moved(mech, &predictor, alpha);
         let start = q + &predictor * alpha;
         let target = s + beta;
         let obj = Objective {
@@ -43,7 +48,7 @@ impl StepPolicy for Ncm {
             springs: Vec::new(),
             spring_k: 0.0,
         };
-        let out = minimize(mech, contact, &obj, &start, 50);
+        let out = minimize(mech, contact, &obj, &start, stepper.clearance(), 50);
         let achieved = (&out.q - &mech.rest).dot(initial);
         let progress_error = (achieved - target).abs() / beta;
         let moved = &out.q - q;

@@ -1,15 +1,14 @@
 //! Nonlinear rigid modes (paper §3.2): the eigenvector is recomputed at every step.
 
 use super::direction::motion_direction;
-use super::march::{StepPolicy, StepTry};
-use super::newton::{minimize, Objective};
+use super::march::{StepInput, StepPolicy, StepTry};
+use super::newton::{minimize, Objective, SafeStepper};
 use super::opening::open_and_march;
 use super::settings::DeploySettings;
 use super::trajectory::Trajectory;
 use crate::contact::ContactModel;
 use crate::error::Result;
 use crate::kinematics::Mechanism;
-use crate::math::{DVec, Real};
 use crate::mobility::Mobility;
 
 /// The rigid-modes step: direction from the current null space, progress measured from the
@@ -22,22 +21,27 @@ impl StepPolicy for RigidModes {
         mech: &Mechanism,
         contact: &ContactModel,
         settings: &DeploySettings,
-        q: &DVec,
-        _initial: &DVec,
-        previous: &DVec,
-        beta: Real,
-        _s: Real,
+        input: &StepInput,
     ) -> Result<StepTry> {
+        let StepInput {
+            q,
+            clearance,
+            previous,
+            beta,
+            ..
+        } = *input;
         let (v, nullity) = motion_direction(mech, q, previous)?;
         let predictor = &v * beta;
-        let alpha = contact.max_safe_step(mech, q, &predictor);
+        let mut stepper = SafeStepper::new(mech, Some(clearance));
+        let alpha = stepper.fraction(mech, contact, q, &predictor);
+        stepper.moved(mech, &predictor, alpha);
         let start = q + &predictor * alpha;
         let obj = Objective {
             progress: Some((v.clone(), q.clone(), beta, settings.step_weight)),
             springs: Vec::new(),
             spring_k: 0.0,
         };
-        let out = minimize(mech, contact, &obj, &start, 50);
+        let out = minimize(mech, contact, &obj, &start, stepper.clearance(), 50);
         let progress_error = ((&out.q - q).dot(&v) - beta).abs() / beta;
         Ok(StepTry {
             outcome: out,

@@ -53,7 +53,8 @@ pub struct DeploySettings {
     pub initial_step: Real,
     /// Largest β.
     pub max_step: Real,
-    /// Consecutive halvings of β that end the deployment (paper: 10).
+    /// Halvings of the initial β that give the smallest step; a step that fails at that size
+    /// ends the deployment (paper: 10).
     pub max_halvings: u32,
     /// β grows by this factor after a success.
     pub growth: Real,

@@ -5,7 +5,7 @@
 //! only say where to go). Where the mechanism's path no longer lets the cell grow the way the
 //! springs pull, the sheet stops moving: stalled.
 
-use super::march::{StepPolicy, StepTry};
+use super::march::{StepInput, StepPolicy, StepTry};
 use super::newton::{minimize, Objective};
 use super::opening::open_and_march;
 use super::settings::DeploySettings;
@@ -33,12 +33,11 @@ impl StepPolicy for Springs {
         mech: &Mechanism,
         contact: &ContactModel,
         settings: &DeploySettings,
-        q: &DVec,
-        _initial: &DVec,
-        _previous: &DVec,
-        beta: Real,
-        _s: Real,
+        input: &StepInput,
     ) -> Result<StepTry> {
+        let StepInput {
+            q, clearance, beta, ..
+        } = *input;
         let l = mech.layout;
         let springs = [l.u(), l.u() + 1, l.w(), l.w() + 1]
             .into_iter()
@@ -49,12 +48,13 @@ impl StepPolicy for Springs {
             springs,
             spring_k: settings.step_weight,
         };
-        let relaxed = minimize(mech, contact, &relax, q, 50);
+        let relaxed = minimize(mech, contact, &relax, q, Some(clearance), 50);
         let out = minimize(
             mech,
             contact,
             &Objective::constraints_only(),
             &relaxed.q,
+            None,
             50,
         );
         let moved = &out.q - q;

@@ -88,7 +88,11 @@ pub fn classify_with(frames: &[FrameMeasures], tol: ClassifyTolerances) -> Optio
     // Only frames where the sheet is stretched in some direction say how it opens; frames
     // that are contracted in every direction (a sheet closing again past its second closed
     // state, by up to a kerf) are left out.
-    let open: Vec<(Real, Real)> = pairs.iter().copied().filter(|&(_, hi)| hi > tol.absolute).collect();
+    let open: Vec<(Real, Real)> = pairs
+        .iter()
+        .copied()
+        .filter(|&(_, hi)| hi > tol.absolute)
+        .collect();
     if open.is_empty() {
         return None;
     }
