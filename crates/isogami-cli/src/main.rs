@@ -26,6 +26,8 @@ enum Command {
     Analyze(commands::analyze::Args),
     /// Deploy a design from its closed state to the contact limit.
     Deploy(commands::deploy::Args),
+    /// Compare rigid modes with the spring and NCM baselines (paper Fig. 4).
+    Compare(commands::compare::Args),
 }
 
 fn main() -> ExitCode {
@@ -35,6 +37,7 @@ fn main() -> ExitCode {
         Command::Cell(a) => commands::cell::run(a),
         Command::Analyze(a) => commands::analyze::run(a),
         Command::Deploy(a) => commands::deploy::run(a),
+        Command::Compare(a) => commands::compare::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -147,3 +147,106 @@ fn refused_parameter_is_named() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("v0"), "{err}");
 }
+
+#[test]
+fn deploy_json_and_outputs() {
+    let dir = std::env::temp_dir().join(format!("isogami-deploy-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (gif, plot, out, frames) = (
+        dir.join("d.gif"),
+        dir.join("p.svg"),
+        dir.join("t.json"),
+        dir.join("frames"),
+    );
+    let v = json(&[
+        "deploy",
+        "--design",
+        "rotating-squares",
+        "--json",
+        "--frame-count",
+        "12",
+        "--gif",
+        gif.to_str().unwrap(),
+        "--plot",
+        plot.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--frames",
+        frames.to_str().unwrap(),
+    ]);
+    assert_eq!(v["end_reason"]["kind"], "contact_limit");
+    assert_eq!(v["behaviour"], "isotropic_auxetic");
+    assert!(v["max_joint_residual"].as_f64().unwrap() <= 1e-8);
+    assert!(v["min_clearance"].as_f64().unwrap() > 0.0);
+    let fr = v["frames"].as_array().unwrap();
+    assert!(fr.len() >= 10 && fr.len() <= 13, "{}", fr.len());
+    assert_eq!(fr[0]["t"], 0.0);
+    assert_eq!(fr.last().unwrap()["t"], 1.0);
+    let f = fr[5]["F"].as_array().unwrap();
+    assert_eq!(f.len(), 2);
+    assert_eq!(f[0].as_array().unwrap().len(), 2);
+    let tiles = fr[5]["tiles"].as_array().unwrap();
+    assert_eq!(tiles.len(), 4);
+    for key in ["x", "y", "theta"] {
+        assert!(tiles[1][key].is_f64(), "{key}");
+    }
+    assert!(std::fs::read(&gif).unwrap().starts_with(b"GIF89a"));
+    assert!(std::fs::read_to_string(&plot).unwrap().contains("<svg"));
+    assert!(std::fs::read_to_string(dir.join("p-polar.svg"))
+        .unwrap()
+        .contains("<svg"));
+    let saved: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    assert_eq!(saved["frames"].as_array().unwrap().len(), fr.len());
+    assert_eq!(std::fs::read_dir(&frames).unwrap().count(), fr.len());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn deploy_refuses_rigid_and_bad_settings() {
+    for args in [
+        &["deploy", "--design", "IH76::2x2:xxxxxxxx"][..],
+        &["deploy", "--design", "rotating-squares", "--kerf", "0"],
+        &["deploy", "--design", "rotating-squares", "--kerf", "-1"],
+        &["deploy", "--design", "rotating-squares", "--kerf", "nan"],
+        &[
+            "deploy",
+            "--design",
+            "rotating-squares",
+            "--frame-count",
+            "1",
+        ],
+        &[
+            "deploy",
+            "--design",
+            "rotating-squares",
+            "--gif",
+            "/nonexistent-dir/x.gif",
+        ],
+    ] {
+        let out = isogami(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.starts_with("error") && !err.contains("panicked"),
+            "{args:?}: {err}"
+        );
+    }
+    let err =
+        String::from_utf8_lossy(&isogami(&["deploy", "--design", "IH76::2x2:xxxxxxxx"]).stderr)
+            .to_string();
+    assert!(err.contains("rigid"), "{err}");
+}
+
+#[test]
+fn compare_prints_final_t_per_method() {
+    let v = json(&["compare", "--design", "rotating-squares", "--json"]);
+    let results = v[0]["results"].as_array().unwrap();
+    assert_eq!(results.len(), 3);
+    let t = |m: &str| {
+        results.iter().find(|r| r["method"] == m).unwrap()["final_t"]
+            .as_f64()
+            .unwrap()
+    };
+    assert_eq!(t("rigid-modes"), 1.0);
+    assert!(t("ncm") < 1.0 && t("springs") < t("ncm"));
+}

@@ -2,5 +2,6 @@
 
 pub mod analyze;
 pub mod cell;
+pub mod compare;
 pub mod deploy;
 pub mod families;

@@ -10,4 +10,4 @@ mod spec;
 
 pub use design::{Design, JointChoice};
 pub use json::{DesignJson, JointJson};
-pub use named::{named_design, NAMED_DESIGNS};
+pub use named::{named_design, NAMED_DESIGNS, SAMPLE_OPENING_DESIGNS};

@@ -4,6 +4,24 @@ use super::design::{Design, JointChoice};
 use crate::cell::{CellDims, UnitCell};
 use crate::tiling::{Family, Tiling};
 
+/// Designs from eleven families that open as one-degree-of-freedom mechanisms and deploy to a
+/// contact limit (found by random search over joint choices at default shapes). Used by
+/// tests and benchmarks; the first three turn away from their initial eigenvector, which is
+/// what the baselines cannot follow.
+pub const SAMPLE_OPENING_DESIGNS: &[&str] = &[
+    "rotating-squares",
+    "IH1:0.12239750492,0.5,0.143395479017,0.625:2x1:--bbb-",
+    "IH2:0.12239750492,0.5,0.225335752741,0.225335752741:1x1:a--aa-",
+    "IH40::1x1:bbabbbbba",
+    "IH44:0.5,0.102564102564:1x1:-aaa",
+    "IH53:0.5,0.102564102564,0.102564102564:1x1:bbaab-b-",
+    "IH61::1x1:aaaa",
+    "IH78:0.230769230769:1x1:bbaaab",
+    "IH85:0.5,0.196416770201:1x1:abbbbb",
+    "IH88::1x1:bbbaabbab",
+    "IH90::1x1:aaa",
+];
+
 /// Names accepted wherever a design is expected.
 pub const NAMED_DESIGNS: &[&str] = &["rotating-squares"];
 
