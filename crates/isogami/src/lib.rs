@@ -10,9 +10,11 @@
 pub mod cell;
 pub mod contact;
 pub mod deploy;
+pub mod explore;
 pub mod error;
 pub mod geometry;
 pub mod kinematics;
+pub mod linkage;
 pub mod math;
 pub mod measure;
 pub mod mobility;

@@ -1,0 +1,1 @@
+//! Linkage analysis (paper §5.1) — placeholder, being written.
