@@ -59,6 +59,9 @@ pub enum Error {
     /// A cell whose geometry does not tile the plane (a bug or an extreme parameter).
     #[error("cell geometry check failed: {0}")]
     CellGeometry(String),
+    /// A setting (kerf, step sizes, method, tolerance) outside its range.
+    #[error("invalid setting: {0}")]
+    Settings(String),
     /// A design with nothing to deploy.
     #[error("{0}")]
     Rigid(String),

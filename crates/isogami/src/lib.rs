@@ -10,8 +10,8 @@
 pub mod cell;
 pub mod contact;
 pub mod deploy;
-pub mod explore;
 pub mod error;
+pub mod explore;
 pub mod geometry;
 pub mod kinematics;
 pub mod linkage;

@@ -58,7 +58,7 @@ impl ContactSettings {
 
     /// Checks kerf ∈ (0, 0.2], 0 < d̂ < kerf and κ > 0 (all finite).
     pub fn validate(&self) -> Result<()> {
-        let bad = |what: String| Err(Error::BadSpec(format!("contact settings: {what}")));
+        let bad = |what: String| Err(Error::Settings(format!("contact: {what}")));
         if !(self.kerf.is_finite() && self.kerf > 0.0 && self.kerf <= MAX_KERF) {
             return bad(format!(
                 "kerf {} must lie in (0, {MAX_KERF}] (units of the mean edge length)",

@@ -23,7 +23,7 @@ impl std::str::FromStr for Method {
             "rigid-modes" => Ok(Method::RigidModes),
             "ncm" => Ok(Method::Ncm),
             "springs" => Ok(Method::Springs),
-            _ => Err(Error::BadSpec(format!(
+            _ => Err(Error::Settings(format!(
                 "unknown method '{s}': use rigid-modes, ncm or springs"
             ))),
         }
@@ -92,7 +92,7 @@ impl DeploySettings {
             if v.is_finite() && v > 0.0 {
                 Ok(())
             } else {
-                Err(Error::BadSpec(format!(
+                Err(Error::Settings(format!(
                     "deploy setting {name} must be positive, got {v}"
                 )))
             }
@@ -103,13 +103,13 @@ impl DeploySettings {
         positive("step_tolerance", self.step_tolerance)?;
         positive("joint_tolerance", self.joint_tolerance)?;
         if !(self.growth.is_finite() && self.growth >= 1.0) {
-            return Err(Error::BadSpec(format!(
+            return Err(Error::Settings(format!(
                 "growth must be >= 1, got {}",
                 self.growth
             )));
         }
         if self.max_steps == 0 {
-            return Err(Error::BadSpec("max_steps must be at least 1".into()));
+            return Err(Error::Settings("max_steps must be at least 1".into()));
         }
         Ok(())
     }

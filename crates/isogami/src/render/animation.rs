@@ -68,7 +68,7 @@ pub fn raster_font() -> Option<String> {
 }
 
 pub(crate) fn render_error(msg: String) -> Error {
-    Error::Numerical(format!("render: {msg}"))
+    Error::Render(msg)
 }
 
 fn parse(svg: &str) -> Result<usvg::Tree> {
