@@ -20,12 +20,23 @@ fn mech_of(spec: &str) -> Mechanism {
     Mechanism::new(&d.cell().unwrap(), &d.joints).unwrap()
 }
 
+/// Deploys and checks every accepted state independently of the solver: joints closed to
+/// 1e-8 L, the exact overlap test, no NaN.
+fn checked(mech: &Mechanism, settings: &DeploySettings) -> Trajectory {
+    let traj = deploy(mech, settings, &mut |_| {}).unwrap();
+    let contact = ContactModel::new(mech, settings.contact).unwrap();
+    let all: Vec<usize> = (0..traj.steps.len()).collect();
+    frame_records(mech, &contact, &traj, &all, 1e-8)
+        .unwrap_or_else(|e| panic!("{}: {e}", settings.method));
+    traj
+}
+
 fn run(mech: &Mechanism, kerf: f64) -> Trajectory {
     let s = DeploySettings {
         contact: ContactSettings::with_kerf(kerf),
         ..DeploySettings::default()
     };
-    deploy(mech, &s, &mut |_| {}).unwrap()
+    checked(mech, &s)
 }
 
 /// φ = half the rotation of tile 1 relative to tile 0 (chessboard neighbours).

@@ -24,9 +24,16 @@ pub struct Args {
     /// Cut width relative to the mean edge length.
     #[arg(long, default_value_t = ContactSettings::default().kerf, allow_hyphen_values = true)]
     kerf: f64,
-    /// Number of frames to report (picked evenly in t).
+    /// Number of frames to report (accepted states nearest to evenly spaced t).
     #[arg(long, default_value_t = 60)]
     frame_count: usize,
+    /// Report every accepted state instead of evenly spaced frames.
+    #[arg(long)]
+    all_steps: bool,
+    /// Deployment parameters t at which the polar plot shows the profile of U (comma
+    /// separated, each in [0, 1]).
+    #[arg(long, default_value = "0.25,0.5,0.75,1")]
+    polar_t: String,
     /// Print the report as JSON.
     #[arg(long)]
     json: bool,
@@ -77,7 +84,11 @@ pub fn run(args: Args) -> CliResult {
         deploy(&mech, &settings, &mut |n| bar.set_position(n as u64)).map_err(|e| e.to_string())?;
     bar.finish_and_clear();
 
-    let indices = select_frames(&traj, args.frame_count);
+    let indices = if args.all_steps {
+        (0..traj.steps.len()).collect()
+    } else {
+        select_frames(&traj, args.frame_count)
+    };
     let frames =
         frame_records(&mech, &contact, &traj, &indices, 1e-8).map_err(|e| e.to_string())?;
     let report = build_report(&design.to_string(), &mech, &settings, &traj, &frames);
@@ -96,7 +107,7 @@ pub fn run(args: Args) -> CliResult {
         let hi: Vec<f64> = frames.iter().map(|f| f.measures.max_expansion).collect();
         let svg = expansion_plot_svg(&t, &lo, &hi, &report.design).map_err(|e| e.to_string())?;
         write_atomic(path, svg.as_bytes())?;
-        let profiles: Vec<(String, Vec<(f64, f64)>)> = [0.25, 0.5, 0.75, 1.0]
+        let profiles: Vec<(String, Vec<(f64, f64)>)> = polar_t
             .iter()
             .map(|&target| {
                 let f = frames
@@ -215,4 +226,26 @@ fn sibling(path: &Path, suffix: &str) -> PathBuf {
         .map(|e| format!(".{}", e.to_string_lossy()))
         .unwrap_or_default();
     path.with_file_name(format!("{stem}{suffix}{ext}"))
+}
+
+/// Parses `--polar-t`: comma-separated values in [0, 1].
+fn parse_polar_t(text: &str) -> Result<Vec<f64>, String> {
+    let values: Vec<f64> = text
+        .split(',')
+        .map(|p| {
+            let v: f64 = p
+                .trim()
+                .parse()
+                .map_err(|_| format!("--polar-t: '{}' is not a number", p.trim()))?;
+            if (0.0..=1.0).contains(&v) {
+                Ok(v)
+            } else {
+                Err(format!("--polar-t: {v} is outside [0, 1]"))
+            }
+        })
+        .collect::<Result<_, _>>()?;
+    if values.is_empty() || values.len() > 12 {
+        return Err("--polar-t takes 1 to 12 values".into());
+    }
+    Ok(values)
 }
