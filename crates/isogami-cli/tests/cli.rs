@@ -253,8 +253,17 @@ fn compare_prints_final_t_per_method() {
 
 #[test]
 fn deploy_all_steps_and_polar_t() {
-    let v = json(&["deploy", "--design", "rotating-squares", "--json", "--all-steps"]);
-    assert_eq!(v["frames"].as_array().unwrap().len(), v["steps"].as_u64().unwrap() as usize);
+    let v = json(&[
+        "deploy",
+        "--design",
+        "rotating-squares",
+        "--json",
+        "--all-steps",
+    ]);
+    assert_eq!(
+        v["frames"].as_array().unwrap().len(),
+        v["steps"].as_u64().unwrap() as usize
+    );
     for bad in ["2", "x", "", "0.1,,0.2"] {
         let out = isogami(&["deploy", "--design", "rotating-squares", "--polar-t", bad]);
         assert_eq!(out.status.code(), Some(2), "--polar-t {bad}");

@@ -58,6 +58,7 @@ pub fn run(args: Args) -> CliResult {
         .method
         .parse()
         .map_err(|e: isogami::Error| e.to_string())?;
+    let polar_t = parse_polar_t(&args.polar_t)?;
     if args.frame_count < 2 || args.frame_count > 10_000 {
         return Err(format!(
             "--frame-count must lie in 2..=10000, got {}",
