@@ -6,7 +6,11 @@
 //! from aspects and translation vectors in `cell`. No I/O.
 
 mod family;
+mod sampling;
 mod shape;
 
 pub use family::{EdgeShapeKind, Family, FamilyInfo, PrototileEdge};
+pub use sampling::{
+    shape_grid, shape_quality_problem, MIN_ANGLE_DEG, MIN_EDGE_RATIO, MIN_ROUNDNESS,
+};
 pub use shape::{Affine, Tiling};
