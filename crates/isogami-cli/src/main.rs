@@ -28,6 +28,15 @@ enum Command {
     Deploy(commands::deploy::Args),
     /// Compare rigid modes with the spring and NCM baselines (paper Fig. 4).
     Compare(commands::compare::Args),
+    /// Explore the design space into the design database (resumable, shardable).
+    Explore(commands::explore::Args),
+    /// Merge shard databases into one.
+    Merge(commands::db::MergeArgs),
+    /// Inspect a design database.
+    Db {
+        #[command(subcommand)]
+        command: commands::db::DbCommand,
+    },
 }
 
 fn main() -> ExitCode {
@@ -38,6 +47,9 @@ fn main() -> ExitCode {
         Command::Analyze(a) => commands::analyze::run(a),
         Command::Deploy(a) => commands::deploy::run(a),
         Command::Compare(a) => commands::compare::run(a),
+        Command::Explore(a) => commands::explore::run(a),
+        Command::Merge(a) => commands::db::merge(a),
+        Command::Db { command } => commands::db::run(command),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -7,6 +7,7 @@
 //! Jacobian, Hessian) → [`mobility`] (spectrum of H = JᵀJ, degrees of freedom, motion).
 //! [`render`] turns results into SVG text. The library does no I/O: front ends read and write.
 
+pub mod catalog;
 pub mod cell;
 pub mod contact;
 pub mod deploy;

@@ -3,5 +3,7 @@
 pub mod analyze;
 pub mod cell;
 pub mod compare;
+pub mod db;
 pub mod deploy;
+pub mod explore;
 pub mod families;

@@ -1,0 +1,128 @@
+//! `isogami merge` and `isogami db stats`.
+
+use crate::output::{emit, print_json, CliResult};
+use isogami_store::{DbStats, Store};
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+/// Arguments of `merge`.
+#[derive(Debug, clap::Args)]
+pub struct MergeArgs {
+    /// The database to merge into (created if missing).
+    #[arg(long)]
+    into: PathBuf,
+    /// Shard databases to merge.
+    #[arg(required = true)]
+    shards: Vec<PathBuf>,
+}
+
+/// Merges shard databases; units already present are skipped.
+pub fn merge(args: MergeArgs) -> CliResult {
+    for s in &args.shards {
+        if !s.is_file() {
+            return Err(format!("{}: no such database", s.display()));
+        }
+    }
+    let mut store =
+        Store::open_any(&args.into).map_err(|e| format!("{}: {e}", args.into.display()))?;
+    let mut o = String::new();
+    for s in &args.shards {
+        let r = store
+            .merge_from(s)
+            .map_err(|e| format!("{}: {e}", s.display()))?;
+        let _ = writeln!(
+            o,
+            "{}: {} work units added ({} already present), {} designs",
+            s.display(),
+            r.units_added,
+            r.units_skipped,
+            r.designs_added
+        );
+    }
+    emit(&o)
+}
+
+/// Subcommands of `db`.
+#[derive(Debug, clap::Subcommand)]
+pub enum DbCommand {
+    /// Summarise a design database.
+    Stats {
+        /// The database.
+        #[arg(long, default_value = "isogami.db")]
+        db: PathBuf,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// Runs a `db` subcommand.
+pub fn run(cmd: DbCommand) -> CliResult {
+    match cmd {
+        DbCommand::Stats { db, json } => {
+            if !db.is_file() {
+                return Err(format!("{}: no such database", db.display()));
+            }
+            let store = Store::open_any(&db).map_err(|e| format!("{}: {e}", db.display()))?;
+            let stats = store.stats().map_err(|e| e.to_string())?;
+            if json {
+                print_json(&stats)
+            } else {
+                emit(&stats_table(&stats))
+            }
+        }
+    }
+}
+
+/// The per-stage and per-family report.
+pub fn stats_table(s: &DbStats) -> String {
+    let mut o = String::new();
+    let _ = writeln!(
+        o,
+        "{} work units, {} designs (schema {}, isogami {})",
+        s.work_units,
+        s.designs,
+        s.schema_version,
+        s.tool_version.as_deref().unwrap_or("?")
+    );
+    let _ = writeln!(
+        o,
+        "\n{:<18} {:>12} {:>12} {:>9}",
+        "stage", "in", "out", "seconds"
+    );
+    for st in &s.stages {
+        let _ = writeln!(
+            o,
+            "{:<18} {:>12} {:>12} {:>9.2}",
+            st.stage, st.count_in, st.count_out, st.seconds
+        );
+    }
+    let names: Vec<&str> = s.stages.iter().map(|st| st.stage.as_str()).collect();
+    let _ = writeln!(o, "\nper family (count out of each stage; designs kept):");
+    let _ = write!(o, "{:<6}", "family");
+    for n in &names {
+        let _ = write!(o, " {:>11}", n.chars().take(11).collect::<String>());
+    }
+    let _ = writeln!(o, " {:>8}", "designs");
+    for (fam, f) in &s.families {
+        let _ = write!(o, "{fam:<6}");
+        for n in &names {
+            let v = f
+                .stages
+                .iter()
+                .find(|st| &st.stage == n)
+                .map_or(0, |st| st.count_out);
+            let _ = write!(o, " {v:>11}");
+        }
+        let _ = writeln!(o, " {:>8}", f.designs);
+    }
+    let _ = writeln!(o, "\nbehaviour classes:");
+    for (k, v) in &s.by_behaviour {
+        let _ = writeln!(o, "  {k:<32} {v}");
+    }
+    let _ = writeln!(o, "linkage signatures:");
+    for (k, v) in &s.by_linkage {
+        let _ = writeln!(o, "  {k:<32} {v}");
+    }
+    o
+}

@@ -1,0 +1,15 @@
+//! Catalogue building: the last stages of the exploration (paper §4.1, deployment and the
+//! expansion threshold; §4.2, shape sampling) and the characterisation of every kept design.
+//!
+//! A work unit is one (family, supercell): enumerate its joint topologies (`explore`), deploy
+//! each unique topology at the default shape and keep those that expand past the threshold,
+//! then sample the family's shape parameters for each kept topology, deploy every sample and
+//! keep those past the threshold, each with its deployment report and linkage analysis. Work
+//! units are deterministic and independent, so they can run in any order, in parallel, or on
+//! different machines. Plain data out; storing is the caller's business.
+
+mod settings;
+mod unit;
+
+pub use settings::CatalogSettings;
+pub use unit::{run_unit, CatalogEntry, StageTally, UnitOutcome};

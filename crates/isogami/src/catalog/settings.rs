@@ -1,0 +1,126 @@
+//! Settings of the catalogue stages.
+
+use crate::deploy::{DeploySettings, Method};
+use crate::error::{Error, Result};
+use crate::explore::TopologyOptions;
+use crate::math::Real;
+use serde::Serialize;
+
+/// Everything that decides what a work unit keeps. Stored with the database so any row can
+/// be regenerated.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CatalogSettings {
+    /// A design is kept when its largest principal expansion over the deployment reaches
+    /// this (0.1: the sheet stretches by 10 % in some direction). The paper does not give its
+    /// threshold.
+    pub threshold: Real,
+    /// Shape samples per kept topology, the default shape included.
+    pub samples: usize,
+    /// Grid values per shape parameter.
+    pub shape_levels: usize,
+    /// Grid half-width relative to each default (times max(|v|, 0.25)).
+    pub shape_span: Real,
+    /// Frames stored per deployment.
+    pub frame_count: usize,
+    /// Topology enumeration options.
+    pub topology: TopologyOptions,
+    /// Deployment settings (rigid modes).
+    pub deploy: DeploySettings,
+}
+
+impl Default for CatalogSettings {
+    fn default() -> Self {
+        CatalogSettings {
+            threshold: 0.1,
+            samples: 12,
+            shape_levels: 3,
+            shape_span: 0.3,
+            frame_count: 40,
+            topology: TopologyOptions::default(),
+            deploy: DeploySettings::default(),
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct SettingsRecord {
+    threshold: Real,
+    samples: usize,
+    shape_levels: usize,
+    shape_span: Real,
+    frame_count: usize,
+    max_edges: usize,
+    max_dims: u8,
+    mobility_rel_tol: Real,
+    kerf: Real,
+    dhat: Real,
+    barrier_stiffness: Real,
+    step_weight: Real,
+    initial_step: Real,
+    max_step: Real,
+    max_halvings: u32,
+}
+
+impl CatalogSettings {
+    /// Checks every field.
+    pub fn validate(&self) -> Result<()> {
+        self.deploy.validate()?;
+        if self.deploy.method != Method::RigidModes {
+            return Err(Error::Settings(
+                "exploration deploys with rigid modes".into(),
+            ));
+        }
+        if !(self.threshold.is_finite() && self.threshold >= 0.0) {
+            return Err(Error::Settings(format!(
+                "threshold must be >= 0, got {}",
+                self.threshold
+            )));
+        }
+        if self.samples == 0 || self.samples > 10_000 {
+            return Err(Error::Settings(format!(
+                "samples must lie in 1..=10000, got {}",
+                self.samples
+            )));
+        }
+        if self.shape_levels < 2 || self.shape_levels > 16 {
+            return Err(Error::Settings(format!(
+                "shape levels must lie in 2..=16, got {}",
+                self.shape_levels
+            )));
+        }
+        if !(self.shape_span.is_finite() && self.shape_span > 0.0 && self.shape_span <= 2.0) {
+            return Err(Error::Settings(format!(
+                "shape span must lie in (0, 2], got {}",
+                self.shape_span
+            )));
+        }
+        if self.frame_count < 2 {
+            return Err(Error::Settings("frame count must be at least 2".into()));
+        }
+        Ok(())
+    }
+
+    /// A canonical JSON text of every setting that changes results (stored with the
+    /// database; a resumed run must match it).
+    pub fn fingerprint(&self) -> String {
+        let d = &self.deploy;
+        serde_json::to_string(&SettingsRecord {
+            threshold: self.threshold,
+            samples: self.samples,
+            shape_levels: self.shape_levels,
+            shape_span: self.shape_span,
+            frame_count: self.frame_count,
+            max_edges: self.topology.max_edges,
+            max_dims: self.topology.max_dims,
+            mobility_rel_tol: self.topology.mobility.rel_tol,
+            kerf: d.contact.kerf,
+            dhat: d.contact.dhat,
+            barrier_stiffness: d.contact.stiffness,
+            step_weight: d.step_weight,
+            initial_step: d.initial_step,
+            max_step: d.max_step,
+            max_halvings: d.max_halvings,
+        })
+        .expect("plain numbers serialise")
+    }
+}

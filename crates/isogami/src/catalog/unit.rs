@@ -1,0 +1,197 @@
+//! One work unit: a family on one supercell, from joint masks to catalogue entries.
+
+use super::settings::CatalogSettings;
+use crate::cell::{CellDims, UnitCell};
+use crate::contact::ContactModel;
+use crate::deploy::{
+    build_report, deploy, frame_records, select_frames, DeploymentReport, EndReason,
+};
+use crate::error::Result;
+use crate::explore::{enumerate_topologies, TopologyReport};
+use crate::kinematics::Mechanism;
+use crate::linkage::{analyze_linkages, LinkageAnalysis};
+use crate::mobility::analyze;
+use crate::tiling::{shape_grid, Family, Tiling};
+use crate::topology::Design;
+use serde::Serialize;
+use std::time::Instant;
+
+/// Count in, count out and time of one stage.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StageTally {
+    /// Stage name.
+    pub stage: String,
+    /// Candidates entering.
+    pub count_in: u64,
+    /// Candidates leaving.
+    pub count_out: u64,
+    /// Seconds spent.
+    pub seconds: f64,
+}
+
+/// One kept design.
+#[derive(Debug, Clone)]
+pub struct CatalogEntry {
+    /// The design (sampled shape).
+    pub design: Design,
+    /// Spec of its topology at the default shape.
+    pub topology: String,
+    /// Its deployment.
+    pub report: DeploymentReport,
+    /// Its linkages.
+    pub linkages: LinkageAnalysis,
+}
+
+/// Everything a work unit produced.
+#[derive(Debug, Clone)]
+pub struct UnitOutcome {
+    /// Family.
+    pub family: Family,
+    /// Supercell.
+    pub dims: CellDims,
+    /// Stages in pipeline order.
+    pub stages: Vec<StageTally>,
+    /// Kept designs, in a deterministic order.
+    pub entries: Vec<CatalogEntry>,
+}
+
+fn tally(stage: &str, count_in: u64, count_out: u64, seconds: f64) -> StageTally {
+    StageTally {
+        stage: stage.to_string(),
+        count_in,
+        count_out,
+        seconds,
+    }
+}
+
+/// The enumeration's stages as tallies.
+fn topology_tallies(r: &TopologyReport) -> Vec<StageTally> {
+    let t = &r.timings;
+    let reduced = t.reduced.as_secs_f64();
+    vec![
+        tally("degree", r.masks_total, r.after_degree, reduced),
+        tally("connected", r.after_degree, r.after_connected, 0.0),
+        tally("directions", r.after_connected, r.after_directions, 0.0),
+        tally("triangles", r.after_directions, r.after_triangles, 0.0),
+        tally(
+            "mobility",
+            r.configurations_expanded,
+            r.mobility_one,
+            t.expand.as_secs_f64(),
+        ),
+        tally(
+            "separating",
+            r.mobility_one,
+            r.separating,
+            t.separate.as_secs_f64(),
+        ),
+        tally("unique", r.separating, r.unique, t.dedup.as_secs_f64()),
+    ]
+}
+
+/// Deploys `design` and characterises it; `None` when it does not reach the threshold (or
+/// is not a one-DOF mechanism at this shape, or is locked).
+fn characterise(
+    design: &Design,
+    topology: &str,
+    settings: &CatalogSettings,
+) -> Result<Option<CatalogEntry>> {
+    let cell = design.cell()?;
+    let mech = Mechanism::new(&cell, &design.joints)?;
+    if analyze(&mech, &mech.rest, settings.topology.mobility)?.dof != 1 {
+        return Ok(None);
+    }
+    let traj = deploy(&mech, &settings.deploy, &mut |_| {})?;
+    if matches!(traj.end_reason, EndReason::Locked) || traj.steps.len() < 2 {
+        return Ok(None);
+    }
+    let contact = ContactModel::new(&mech, settings.deploy.contact)?;
+    let frames = frame_records(
+        &mech,
+        &contact,
+        &traj,
+        &select_frames(&traj, settings.frame_count),
+        1e-8,
+    )?;
+    let report = build_report(&design.to_string(), &mech, &settings.deploy, &traj, &frames);
+    if !(report.max_expansion >= settings.threshold) {
+        return Ok(None);
+    }
+    let linkages = analyze_linkages(&cell, &design.joints)?;
+    Ok(Some(CatalogEntry {
+        design: design.clone(),
+        topology: topology.to_string(),
+        report,
+        linkages,
+    }))
+}
+
+/// Runs one work unit. Deterministic: the same inputs give the same outcome.
+pub fn run_unit(family: Family, dims: CellDims, settings: &CatalogSettings) -> Result<UnitOutcome> {
+    settings.validate()?;
+    let topo = enumerate_topologies(family, dims, &settings.topology)?;
+    let mut stages = topology_tallies(&topo);
+
+    let start = Instant::now();
+    let mut kept_topologies = Vec::new();
+    for d in &topo.designs {
+        if let Some(entry) = characterise(d, &d.to_string(), settings)? {
+            kept_topologies.push(entry);
+        }
+    }
+    stages.push(tally(
+        "deploy_threshold",
+        topo.designs.len() as u64,
+        kept_topologies.len() as u64,
+        start.elapsed().as_secs_f64(),
+    ));
+
+    let start = Instant::now();
+    let grid = shape_grid(
+        family,
+        settings.shape_levels,
+        settings.shape_span,
+        settings.samples,
+    );
+    let mut sampled = 0u64;
+    let mut entries = Vec::new();
+    for kept in kept_topologies {
+        // The default shape is the grid's first sample and is already deployed.
+        sampled += 1;
+        let topology = kept.topology.clone();
+        let joints = kept.design.joints.clone();
+        entries.push(kept);
+        for params in grid.iter().skip(1) {
+            sampled += 1;
+            let design = Design {
+                family,
+                params: params.clone(),
+                dims,
+                joints: joints.clone(),
+            };
+            // Parameters that the grid found valid build; a shape whose cell cannot be built
+            // with this joint list is simply not kept.
+            if Tiling::new(family, params)
+                .and_then(|t| UnitCell::new(&t, dims))
+                .is_err()
+            {
+                continue;
+            }
+            if let Some(entry) = characterise(&design, &topology, settings)? {
+                entries.push(entry);
+            }
+        }
+    }
+    stages.push(tally(
+        "shapes",
+        sampled,
+        entries.len() as u64,
+        start.elapsed().as_secs_f64(),
+    ));
+    Ok(UnitOutcome {
+        family,
+        dims,
+        stages,
+        entries,
+    })
+}
