@@ -1,1 +1,35 @@
-//! Design-space exploration (paper §4.1–4.2) — placeholder, being written.
+//! Design-space exploration (paper §4.1): topology enumeration with hierarchical filters.
+//!
+//! For one family (default shape parameters) and one cell:
+//!
+//! 1. [`reduced`] — the reduced space of 2^m joint masks (joint or not per unique edge) and the
+//!    four cheap checks, evaluated on the periodic sheet: degree ≥ 2 over distinct
+//!    (tile, offset) neighbours, path-connected cell, cycle offsets of rank 2, no jointed
+//!    triangle of sheet tiles.
+//! 2. [`expand`] — each surviving mask's 2^k endpoint choices, depth-first with incremental
+//!    rank and safe prunes; dof = 1 certified by a rigorous bound or decided by
+//!    `mobility::analyze` at the leaves (one mask per symmetry orbit of masks).
+//! 3. [`separate`] — the motion must open some cut and leave no jointed pair rigidly attached
+//!    (first-order relative normal velocity; the rule is an option).
+//! 4. [`dedup`] — one design per symmetry orbit of the sheet, no repeats of smaller cells,
+//!    one design per motion.
+//! 5. [`pipeline`] — the stages strung together with counts and timings per stage, and the
+//!    list of cells (a×b up to 4×4 with at most 16 unique edges) to explore per family.
+//!
+//! Plain data in and out, deterministic, single-threaded, no I/O. Deployment of the kept
+//! designs, the expansion threshold and shape sampling (§4.2) are later stages.
+
+pub mod dedup;
+pub mod expand;
+pub mod pipeline;
+pub mod reduced;
+pub mod separate;
+
+pub use dedup::{motion_invariant, sheet_symmetries, MotionInvariant, Symmetry, SymmetryGroup};
+pub use expand::{ExpandStats, Expander, Leaf};
+pub use pipeline::{
+    cells_to_explore, enumerate_topologies, DesignDetails, StageTimings, TopologyOptions,
+    TopologyReport,
+};
+pub use reduced::{MaskVerdict, ReducedGraph, ReducedResult};
+pub use separate::{edge_rates, separation, EdgeRate, Separation, SeparationRule};

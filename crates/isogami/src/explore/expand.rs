@@ -1,0 +1,422 @@
+//! Expansion of a reduced topology (a joint mask) into its 2^k endpoint choices, keeping those
+//! with exactly one degree of freedom (paper §4.1, first eigen-analysis check).
+//!
+//! The choices are assigned depth-first, one jointed edge at a time (end A, then end B). Each
+//! joint adds two rows to the Jacobian of the closed state (non-dimensional model, tile 0's
+//! three columns removed — exactly the matrix whose H = JᵀJ `mobility::analyze` decomposes,
+//! N = 3n + 1 columns). An orthonormal basis of the rows added so far is kept by classical
+//! Gram–Schmidt with re-orthogonalisation (CGS2), with the triangular factor R of the rows it
+//! selected, so adding a joint costs O(N · rank) and backtracking is a truncation.
+//!
+//! Adding joints only removes motions, which gives two prunes, both safe:
+//!
+//! - **too flexible**: a row whose residual after projection is below `1e-9 ·` its norm counts
+//!   as dependent. With `r` the basis size and `left` the edges still undecided, every
+//!   completion has rank ≤ r + 2·left; if N − r − 2·left > 1 no completion can have dof = 1.
+//!   (The dropped residuals are ≤ 3e-9, four decades below the smallest zero threshold
+//!   `analyze` can use, √1e-9 ≈ 3.2e-5 on singular values, so the count is an upper bound
+//!   of `analyze`'s numerical rank.)
+//! - **rigid**: once the basis has N rows, R is square and σ_min(J) ≥ σ_min(R) ≥ 1/‖R⁻¹‖_F.
+//!   Adding rows never lowers the smallest eigenvalue of H, and `analyze`'s threshold for any
+//!   completion is at most `rel_tol · max(B, 1)` with B the sum over the mask's edges of the
+//!   larger squared Frobenius norm of its two row pairs (a bound on λ_max). If
+//!   σ_min(R)² ≥ 2 · that threshold, every completion is rigid and the subtree is dropped.
+//!
+//! At a leaf with a basis of N − 1 rows, the same bound decides dof = 1 without an
+//! eigen-decomposition when it is clear: the N − 1 selected rows have σ_min(R)² ≥ 2 · the zero
+//! threshold `analyze` would use for this matrix (rel_tol · max(‖J‖_F², 1) ≥ rel_tol · λ_max),
+//! so N − 1 eigenvalues are non-zero, while the N-th is at most the dropped residuals (≤ 3e-9),
+//! far below any threshold. The motion is then the unit vector orthogonal to the basis, signed
+//! as `analyze` signs it (opening area, else largest component positive). Every other leaf
+//! that may have dof = 1 (basis of N − 1 rows without the certificate, or N rows without the
+//! rigidity certificate) is handed to `mobility::analyze` itself. `Leaf::analysed` says which.
+//! Plain data in and out (joint choices, motion vectors); no separation or symmetry
+//! reasoning, no I/O.
+
+use crate::cell::UnitCell;
+use crate::error::Result;
+use crate::kinematics::Mechanism;
+use crate::math::DVec;
+use crate::mobility::{analyze, area_rate, MobilitySettings};
+use crate::topology::JointChoice;
+use serde::Serialize;
+
+/// A row counts as independent when its residual after projection exceeds this times its
+/// norm.
+const DEPENDENT_REL_TOL: f64 = 1e-9;
+
+/// Safety factor between the certificates (rigid, dof = 1) and `analyze`'s zero threshold.
+const RIGID_MARGIN: f64 = 2.0;
+
+/// Counters of one or more expansions.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+pub struct ExpandStats {
+    /// Σ 2^k over the expanded masks: the configurations the expansion stands for.
+    pub configurations: u64,
+    /// Partial assignments visited (including leaves).
+    pub nodes: u64,
+    /// Subtrees dropped because every completion is rigid.
+    pub pruned_rigid: u64,
+    /// Subtrees dropped because every completion has dof ≥ 2.
+    pub pruned_flexible: u64,
+    /// Full assignments reached.
+    pub leaves: u64,
+    /// Leaves whose dof = 1 was certified from the incremental factorisation.
+    pub certified: u64,
+    /// Calls to `mobility::analyze`.
+    pub analyses: u64,
+    /// Analyses that failed numerically (skipped, never kept).
+    pub failures: u64,
+    /// Configurations with dof = 1.
+    pub mobility_one: u64,
+}
+
+impl ExpandStats {
+    /// Adds another run's counters.
+    pub fn add(&mut self, o: &ExpandStats) {
+        self.configurations += o.configurations;
+        self.nodes += o.nodes;
+        self.pruned_rigid += o.pruned_rigid;
+        self.pruned_flexible += o.pruned_flexible;
+        self.leaves += o.leaves;
+        self.certified += o.certified;
+        self.analyses += o.analyses;
+        self.failures += o.failures;
+        self.mobility_one += o.mobility_one;
+    }
+}
+
+/// One endpoint choice with exactly one degree of freedom.
+#[derive(Debug, Clone, Copy)]
+pub struct Leaf<'l> {
+    /// Joint choice per unique edge.
+    pub joints: &'l [JointChoice],
+    /// Unit motion vector, full state (tile 0's entries zero), signed as `analyze` signs it.
+    pub motion: &'l DVec,
+    /// True when `mobility::analyze` decided this leaf (false: certified, see module docs).
+    pub analysed: bool,
+}
+
+/// The joint rows of one cell, ready for expanding many masks.
+#[derive(Debug, Clone)]
+pub struct Expander<'a> {
+    cell: &'a UnitCell,
+    /// A jointless mechanism of the cell (state layout and closed state for signing motions).
+    reference: Mechanism,
+    settings: MobilitySettings,
+    /// Reduced column count N = 3n + 1.
+    cols: usize,
+    /// rows[edge][end]: the two Jacobian rows (each N long, concatenated) of a joint at that
+    /// end (0 = A, 1 = B).
+    rows: Vec<[Vec<f64>; 2]>,
+    /// Per edge: the larger squared Frobenius norm of its two row pairs.
+    row_weight: Vec<f64>,
+}
+
+/// Working state of one depth-first expansion.
+struct Search<'s> {
+    edges: Vec<usize>,
+    choice: Vec<JointChoice>,
+    /// Orthonormal basis rows, `count` of them, each N long.
+    q: Vec<f64>,
+    /// Lower-triangular factor: selected row i = Σ_j r[i][j] q_j (N × N, row-major).
+    r: Vec<f64>,
+    count: usize,
+    /// Set when the basis is full but the rigidity certificate failed.
+    uncertain_full: bool,
+    threshold_sq: f64,
+    stats: ExpandStats,
+    visit: &'s mut dyn FnMut(Leaf<'_>),
+}
+
+impl<'a> Expander<'a> {
+    /// Precomputes the Jacobian rows of every possible joint of `cell` at the closed state.
+    pub fn new(cell: &'a UnitCell, settings: MobilitySettings) -> Result<Expander<'a>> {
+        let m = cell.edges.len();
+        let both = Mechanism::new(cell, &vec![JointChoice::Both; m])?;
+        let reference = Mechanism::new(cell, &vec![JointChoice::None; m])?;
+        let jac = both.jacobian(&both.rest);
+        let cols = jac.ncols() - 3;
+        let mut rows = Vec::with_capacity(m);
+        let mut row_weight = Vec::with_capacity(m);
+        for (k, j) in both.joints.chunks(2).enumerate() {
+            debug_assert!(j.iter().all(|j| j.edge == k));
+            let pair = |idx: usize| -> Vec<f64> {
+                let r = 2 * (2 * k + idx);
+                (0..2)
+                    .flat_map(|d| (3..jac.ncols()).map(move |c| (r + d, c)))
+                    .map(|rc| jac[rc])
+                    .collect()
+            };
+            let (a, b) = (pair(0), pair(1));
+            let sq = |v: &Vec<f64>| v.iter().map(|x| x * x).sum::<f64>();
+            row_weight.push(sq(&a).max(sq(&b)));
+            rows.push([a, b]);
+        }
+        Ok(Expander {
+            cell,
+            reference,
+            settings,
+            cols,
+            rows,
+            row_weight,
+        })
+    }
+
+    /// Number of reduced columns N (3n + 1).
+    pub fn columns(&self) -> usize {
+        self.cols
+    }
+
+    /// Expands `mask` (bit k = edge k jointed) and calls `visit` with every endpoint choice
+    /// that has exactly one degree of freedom, in depth-first order (A before B, edges
+    /// ascending).
+    pub fn expand(&self, mask: u32, visit: &mut dyn FnMut(Leaf<'_>)) -> ExpandStats {
+        let m = self.rows.len();
+        let edges: Vec<usize> = (0..m).filter(|&k| mask >> k & 1 == 1).collect();
+        let bound: f64 = edges.iter().map(|&k| self.row_weight[k]).sum();
+        let n = self.cols;
+        let mut s = Search {
+            choice: vec![JointChoice::None; m],
+            q: vec![0.0; n * n],
+            r: vec![0.0; n * n],
+            count: 0,
+            uncertain_full: false,
+            threshold_sq: self.settings.rel_tol * bound.max(1.0),
+            stats: ExpandStats {
+                configurations: 1u64 << edges.len(),
+                ..ExpandStats::default()
+            },
+            edges,
+            visit,
+        };
+        self.descend(&mut s, 0);
+        s.stats
+    }
+
+    /// Collects the dof = 1 endpoint choices of `mask`.
+    pub fn expand_collect(&self, mask: u32) -> (Vec<Vec<JointChoice>>, ExpandStats) {
+        let mut out = Vec::new();
+        let stats = self.expand(mask, &mut |leaf| out.push(leaf.joints.to_vec()));
+        (out, stats)
+    }
+
+    fn descend(&self, s: &mut Search<'_>, depth: usize) {
+        s.stats.nodes += 1;
+        let n = self.cols;
+        let left = s.edges.len() - depth;
+        if n > s.count + 2 * left + 1 {
+            s.stats.pruned_flexible += 1;
+            return;
+        }
+        if left == 0 {
+            self.leaf(s);
+            return;
+        }
+        let edge = s.edges[depth];
+        for (end, choice) in [JointChoice::A, JointChoice::B].into_iter().enumerate() {
+            let (count, uncertain) = (s.count, s.uncertain_full);
+            let pair = &self.rows[edge][end];
+            self.add_row(s, &pair[..n]);
+            self.add_row(s, &pair[n..]);
+            let pruned = if s.count == n && count < n {
+                if self.certified(s, n) {
+                    s.stats.pruned_rigid += 1;
+                    true
+                } else {
+                    s.uncertain_full = true;
+                    false
+                }
+            } else {
+                false
+            };
+            if !pruned {
+                s.choice[edge] = choice;
+                self.descend(s, depth + 1);
+                s.choice[edge] = JointChoice::None;
+            }
+            s.count = count;
+            s.uncertain_full = uncertain;
+        }
+    }
+
+    fn leaf(&self, s: &mut Search<'_>) {
+        s.stats.leaves += 1;
+        let n = self.cols;
+        // count ≤ N − 2: dof ≥ 2 (an upper bound of the numerical rank, see module docs).
+        // count = N with the certificate never reaches a leaf (pruned above).
+        if s.count + 1 < n {
+            return;
+        }
+        debug_assert!(s.count < n || s.uncertain_full);
+        if s.count + 1 == n {
+            // ‖J‖_F² of this leaf bounds λ_max: the zero threshold analyze would use.
+            let frob: f64 = s
+                .edges
+                .iter()
+                .map(|&e| {
+                    let end = usize::from(s.choice[e] == JointChoice::B);
+                    self.rows[e][end].iter().map(|x| x * x).sum::<f64>()
+                })
+                .sum();
+            let threshold = self.settings.rel_tol * frob.max(1.0);
+            if self.certified_with(s, n - 1, threshold) {
+                s.stats.certified += 1;
+                s.stats.mobility_one += 1;
+                let motion = self.null_vector(s);
+                (s.visit)(Leaf {
+                    joints: &s.choice,
+                    motion: &motion,
+                    analysed: false,
+                });
+                return;
+            }
+        }
+        s.stats.analyses += 1;
+        let Ok(mech) = Mechanism::new(self.cell, &s.choice) else {
+            s.stats.failures += 1;
+            return;
+        };
+        match analyze(&mech, &mech.rest, self.settings) {
+            Ok(mob) if mob.dof == 1 => {
+                if let Some(motion) = &mob.motion {
+                    s.stats.mobility_one += 1;
+                    (s.visit)(Leaf {
+                        joints: &s.choice,
+                        motion: &motion.vector,
+                        analysed: true,
+                    });
+                }
+            }
+            Ok(_) => {}
+            Err(_) => s.stats.failures += 1,
+        }
+    }
+
+    /// The unit vector orthogonal to a basis of N − 1 rows, as a full state vector signed the
+    /// way `mobility` signs motions.
+    fn null_vector(&self, s: &Search<'_>) -> DVec {
+        let n = self.cols;
+        let k = s.count;
+        // Start from the coordinate axis least covered by the basis (its residual is ≥ 1/√N).
+        let covered = |c: usize| -> f64 { (0..k).map(|i| s.q[i * n + c].powi(2)).sum() };
+        let axis = (0..n)
+            .min_by(|&a, &b| covered(a).total_cmp(&covered(b)))
+            .unwrap_or(0);
+        let mut v = vec![0.0; n];
+        v[axis] = 1.0;
+        for _pass in 0..2 {
+            for i in 0..k {
+                let qi = &s.q[i * n..(i + 1) * n];
+                let d: f64 = qi.iter().zip(&v).map(|(a, b)| a * b).sum();
+                for (x, y) in v.iter_mut().zip(qi) {
+                    *x -= d * y;
+                }
+            }
+        }
+        let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let mut full = DVec::zeros(n + 3);
+        for (c, x) in v.iter().enumerate() {
+            full[c + 3] = x / norm;
+        }
+        let rate = area_rate(&self.reference, &self.reference.rest, &full);
+        let flip = if rate.abs() > 1e-9 {
+            rate < 0.0
+        } else {
+            full[full.iamax()] < 0.0
+        };
+        if flip {
+            full = -full;
+        }
+        full
+    }
+
+    /// Projects `row` against the basis (twice) and appends it when independent.
+    fn add_row(&self, s: &mut Search<'_>, row: &[f64]) {
+        let n = self.cols;
+        let k = s.count;
+        if k == n {
+            return;
+        }
+        let norm = row.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if norm == 0.0 {
+            return;
+        }
+        let mut v = row.to_vec();
+        let mut coef = vec![0.0; k];
+        for _pass in 0..2 {
+            for (j, c) in coef.iter_mut().enumerate() {
+                let qj = &s.q[j * n..(j + 1) * n];
+                let d: f64 = qj.iter().zip(&v).map(|(a, b)| a * b).sum();
+                *c += d;
+                for (x, y) in v.iter_mut().zip(qj) {
+                    *x -= d * y;
+                }
+            }
+        }
+        let rho = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if rho <= DEPENDENT_REL_TOL * norm {
+            return;
+        }
+        for (dst, x) in s.q[k * n..(k + 1) * n].iter_mut().zip(&v) {
+            *dst = x / rho;
+        }
+        let rrow = &mut s.r[k * n..(k + 1) * n];
+        rrow[..k].copy_from_slice(&coef);
+        rrow[k] = rho;
+        for x in &mut rrow[k + 1..] {
+            *x = 0.0;
+        }
+        s.count = k + 1;
+    }
+
+    /// The rigidity certificate of a full basis (see module docs).
+    fn certified(&self, s: &Search<'_>, n: usize) -> bool {
+        self.certified_with(s, n, s.threshold_sq)
+    }
+
+    /// True when the leading `size` selected rows have σ_min(R)² ≥ margin · `threshold`, via
+    /// σ_min(R) ≥ 1/‖R⁻¹‖_F.
+    fn certified_with(&self, s: &Search<'_>, size: usize, threshold: f64) -> bool {
+        let n = self.cols;
+        let r = &s.r;
+        // Solve R x = e_c for every column c by forward substitution; accumulate ‖R⁻¹‖_F².
+        let mut inv_sq = 0.0;
+        let mut x = vec![0.0; size];
+        for c in 0..size {
+            for i in 0..size {
+                if i < c {
+                    x[i] = 0.0;
+                    continue;
+                }
+                let mut acc = if i == c { 1.0 } else { 0.0 };
+                for (j, xj) in x.iter().enumerate().take(i).skip(c) {
+                    acc -= r[i * n + j] * xj;
+                }
+                x[i] = acc / r[i * n + i];
+                inv_sq += x[i] * x[i];
+            }
+        }
+        inv_sq.is_finite() && inv_sq > 0.0 && 1.0 / inv_sq >= RIGID_MARGIN * threshold
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cell::CellDims;
+    use crate::tiling::{Family, Tiling};
+
+    #[test]
+    fn rotating_squares_mask_keeps_the_named_design() {
+        let f = Family::from_number(76).unwrap();
+        let cell = UnitCell::new(&Tiling::default_for(f), CellDims::new(2, 2).unwrap()).unwrap();
+        let ex = Expander::new(&cell, MobilitySettings::default()).unwrap();
+        assert_eq!(ex.columns(), 13);
+        let (found, stats) = ex.expand_collect(0xFF);
+        assert_eq!(stats.configurations, 256);
+        let named = crate::topology::named_design("rotating-squares").unwrap();
+        assert!(found.contains(&named.joints));
+        assert_eq!(stats.mobility_one as usize, found.len());
+    }
+}

@@ -1,0 +1,277 @@
+//! Topology enumeration for one family and cell at default shape parameters: the reduced
+//! checks, expansion to endpoint choices with mobility = 1, separation, deduplication — with
+//! the count and time of every stage — and the list of cells to explore for a family.
+//!
+//! Deterministic: the same input gives the same counts and designs in the same order. Single
+//! threaded (callers parallelise over families and cells). Deployment and the expansion
+//! threshold come after this stage and are not done here. No I/O.
+
+use super::dedup::{dedup_orbits, SymmetryGroup};
+use super::expand::{ExpandStats, Expander};
+use super::reduced::{ReducedGraph, MAX_REDUCED_EDGES};
+use super::separate::{separation, Separation, SeparationRule};
+use crate::cell::{CellDims, UnitCell};
+use crate::error::{Error, Result};
+use crate::kinematics::Mechanism;
+use crate::mobility::MobilitySettings;
+use crate::tiling::{Family, Tiling};
+use crate::topology::{Design, JointChoice};
+use serde::Serialize;
+use std::collections::BTreeSet;
+use std::time::{Duration, Instant};
+
+/// Options of the topology enumeration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TopologyOptions {
+    /// Largest number of unique edges of an explored cell (the paper: 16).
+    pub max_edges: usize,
+    /// Largest supercell repetition along either tiling vector (1..=4).
+    pub max_dims: u8,
+    /// The mobility analysis used at the leaves (the same default as `isogami analyze`).
+    pub mobility: MobilitySettings,
+    /// Which motions count as separating.
+    pub separation: SeparationRule,
+}
+
+impl Default for TopologyOptions {
+    fn default() -> Self {
+        TopologyOptions {
+            max_edges: 16,
+            max_dims: 4,
+            mobility: MobilitySettings::default(),
+            separation: SeparationRule::default(),
+        }
+    }
+}
+
+/// Wall-clock time of every stage.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct StageTimings {
+    /// Building the tiling, the cell and its adjacency structure.
+    pub setup: Duration,
+    /// The four cheap checks over all 2^m masks.
+    pub reduced: Duration,
+    /// Expansion to endpoint choices and mobility (separation time excluded).
+    pub expand: Duration,
+    /// The separation test of the dof = 1 configurations.
+    pub separate: Duration,
+    /// Deduplication.
+    pub dedup: Duration,
+    /// Everything.
+    pub total: Duration,
+}
+
+/// Facts about one kept design; `details[i]` belongs to `designs[i]`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DesignDetails {
+    /// The design's spec string.
+    pub spec: String,
+    /// Number of pin joints.
+    pub joints: usize,
+    /// Spectral gap of the mobility analysis (decades).
+    pub gap_decades: Option<f64>,
+    /// Rate of change of the cell area along the motion (non-dimensional).
+    pub area_rate: f64,
+    /// Separation verdict.
+    pub separation: Separation,
+    /// Size of its symmetry orbit: designs equal to it up to a symmetry of the sheet.
+    pub orbit_size: usize,
+    /// Other symmetry orbits with the same motion merged into it.
+    pub same_motion_merged: usize,
+}
+
+/// The result of enumerating the topologies of one family and cell.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TopologyReport {
+    /// Tiling family.
+    pub family: Family,
+    /// Supercell.
+    pub dims: CellDims,
+    /// Tiles in the cell.
+    pub tiles: usize,
+    /// Unique edges m.
+    pub edges: usize,
+    /// 2^m.
+    pub masks_total: u64,
+    /// Masks passing check 1 (degree ≥ 2).
+    pub after_degree: u64,
+    /// … and check 2 (path-connected).
+    pub after_connected: u64,
+    /// … and check 3 (two independent directions).
+    pub after_directions: u64,
+    /// … and check 4 (no jointed triangle).
+    pub after_triangles: u64,
+    /// Σ 2^k over surviving masks (k jointed edges): the endpoint configurations expanded.
+    pub configurations_expanded: u64,
+    /// Surviving masks actually expanded: one per symmetry orbit of masks.
+    pub masks_expanded: u64,
+    /// Order of the sheet's symmetry group (modulo the supercell lattice).
+    pub symmetry_group: usize,
+    /// Configurations with exactly one degree of freedom (over all surviving masks).
+    pub mobility_one: u64,
+    /// … whose motion separates under `options.separation`.
+    pub separating: u64,
+    /// Distinct symmetry orbits among those.
+    pub symmetry_classes: u64,
+    /// Orbit representatives that `mobility::analyze` did not confirm at dof = 1 (expected 0).
+    pub unconfirmed: u64,
+    /// Orbits left after removing repeats of smaller cells.
+    pub after_repeats: u64,
+    /// Designs left after merging equal motions.
+    pub unique: u64,
+    /// Details of the expansion search (nodes, prunes, certified leaves, analyses) over the
+    /// expanded masks; `configurations` counts all surviving masks.
+    pub expand_stats: ExpandStats,
+    /// The kept designs, in spec order.
+    pub designs: Vec<Design>,
+    /// Facts about each kept design (same order).
+    pub details: Vec<DesignDetails>,
+    /// Time per stage.
+    pub timings: StageTimings,
+}
+
+/// Enumerates the joint topologies of `family` (default shape parameters) on the `dims`
+/// supercell. Fails when the cell has more than `options.max_edges` unique edges (or more than
+/// the enumerator's limit of 24) or cannot be built.
+pub fn enumerate_topologies(
+    family: Family,
+    dims: CellDims,
+    options: &TopologyOptions,
+) -> Result<TopologyReport> {
+    let start = Instant::now();
+    let tiling = Tiling::default_for(family);
+    let cell = UnitCell::new(&tiling, dims)?;
+    let m = cell.edges.len();
+    let limit = options.max_edges.min(MAX_REDUCED_EDGES);
+    let too_many = || {
+        Error::BadSpec(format!(
+            "{family} {dims} has {m} unique edges; topology enumeration takes at most {limit}"
+        ))
+    };
+    if m > limit {
+        return Err(too_many());
+    }
+    let graph = ReducedGraph::new(&cell).ok_or_else(too_many)?;
+    let reference = Mechanism::new(&cell, &vec![JointChoice::None; m])?;
+    let expander = Expander::new(&cell, options.mobility)?;
+    let group = SymmetryGroup::new(&cell);
+    let mut timings = StageTimings {
+        setup: start.elapsed(),
+        ..StageTimings::default()
+    };
+
+    let t = Instant::now();
+    let reduced = graph.enumerate();
+    timings.reduced = t.elapsed();
+
+    // Expand one mask per symmetry orbit; a configuration's images under the orbit's other
+    // masks have the same dof and separation, so counts are weighted by the orbit size.
+    let t = Instant::now();
+    let mut stats = ExpandStats::default();
+    let mut separate_time = Duration::ZERO;
+    let (mut mobility_one, mut separating) = (0u64, 0u64);
+    let mut orbits: BTreeSet<u64> = BTreeSet::new();
+    let mut masks_expanded = 0u64;
+    for &mask in &reduced.survivors {
+        let (canonical, size) = group.mask_orbit(mask);
+        if canonical != mask {
+            continue;
+        }
+        masks_expanded += 1;
+        let weight = size as u64;
+        let mut local_sep = 0u64;
+        let s = expander.expand(mask, &mut |leaf| {
+            let ts = Instant::now();
+            let sep = separation(&cell, &reference, leaf.joints, leaf.motion);
+            if sep.passes(options.separation) {
+                local_sep += 1;
+                orbits.insert(group.canonical_key(leaf.joints).0);
+            }
+            separate_time += ts.elapsed();
+        });
+        mobility_one += weight * s.mobility_one;
+        separating += weight * local_sep;
+        stats.add(&s);
+    }
+    // Configurations stand for every surviving mask, expanded or not.
+    stats.configurations = reduced
+        .survivors
+        .iter()
+        .map(|mask| 1u64 << mask.count_ones())
+        .sum();
+    timings.expand = t.elapsed().saturating_sub(separate_time);
+    timings.separate = separate_time;
+
+    let t = Instant::now();
+    let result = dedup_orbits(&cell, &reference, &group, &orbits, options.mobility);
+    timings.dedup = t.elapsed();
+
+    let mut designs = Vec::with_capacity(result.kept.len());
+    let mut details = Vec::with_capacity(result.kept.len());
+    for k in &result.kept {
+        let design = Design {
+            family,
+            params: tiling.params().to_vec(),
+            dims,
+            joints: k.joints.clone(),
+        };
+        details.push(DesignDetails {
+            spec: design.to_string(),
+            joints: design.joint_count(),
+            gap_decades: k.mobility.gap_decades,
+            area_rate: k.mobility.motion.as_ref().map_or(0.0, |mo| mo.area_rate),
+            separation: k.separation,
+            orbit_size: k.orbit_size,
+            same_motion_merged: k.same_motion_merged,
+        });
+        designs.push(design);
+    }
+    timings.total = start.elapsed();
+    Ok(TopologyReport {
+        family,
+        dims,
+        tiles: cell.tiles.len(),
+        edges: m,
+        masks_total: reduced.masks_total,
+        after_degree: reduced.after_degree,
+        after_connected: reduced.after_connected,
+        after_directions: reduced.after_directions,
+        after_triangles: reduced.after_triangles,
+        configurations_expanded: stats.configurations,
+        masks_expanded,
+        symmetry_group: group.len(),
+        mobility_one,
+        separating,
+        symmetry_classes: result.symmetry_classes as u64,
+        unconfirmed: result.unconfirmed as u64,
+        after_repeats: result.after_repeats as u64,
+        unique: designs.len() as u64,
+        expand_stats: stats,
+        designs,
+        details,
+        timings,
+    })
+}
+
+/// The cells to explore for `family`: every a×b with 1 ≤ a, b ≤ `options.max_dims` (at most
+/// 4) whose cell has at most `options.max_edges` unique edges, as (dims, edge count), ordered
+/// by edge count, then a, then b. Cells that fail to build are left out.
+pub fn cells_to_explore(family: Family, options: &TopologyOptions) -> Vec<(CellDims, usize)> {
+    let tiling = Tiling::default_for(family);
+    let top = options.max_dims.clamp(1, 4);
+    let mut out = Vec::new();
+    for a in 1..=top {
+        for b in 1..=top {
+            let Ok(dims) = CellDims::new(a, b) else {
+                continue;
+            };
+            if let Ok(cell) = UnitCell::new(&tiling, dims) {
+                if cell.edges.len() <= options.max_edges {
+                    out.push((dims, cell.edges.len()));
+                }
+            }
+        }
+    }
+    out.sort_by_key(|(d, m)| (*m, d.a(), d.b()));
+    out
+}
