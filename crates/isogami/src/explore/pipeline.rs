@@ -2,6 +2,11 @@
 //! checks, expansion to endpoint choices with mobility = 1, separation, deduplication — with
 //! the count and time of every stage — and the list of cells to explore for a family.
 //!
+//! Only one mask per symmetry orbit of masks is expanded; the counts of dof = 1 and separating
+//! configurations are weighted by the orbit size, so they count every configuration of every
+//! surviving mask (the tests check this against brute force). Every kept design is analysed
+//! once more by `mobility::analyze`, which supplies its reported gap and motion.
+//!
 //! Deterministic: the same input gives the same counts and designs in the same order. Single
 //! threaded (callers parallelise over families and cells). Deployment and the expansion
 //! threshold come after this stage and are not done here. No I/O.
