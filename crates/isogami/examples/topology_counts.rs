@@ -12,7 +12,9 @@
 //! designs.
 
 use isogami::cell::{CellDims, UnitCell};
-use isogami::explore::{cells_to_explore, enumerate_topologies, Expander, ReducedGraph};
+use isogami::explore::{
+    cells_to_explore, duplicates_across, enumerate_topologies, Expander, ReducedGraph,
+};
 use isogami::explore::{TopologyOptions, TopologyReport};
 use isogami::kinematics::Mechanism;
 use isogami::mobility::{analyze, MobilitySettings};
@@ -28,6 +30,7 @@ struct Totals {
     connected: u64,
     directions: u64,
     triangles: u64,
+    counting: u64,
     configs: u64,
     analyses: u64,
     certified: u64,
@@ -52,6 +55,7 @@ impl Totals {
         self.connected += r.after_connected;
         self.directions += r.after_directions;
         self.triangles += r.after_triangles;
+        self.counting += r.after_counting;
         self.configs += r.configurations_expanded;
         self.analyses += r.expand_stats.analyses;
         self.certified += r.expand_stats.certified;
@@ -72,7 +76,7 @@ impl Totals {
         let pct = |a: u64, b: u64| 100.0 * (1.0 - a as f64 / (b.max(1)) as f64);
         println!(
             "TOTAL {label}: {} cells; masks {} → degree {} → connected {} → directions {} → \
-             triangles {} ({:.2}% removed by the cheap checks); configurations {} (leaves certified {}, \
+             triangles {} ({:.2}% removed by the cheap checks; with Maxwell's count 2k ≥ 3n {} left, {:.2}% removed); configurations {} (leaves certified {}, \
              analysed {}) → dof=1 {} → separating {} → symmetry classes {} (unconfirmed {}) → \
              no repeats {} → unique {} ({:.3}% of configurations removed)",
             self.cells,
@@ -82,6 +86,8 @@ impl Totals {
             self.directions,
             self.triangles,
             pct(self.triangles, self.masks),
+            self.counting,
+            pct(self.counting, self.masks),
             self.configs,
             self.certified,
             self.analyses,
@@ -221,6 +227,7 @@ fn main() {
     let mut minimal = Totals::default();
     let mut supercells = Totals::default();
     let mut verified = (0usize, 0usize);
+    let mut reports: Vec<TopologyReport> = Vec::new();
     let mut run =
         |f: Family, d: CellDims, totals: &mut Totals| match enumerate_topologies(f, d, &options) {
             Ok(r) => {
@@ -238,15 +245,18 @@ fn main() {
                     }
                 }
                 totals.add(&r);
-                if r.edges <= verify_up_to {
+                let edges = r.edges;
+                let mobility_one = r.mobility_one;
+                reports.push(r);
+                if edges <= verify_up_to {
                     let (n, ok) = verify(f, d);
                     verified.0 += 1;
-                    if !ok || n as u64 != r.mobility_one {
+                    if !ok || n as u64 != mobility_one {
                         verified.1 += 1;
                         println!(
                             "    VERIFY MISMATCH {f} {d}: brute force finds {n}, pipeline {} \
                              (per-mask sets equal: {ok})",
-                            r.mobility_one
+                            mobility_one
                         );
                     }
                 }
@@ -282,6 +292,21 @@ fn main() {
             options.max_edges
         );
         supercells.print("supercells");
+    }
+    for (label, same_family) in [("within each family", true), ("across all families", false)] {
+        let dups = duplicates_across(&reports, same_family);
+        let unique: usize = dups.iter().flatten().filter(|d| d.is_none()).count();
+        let unique_min: usize = dups
+            .iter()
+            .zip(&reports)
+            .filter(|(_, r)| r.dims == CellDims::MINIMAL)
+            .flat_map(|(d, _)| d.iter())
+            .filter(|d| d.is_none())
+            .count();
+        println!(
+            "distinct motions {label} (cells and families compared through the motion \
+             invariant): {unique} (of which on 1x1 cells: {unique_min})"
+        );
     }
     if verify_up_to > 0 {
         println!(

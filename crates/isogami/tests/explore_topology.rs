@@ -5,8 +5,8 @@
 use isogami::cell::{CellDims, UnitCell};
 use isogami::explore::dedup::{is_repeat, joint_string};
 use isogami::explore::{
-    cells_to_explore, enumerate_topologies, motion_invariant, sheet_symmetries, Expander,
-    MaskVerdict, ReducedGraph, SeparationRule, SymmetryGroup, TopologyOptions,
+    cells_to_explore, duplicates_across, enumerate_topologies, motion_invariant, sheet_symmetries,
+    Expander, MaskVerdict, ReducedGraph, SeparationRule, SymmetryGroup, TopologyOptions,
 };
 use isogami::kinematics::Mechanism;
 use isogami::mobility::{analyze, MobilitySettings};
@@ -505,4 +505,39 @@ fn cells_to_explore_and_edge_limit() {
     )
     .unwrap_err();
     assert!(e.to_string().contains("18 unique edges"), "{e}");
+}
+
+#[test]
+fn duplicates_across_cells_and_families() {
+    let run = |n: u32, a: u8, b: u8| {
+        enumerate_topologies(
+            Family::from_number(n).unwrap(),
+            CellDims::new(a, b).unwrap(),
+            &TopologyOptions::default(),
+        )
+        .unwrap()
+    };
+    // The square grid's 2×3 and 3×2 cells are 90° twins: every 3×2 design moves like a 2×3
+    // design, and nothing within one report is a duplicate (dedup already ran per cell).
+    let twins = [run(76, 2, 3), run(76, 3, 2)];
+    assert!(!twins[0].designs.is_empty());
+    let d = duplicates_across(&twins, true);
+    assert!(d[0].iter().all(|x| x.is_none()));
+    assert!(d[1].iter().all(|x| matches!(x, Some((0, _)))));
+    // IH2 and IH3 have congruent default sheets at 1×1: the same motions, seen only when
+    // families are compared.
+    let pair = [run(2, 1, 1), run(3, 1, 1)];
+    assert_eq!(pair[0].unique, pair[1].unique);
+    assert!(duplicates_across(&pair, true)[1]
+        .iter()
+        .all(|x| x.is_none()));
+    assert!(duplicates_across(&pair, false)[1]
+        .iter()
+        .all(|x| matches!(x, Some((0, _)))));
+    // Cells with different edge counts never match.
+    let mixed = [run(76, 2, 2), run(76, 2, 3)];
+    assert!(duplicates_across(&mixed, true)
+        .iter()
+        .flatten()
+        .all(|x| x.is_none()));
 }

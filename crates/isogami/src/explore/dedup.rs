@@ -216,7 +216,8 @@ pub struct SymmetryGroup {
 }
 
 impl SymmetryGroup {
-    /// The group of `cell` (see [`sheet_symmetries`]). Keys need m ≤ 40.
+    /// The group of `cell` (see [`sheet_symmetries`]). Keys are exact for m ≤ 40 edges (they
+    /// saturate beyond).
     pub fn new(cell: &UnitCell) -> SymmetryGroup {
         let m = cell.edges.len();
         let place = (0..m)
@@ -240,11 +241,9 @@ impl SymmetryGroup {
 
     /// The key of an assignment.
     pub fn key(&self, joints: &[JointChoice]) -> u64 {
-        joints
-            .iter()
-            .zip(&self.place)
-            .map(|(&j, &p)| digit(j) * p)
-            .sum()
+        joints.iter().zip(&self.place).fold(0u64, |acc, (&j, &p)| {
+            acc.saturating_add(digit(j).saturating_mul(p))
+        })
     }
 
     /// The assignment of a key.
@@ -266,14 +265,10 @@ impl SymmetryGroup {
             .symmetries
             .iter()
             .map(|s| {
-                joints
-                    .iter()
-                    .enumerate()
-                    .map(|(e, &j)| {
-                        let j = if s.swap[e] { swapped(j) } else { j };
-                        digit(j) * self.place[s.edge_map[e]]
-                    })
-                    .sum()
+                joints.iter().enumerate().fold(0u64, |acc, (e, &j)| {
+                    let j = if s.swap[e] { swapped(j) } else { j };
+                    acc.saturating_add(digit(j).saturating_mul(self.place[s.edge_map[e]]))
+                })
             })
             .collect();
         images.sort_unstable();
@@ -323,6 +318,53 @@ impl MotionInvariant {
                 .iter()
                 .zip(&other.values)
                 .all(|(a, b)| (a - b).abs() <= tol)
+    }
+}
+
+/// Width of the buckets of [`MotionIndex`] on the sum of an invariant's entries. Entries that
+/// agree to `tol` give sums that agree to `len · tol` ≤ 1e-4 for `tol` ≤ 1e-6 and up to 100
+/// entries, less than a bucket, so neighbouring buckets hold every possible match.
+const BUCKET: f64 = 1e-3;
+
+/// Motion invariants indexed for matching: buckets on (length, sum of entries), so a lookup
+/// compares against a few candidates instead of all.
+#[derive(Debug, Clone, Default)]
+pub struct MotionIndex {
+    items: Vec<MotionInvariant>,
+    buckets: std::collections::HashMap<(usize, i64), Vec<usize>>,
+}
+
+impl MotionIndex {
+    /// An empty index.
+    pub fn new() -> MotionIndex {
+        MotionIndex::default()
+    }
+
+    fn bucket(inv: &MotionInvariant) -> i64 {
+        (inv.values.iter().sum::<f64>() / BUCKET).floor() as i64
+    }
+
+    /// The smallest id of a stored invariant that matches `inv` to `tol` (≤ 1e-6).
+    pub fn find(&self, inv: &MotionInvariant, tol: f64) -> Option<usize> {
+        let b = Self::bucket(inv);
+        let len = inv.values.len();
+        (b - 1..=b + 1)
+            .filter_map(|k| self.buckets.get(&(len, k)))
+            .flatten()
+            .copied()
+            .filter(|&i| self.items[i].matches(inv, tol))
+            .min()
+    }
+
+    /// Stores `inv` and returns its id (ids count up from 0).
+    pub fn insert(&mut self, inv: MotionInvariant) -> usize {
+        let id = self.items.len();
+        self.buckets
+            .entry((inv.values.len(), Self::bucket(&inv)))
+            .or_default()
+            .push(id);
+        self.items.push(inv);
+        id
     }
 }
 
@@ -502,6 +544,7 @@ pub fn dedup_orbits(
         after_repeats: 0,
         kept: Vec::new(),
     };
+    let mut index = MotionIndex::new();
     for &key in canonical_keys {
         let joints = group.joints_of(key);
         let Ok(m) = Mechanism::new(cell, &joints) else {
@@ -526,14 +569,11 @@ pub fn dedup_orbits(
         }
         out.after_repeats += 1;
         let inv = motion_invariant(cell, mech, &v);
-        if let Some(k) = out
-            .kept
-            .iter_mut()
-            .find(|k| k.invariant.matches(&inv, MOTION_TOL))
-        {
-            k.same_motion_merged += 1;
+        if let Some(k) = index.find(&inv, MOTION_TOL) {
+            out.kept[k].same_motion_merged += 1;
             continue;
         }
+        index.insert(inv.clone());
         out.kept.push(Kept {
             separation: separation(cell, mech, &joints, &v),
             orbit_size: group.canonical_key(&joints).1,

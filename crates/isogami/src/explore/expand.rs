@@ -91,7 +91,9 @@ impl ExpandStats {
 pub struct Leaf<'l> {
     /// Joint choice per unique edge.
     pub joints: &'l [JointChoice],
-    /// Unit motion vector, full state (tile 0's entries zero), signed as `analyze` signs it.
+    /// Unit motion vector, full state (tile 0's entries zero), signed as `analyze` signs it
+    /// (when the area rate vanishes, the largest component is made positive; components that
+    /// tie within roundoff can make that sign differ from `analyze`'s).
     pub motion: &'l DVec,
     /// True when `mobility::analyze` decided this leaf (false: certified, see module docs).
     pub analysed: bool,
@@ -418,5 +420,34 @@ mod tests {
         let named = crate::topology::named_design("rotating-squares").unwrap();
         assert!(found.contains(&named.joints));
         assert_eq!(stats.mobility_one as usize, found.len());
+    }
+
+    /// Certified leaves carry the motion `analyze` would give, sign included.
+    #[test]
+    fn certified_motion_equals_analysed_motion() {
+        for (n, a, b, mask) in [(76, 2, 2, 0xFFu32), (28, 1, 1, 0x3FF), (44, 1, 1, 0xF)] {
+            let f = Family::from_number(n).unwrap();
+            let cell =
+                UnitCell::new(&Tiling::default_for(f), CellDims::new(a, b).unwrap()).unwrap();
+            let ex = Expander::new(&cell, MobilitySettings::default()).unwrap();
+            let mut checked = 0;
+            ex.expand(mask, &mut |leaf| {
+                let mech = Mechanism::new(&cell, leaf.joints).unwrap();
+                let mob = analyze(&mech, &mech.rest, MobilitySettings::default()).unwrap();
+                assert_eq!(mob.dof, 1);
+                let v = &mob.motion.as_ref().unwrap().vector;
+                let rate = mob.motion.as_ref().unwrap().area_rate;
+                let err = if rate.abs() > 1e-9 {
+                    (v - leaf.motion).norm()
+                } else {
+                    // No area change: the sign follows the largest component, which ties
+                    // within roundoff for symmetric motions, in `analyze` as here.
+                    (v - leaf.motion).norm().min((v + leaf.motion).norm())
+                };
+                assert!(err < 1e-8, "IH{n} {:?}", leaf.joints);
+                checked += usize::from(!leaf.analysed);
+            });
+            assert!(checked > 0, "IH{n}");
+        }
     }
 }

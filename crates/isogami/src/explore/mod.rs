@@ -25,11 +25,13 @@ pub mod pipeline;
 pub mod reduced;
 pub mod separate;
 
-pub use dedup::{motion_invariant, sheet_symmetries, MotionInvariant, Symmetry, SymmetryGroup};
+pub use dedup::{
+    motion_invariant, sheet_symmetries, MotionIndex, MotionInvariant, Symmetry, SymmetryGroup,
+};
 pub use expand::{ExpandStats, Expander, Leaf};
 pub use pipeline::{
-    cells_to_explore, enumerate_topologies, DesignDetails, StageTimings, TopologyOptions,
-    TopologyReport,
+    cells_to_explore, duplicates_across, enumerate_topologies, DesignDetails, StageTimings,
+    TopologyOptions, TopologyReport,
 };
 pub use reduced::{MaskVerdict, ReducedGraph, ReducedResult};
 pub use separate::{edge_rates, separation, EdgeRate, Separation, SeparationRule};

@@ -2,11 +2,16 @@
 //! checks, expansion to endpoint choices with mobility = 1, separation, deduplication — with
 //! the count and time of every stage — and the list of cells to explore for a family.
 //!
+//! Only one mask per symmetry orbit of masks is expanded; the counts of dof = 1 and separating
+//! configurations are weighted by the orbit size, so they count every configuration of every
+//! surviving mask (the tests check this against brute force). Every kept design is analysed
+//! once more by `mobility::analyze`, which supplies its reported gap and motion.
+//!
 //! Deterministic: the same input gives the same counts and designs in the same order. Single
 //! threaded (callers parallelise over families and cells). Deployment and the expansion
 //! threshold come after this stage and are not done here. No I/O.
 
-use super::dedup::{dedup_orbits, SymmetryGroup};
+use super::dedup::{dedup_orbits, MotionIndex, MotionInvariant, SymmetryGroup, MOTION_TOL};
 use super::expand::{ExpandStats, Expander};
 use super::reduced::{ReducedGraph, MAX_REDUCED_EDGES};
 use super::separate::{separation, Separation, SeparationRule};
@@ -78,6 +83,8 @@ pub struct DesignDetails {
     pub orbit_size: usize,
     /// Other symmetry orbits with the same motion merged into it.
     pub same_motion_merged: usize,
+    /// Its motion invariant (comparable across cells and families with the same edge count).
+    pub invariant: MotionInvariant,
 }
 
 /// The result of enumerating the topologies of one family and cell.
@@ -101,6 +108,9 @@ pub struct TopologyReport {
     pub after_directions: u64,
     /// … and check 4 (no jointed triangle).
     pub after_triangles: u64,
+    /// … and Maxwell's count 2k ≥ 3n (reported, not a separate filter: the expansion drops
+    /// the other masks at once).
+    pub after_counting: u64,
     /// Σ 2^k over surviving masks (k jointed edges): the endpoint configurations expanded.
     pub configurations_expanded: u64,
     /// Surviving masks actually expanded: one per symmetry orbit of masks.
@@ -223,6 +233,7 @@ pub fn enumerate_topologies(
             separation: k.separation,
             orbit_size: k.orbit_size,
             same_motion_merged: k.same_motion_merged,
+            invariant: k.invariant.clone(),
         });
         designs.push(design);
     }
@@ -237,6 +248,7 @@ pub fn enumerate_topologies(
         after_connected: reduced.after_connected,
         after_directions: reduced.after_directions,
         after_triangles: reduced.after_triangles,
+        after_counting: reduced.after_counting,
         configurations_expanded: stats.configurations,
         masks_expanded,
         symmetry_group: group.len(),
@@ -274,4 +286,44 @@ pub fn cells_to_explore(family: Family, options: &TopologyOptions) -> Vec<(CellD
     }
     out.sort_by_key(|(d, m)| (*m, d.a(), d.b()));
     out
+}
+
+/// A motion index and the (report, design) owner of each of its entries.
+type IndexScope = (MotionIndex, Vec<(usize, usize)>);
+
+/// Duplicates across reports: for every design of every report, the (report, design) indices
+/// of the first earlier design — in report order, then design order — whose motion invariant
+/// matches (the invariant is comparable between cells with the same number of unique edges;
+/// it does not depend on the cell's orientation or units). With `same_family`, only designs of
+/// the same family are compared: a×b designs and their rotated b×a twins, designs that
+/// repeat a smaller cell's design in a way the per-cell repeat test does not see. Without it,
+/// also families whose default shapes give congruent sheets. Order the reports smallest cell
+/// first to keep the smallest cell's design.
+pub fn duplicates_across(
+    reports: &[TopologyReport],
+    same_family: bool,
+) -> Vec<Vec<Option<(usize, usize)>>> {
+    let mut indices: std::collections::BTreeMap<Option<Family>, IndexScope> =
+        std::collections::BTreeMap::new();
+    reports
+        .iter()
+        .enumerate()
+        .map(|(r, report)| {
+            let scope = same_family.then_some(report.family);
+            let (index, owners) = indices.entry(scope).or_default();
+            report
+                .details
+                .iter()
+                .enumerate()
+                .map(|(d, det)| match index.find(&det.invariant, MOTION_TOL) {
+                    Some(id) => Some(owners[id]),
+                    None => {
+                        index.insert(det.invariant.clone());
+                        owners.push((r, d));
+                        None
+                    }
+                })
+                .collect()
+        })
+        .collect()
 }

@@ -74,6 +74,10 @@ pub struct ReducedResult {
     pub after_directions: u64,
     /// … and no jointed triangle.
     pub after_triangles: u64,
+    /// Survivors of the four checks that also pass Maxwell's count 2k ≥ 3n (k jointed edges,
+    /// n tiles): with fewer joints every endpoint choice has dof ≥ 2. Reported, not filtered
+    /// here; the expansion drops these masks at its root.
+    pub after_counting: u64,
     /// The masks that pass all four checks, ascending.
     pub survivors: Vec<u32>,
 }
@@ -229,6 +233,7 @@ impl ReducedGraph {
             after_connected: 0,
             after_directions: 0,
             after_triangles: 0,
+            after_counting: 0,
             survivors: Vec::new(),
         };
         if self.tiles == 0 {
@@ -236,6 +241,11 @@ impl ReducedGraph {
         }
         self.descend(0, 0, &mut out);
         out.survivors.sort_unstable();
+        out.after_counting = out
+            .survivors
+            .iter()
+            .filter(|s| 2 * s.count_ones() as usize >= 3 * self.tiles)
+            .count() as u64;
         out
     }
 
