@@ -1,6 +1,7 @@
 //! Removing duplicate designs of one cell (paper §4.1, third eigen-analysis check), in three
-//! steps, each keeping the lexicographically smallest joint string (= smallest spec, since
-//! family, parameters and cell are shared):
+//! steps, the first two keeping the lexicographically smallest joint string (= smallest spec,
+//! since family, parameters and cell are shared), the third the design with the most pin
+//! joints (ties: the smallest spec):
 //!
 //! 1. **Symmetry.** The symmetry group of the sheet — every isometry of the plane that maps
 //!    the cell's edge network onto itself modulo the supercell lattice and maps that lattice
@@ -526,6 +527,11 @@ pub struct DedupResult {
     pub kept: Vec<Kept>,
 }
 
+/// Number of pin joints of a joint list.
+fn pin_count(joints: &[JointChoice]) -> usize {
+    joints.iter().map(|j| j.ends().len()).sum()
+}
+
 /// Steps 2 and 3 of the module docs on the canonical keys of the symmetry orbits found
 /// (step 1 is the keying itself). Each representative is analysed again with
 /// `mobility::analyze` (`settings` as in the expansion), which also gives its reported gap and
@@ -569,19 +575,31 @@ pub fn dedup_orbits(
         }
         out.after_repeats += 1;
         let inv = motion_invariant(cell, mech, &v);
-        if let Some(k) = index.find(&inv, MOTION_TOL) {
-            out.kept[k].same_motion_merged += 1;
-            continue;
-        }
-        index.insert(inv.clone());
-        out.kept.push(Kept {
+        let kept = Kept {
             separation: separation(cell, mech, &joints, &v),
             orbit_size: group.canonical_key(&joints).1,
             joints,
             mobility: mob,
             same_motion_merged: 0,
-            invariant: inv,
-        });
+            invariant: inv.clone(),
+        };
+        if let Some(k) = index.find(&inv, MOTION_TOL) {
+            // Of designs that move alike, keep the most connected one: the stiffest
+            // realisation of the motion and the one a maker builds (rotating squares with all
+            // eight hinges rather than a six-hinge subset); ties keep the smaller spec.
+            let merged = out.kept[k].same_motion_merged + 1;
+            if pin_count(&kept.joints) > pin_count(&out.kept[k].joints) {
+                out.kept[k] = Kept {
+                    same_motion_merged: merged,
+                    ..kept
+                };
+            } else {
+                out.kept[k].same_motion_merged = merged;
+            }
+            continue;
+        }
+        index.insert(inv);
+        out.kept.push(kept);
     }
     out
 }
