@@ -44,14 +44,15 @@ fn explore_families(families: &str, db: &Path, extra: &[&str]) -> Output {
     out
 }
 
-/// Everything a database says about the exploration, minus timings.
-fn content(
-    db: &Path,
-) -> (
+/// Unit ids, (spec, linkage signature, report) per design, stage counts per unit.
+type Content = (
     Vec<String>,
     Vec<(String, String, String)>,
     Vec<Vec<(String, u64, u64)>>,
-) {
+);
+
+/// Everything a database says about the exploration, minus timings.
+fn content(db: &Path) -> Content {
     let s = Store::open_any(db).unwrap();
     let units = s.work_units().unwrap();
     let ids = units.iter().map(|(u, _)| u.id.clone()).collect();

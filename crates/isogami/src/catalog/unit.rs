@@ -114,7 +114,7 @@ fn characterise(
         1e-8,
     )?;
     let report = build_report(&design.to_string(), &mech, &settings.deploy, &traj, &frames);
-    if !(report.max_expansion >= settings.threshold) {
+    if report.max_expansion.is_nan() || report.max_expansion < settings.threshold {
         return Ok(None);
     }
     let linkages = analyze_linkages(&cell, &design.joints)?;

@@ -34,6 +34,17 @@ pub(super) struct StepInput<'a> {
     pub s: Real,
 }
 
+/// Unit vector along `to − from`, or `fallback` when the two coincide.
+pub(super) fn unit_displacement(to: &DVec, from: &DVec, fallback: DVec) -> DVec {
+    let moved = to - from;
+    let norm = moved.norm();
+    if norm > 0.0 {
+        moved / norm
+    } else {
+        fallback
+    }
+}
+
 /// How a method turns a [`StepInput`] into a candidate state.
 pub(super) trait StepPolicy {
     /// Attempts one step.
@@ -120,16 +131,6 @@ pub(super) fn march(
         // overlap); the exact overlap test runs again on every stored frame.
         let accepted = tried.progress_error <= settings.step_tolerance
             && out.joint_residual <= settings.joint_tolerance;
-        if std::env::var_os("ISOGAMI_TRACE").is_some() {
-            eprintln!(
-                "beta {beta:.4e} ok {accepted} perr {:.2e} res {:.2e} barrier {:.2e} it {} conv {}",
-                tried.progress_error,
-                out.joint_residual,
-                out.barrier,
-                out.iterations,
-                out.converged
-            );
-        }
         if accepted {
             let arc = last.arc + (&out.q - &q).norm();
             let min_clearance = contact.min_clearance_in_free_set(mech, &out.q);

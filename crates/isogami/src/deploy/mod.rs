@@ -59,9 +59,15 @@ pub fn deploy(
             "the design is rigid (0 degrees of freedom): nothing to deploy".into(),
         ));
     }
-    match settings.method {
-        Method::RigidModes => rigid_modes::run(mech, &contact, settings, &mob, progress),
-        Method::Ncm => ncm::run(mech, &contact, settings, &mob, progress),
-        Method::Springs => springs::run(mech, &contact, settings, &mob, progress),
+    let policy: &dyn march::StepPolicy = match settings.method {
+        Method::RigidModes => &rigid_modes::RigidModes,
+        Method::Ncm => &ncm::Ncm,
+        Method::Springs => &springs::Springs,
+    };
+    let mut traj = opening::open_and_march(mech, &contact, settings, &mob, policy, progress)?;
+    // The springs do not fail a step: they stop moving the sheet.
+    if settings.method == Method::Springs && traj.end_reason == EndReason::StepSizeExhausted {
+        traj.end_reason = EndReason::Stalled;
     }
+    Ok(traj)
 }

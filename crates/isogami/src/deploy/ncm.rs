@@ -3,17 +3,15 @@
 //! Where the path turns away from that eigenvector the projection stops growing and the
 //! method cannot go on.
 
-use super::march::{StepInput, StepPolicy, StepTry};
+use super::march::{unit_displacement, StepInput, StepPolicy, StepTry};
 use super::newton::{minimize, Objective, SafeStepper};
-use super::opening::open_and_march;
 use super::settings::DeploySettings;
-use super::trajectory::Trajectory;
 use crate::contact::ContactModel;
 use crate::error::Result;
 use crate::kinematics::Mechanism;
-use crate::mobility::Mobility;
 
-struct Ncm;
+/// The NCM step.
+pub(super) struct Ncm;
 
 impl StepPolicy for Ncm {
     fn solve(
@@ -51,13 +49,7 @@ impl StepPolicy for Ncm {
         let out = minimize(mech, contact, &obj, &start, stepper.clearance(), 50);
         let achieved = (&out.q - &mech.rest).dot(initial);
         let progress_error = (achieved - target).abs() / beta;
-        let moved = &out.q - q;
-        let norm = moved.norm();
-        let direction = if norm > 0.0 {
-            moved / norm
-        } else {
-            previous.clone()
-        };
+        let direction = unit_displacement(&out.q, q, previous.clone());
         Ok(StepTry {
             outcome: out,
             direction,
@@ -65,15 +57,4 @@ impl StepPolicy for Ncm {
             progress_error,
         })
     }
-}
-
-/// Deploys with nonlinear compliant modes.
-pub(super) fn run(
-    mech: &Mechanism,
-    contact: &ContactModel,
-    settings: &DeploySettings,
-    mob: &Mobility,
-    progress: &mut dyn FnMut(usize),
-) -> Result<Trajectory> {
-    open_and_march(mech, contact, settings, mob, &Ncm, progress)
 }

@@ -3,13 +3,10 @@
 use super::direction::motion_direction;
 use super::march::{StepInput, StepPolicy, StepTry};
 use super::newton::{minimize, Objective, SafeStepper};
-use super::opening::open_and_march;
 use super::settings::DeploySettings;
-use super::trajectory::Trajectory;
 use crate::contact::ContactModel;
 use crate::error::Result;
 use crate::kinematics::Mechanism;
-use crate::mobility::Mobility;
 
 /// The rigid-modes step: direction from the current null space, progress measured from the
 /// current state.
@@ -50,15 +47,4 @@ impl StepPolicy for RigidModes {
             progress_error,
         })
     }
-}
-
-/// Deploys with nonlinear rigid modes.
-pub(super) fn run(
-    mech: &Mechanism,
-    contact: &ContactModel,
-    settings: &DeploySettings,
-    mob: &Mobility,
-    progress: &mut dyn FnMut(usize),
-) -> Result<Trajectory> {
-    open_and_march(mech, contact, settings, mob, &RigidModes, progress)
 }

@@ -5,16 +5,13 @@
 //! only say where to go). Where the mechanism's path no longer lets the cell grow the way the
 //! springs pull, the sheet stops moving: stalled.
 
-use super::march::{StepInput, StepPolicy, StepTry};
+use super::march::{unit_displacement, StepInput, StepPolicy, StepTry};
 use super::newton::{minimize, Objective};
-use super::opening::open_and_march;
 use super::settings::DeploySettings;
-use super::trajectory::{EndReason, Trajectory};
 use crate::contact::ContactModel;
 use crate::error::Result;
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
-use crate::mobility::Mobility;
 
 /// A load step that grows the cell area by less than this fraction of the load increment
 /// (relative to the area) counts as no motion.
@@ -25,7 +22,8 @@ fn cell_area(mech: &Mechanism, q: &DVec) -> Real {
     crate::math::cross(&u, &w).abs()
 }
 
-struct Springs;
+/// The spring load step.
+pub(super) struct Springs;
 
 impl StepPolicy for Springs {
     fn solve(
@@ -57,13 +55,7 @@ impl StepPolicy for Springs {
             None,
             50,
         );
-        let moved = &out.q - q;
-        let norm = moved.norm();
-        let direction = if norm > 0.0 {
-            moved / norm
-        } else {
-            DVec::zeros(q.len())
-        };
+        let direction = unit_displacement(&out.q, q, DVec::zeros(q.len()));
         // "Progress error" 0 when the springs opened the cell further, ∞ when they did not:
         // a stall halves the load step, and repeated stalls end the run like a blocked step.
         let (a0, a1) = (cell_area(mech, q), cell_area(mech, &out.q));
@@ -79,19 +71,4 @@ impl StepPolicy for Springs {
             progress_error,
         })
     }
-}
-
-/// Deploys by springs.
-pub(super) fn run(
-    mech: &Mechanism,
-    contact: &ContactModel,
-    settings: &DeploySettings,
-    mob: &Mobility,
-    progress: &mut dyn FnMut(usize),
-) -> Result<Trajectory> {
-    let mut traj = open_and_march(mech, contact, settings, mob, &Springs, progress)?;
-    if traj.end_reason == EndReason::StepSizeExhausted {
-        traj.end_reason = EndReason::Stalled;
-    }
-    Ok(traj)
 }
