@@ -28,6 +28,8 @@ enum Command {
     Deploy(commands::deploy::Args),
     /// Compare rigid modes with the spring and NCM baselines (paper Fig. 4).
     Compare(commands::compare::Args),
+    /// Linkage analysis of a design: signature, linkages, tile degrees, SVG.
+    Linkages(commands::linkages::Args),
     /// Explore the design space into the design database (resumable, shardable).
     Explore(commands::explore::Args),
     /// Merge shard databases into one.
@@ -48,6 +50,7 @@ fn main() -> ExitCode {
         Command::Deploy(a) => commands::deploy::run(a),
         Command::Compare(a) => commands::compare::run(a),
         Command::Explore(a) => commands::explore::run(a),
+        Command::Linkages(a) => commands::linkages::run(a),
         Command::Merge(a) => commands::db::merge(a),
         Command::Db { command } => commands::db::run(command),
     };

@@ -269,3 +269,25 @@ fn deploy_all_steps_and_polar_t() {
         assert_eq!(out.status.code(), Some(2), "--polar-t {bad}");
     }
 }
+
+#[test]
+fn linkages_json_and_svg() {
+    let dir = std::env::temp_dir().join(format!("isogami-linkages-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = dir.join("l.svg");
+    let v = json(&[
+        "linkages",
+        "--design",
+        "rotating-squares",
+        "--json",
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(v["signature"], "4×4-bar");
+    assert_eq!(v["linkages"].as_array().unwrap().len(), 4);
+    assert_eq!(v["degree_histogram"]["4"], 4);
+    assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
+    let out = isogami(&["linkages", "--design", "IH76::2x2:ab"]);
+    assert_eq!(out.status.code(), Some(2));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

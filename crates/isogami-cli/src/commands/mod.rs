@@ -7,3 +7,4 @@ pub mod db;
 pub mod deploy;
 pub mod explore;
 pub mod families;
+pub mod linkages;

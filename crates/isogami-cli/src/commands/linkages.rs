@@ -1,0 +1,59 @@
+//! `isogami linkages`.
+
+use crate::output::{emit, print_json, write_atomic, CliResult};
+use isogami::linkage::analyze_linkages;
+use isogami::render::linkage_svg;
+use isogami::topology::Design;
+use std::path::PathBuf;
+
+/// Arguments of `linkages`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The design: a name (rotating-squares), a spec string, or design JSON.
+    #[arg(long, allow_hyphen_values = true)]
+    design: String,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+    /// Write an SVG of the 3×3 patch with the linkages coloured by bar count.
+    #[arg(long)]
+    svg: Option<PathBuf>,
+}
+
+/// Prints the linkage signature, the linkages and the tile degrees of a design.
+pub fn run(args: Args) -> CliResult {
+    let design = Design::resolve(&args.design).map_err(|e| e.to_string())?;
+    let cell = design.cell().map_err(|e| e.to_string())?;
+    let a = analyze_linkages(&cell, &design.joints).map_err(|e| e.to_string())?;
+    if let Some(path) = &args.svg {
+        write_atomic(path, linkage_svg(&cell, &design.joints, &a).as_bytes())?;
+    }
+    if args.json {
+        return print_json(&a);
+    }
+    let mut o = String::new();
+    outln!(o, "design      {design}");
+    outln!(o, "signature   {}", a.signature);
+    let degrees: Vec<String> = a
+        .degree_histogram
+        .iter()
+        .map(|(d, n)| format!("{n} of degree {d}"))
+        .collect();
+    outln!(o, "tiles       {}", degrees.join(", "));
+    for l in &a.linkages {
+        let nodes: Vec<String> = l
+            .nodes
+            .iter()
+            .map(|n| format!("T{}@({},{})", n.0, n.1[0], n.1[1]))
+            .collect();
+        outln!(o, "{:>2}-bar      {}", l.bars, nodes.join(" – "));
+    }
+    if !a.other_faces.is_empty() {
+        outln!(
+            o,
+            "{} other face(s) (not linkages): see --json",
+            a.other_faces.len()
+        );
+    }
+    emit(&o)
+}
