@@ -98,14 +98,21 @@ pub fn stats_table(s: &DbStats) -> String {
         );
     }
     let names: Vec<&str> = s.stages.iter().map(|st| st.stage.as_str()).collect();
-    let _ = writeln!(o, "\nper family (count out of each stage; designs kept):");
-    let _ = write!(o, "{:<6}", "family");
+    let _ = writeln!(
+        o,
+        "\nper family (masks in, count out of each stage, designs kept, seconds):"
+    );
+    let _ = write!(o, "{:<6} {:>9}", "family", "masks");
     for n in &names {
         let _ = write!(o, " {:>11}", n.chars().take(11).collect::<String>());
     }
-    let _ = writeln!(o, " {:>8}", "designs");
-    for (fam, f) in &s.families {
-        let _ = write!(o, "{fam:<6}");
+    let _ = writeln!(o, " {:>8} {:>8}", "designs", "seconds");
+    let mut families: Vec<_> = s.families.iter().collect();
+    // IH2 before IH10.
+    families.sort_by_key(|(name, _)| (name.len(), name.to_string()));
+    for (fam, f) in families {
+        let masks = f.stages.first().map_or(0, |st| st.count_in);
+        let _ = write!(o, "{fam:<6} {masks:>9}");
         for n in &names {
             let v = f
                 .stages
@@ -114,7 +121,8 @@ pub fn stats_table(s: &DbStats) -> String {
                 .map_or(0, |st| st.count_out);
             let _ = write!(o, " {v:>11}");
         }
-        let _ = writeln!(o, " {:>8}", f.designs);
+        let seconds: f64 = f.stages.iter().map(|st| st.seconds).sum();
+        let _ = writeln!(o, " {:>8} {seconds:>8.2}", f.designs);
     }
     let _ = writeln!(o, "\nbehaviour classes:");
     for (k, v) in &s.by_behaviour {
