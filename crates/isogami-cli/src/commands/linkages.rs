@@ -1,7 +1,7 @@
 //! `isogami linkages`.
 
 use crate::output::{emit, print_json, write_atomic, CliResult};
-use isogami::linkage::analyze_linkages;
+use isogami::linkage::{analyze_linkages, FaceIssue, Node};
 use isogami::render::linkage_svg;
 use isogami::topology::Design;
 use std::path::PathBuf;
@@ -41,19 +41,28 @@ pub fn run(args: Args) -> CliResult {
         .collect();
     outln!(o, "tiles       {}", degrees.join(", "));
     for l in &a.linkages {
-        let nodes: Vec<String> = l
-            .nodes
-            .iter()
-            .map(|n| format!("T{}@({},{})", n.0, n.1[0], n.1[1]))
-            .collect();
-        outln!(o, "{:>2}-bar      {}", l.bars, nodes.join(" – "));
+        outln!(o, "{:>2}-bar      {}", l.bars, nodes_text(&l.nodes, " – "));
     }
-    if !a.other_faces.is_empty() {
-        outln!(
-            o,
-            "{} other face(s) (not linkages): see --json",
-            a.other_faces.len()
-        );
+    for f in &a.other_faces {
+        let why = match f.issue {
+            FaceIssue::RepeatedTile => "not a linkage (boundary repeats a tile)",
+            FaceIssue::Chord => "not a linkage (boundary has a chord)",
+            FaceIssue::SinglePoint => "not a linkage (tiles share one pin)",
+            FaceIssue::Unbounded => "unbounded face",
+        };
+        outln!(o, "{why}: {}", nodes_text(&f.nodes, " "));
+    }
+    if let Some(p) = &args.svg {
+        outln!(o, "wrote {}", p.display());
     }
     emit(&o)
+}
+
+/// Tiles as T<index>@(k_u,k_w).
+fn nodes_text(nodes: &[Node], sep: &str) -> String {
+    nodes
+        .iter()
+        .map(|n| format!("T{}@({},{})", n.0, n.1[0], n.1[1]))
+        .collect::<Vec<_>>()
+        .join(sep)
 }

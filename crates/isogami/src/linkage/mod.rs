@@ -18,8 +18,9 @@
 //! yields each translation class once, finds linkages that wander beyond the 3×3 patch (joints
 //! leaving the patch are not lost), and for a connected sheet gives exactly E − V holes per cell
 //! (Euler on the torus). A hole is a linkage when its boundary is a chordless cycle, as in the
-//! paper; holes whose boundary repeats a tile or has a chord, and unbounded faces, are listed
-//! apart in [`LinkageAnalysis::other_faces`].
+//! paper; holes whose boundary repeats a tile or has a chord, cycles of tiles that all share
+//! one pin (nothing there can open), and unbounded faces are listed apart in
+//! [`LinkageAnalysis::other_faces`].
 //!
 //! Conventions: a welded edge ([`JointChoice::Both`]) is one graph edge (its two pins bound a
 //! slit, not a hole), and so are two joints between the same two tiles; a hole bounded by two
@@ -100,7 +101,8 @@ pub struct LinkageAnalysis {
     pub signature: String,
     /// Tile degree → number of tiles of the cell with that degree.
     pub degree_histogram: BTreeMap<usize, usize>,
-    /// Faces that are neither linkages nor welds.
+    /// Faces that are not linkages (welds, and the outlines of finite clusters of tiles seen
+    /// from outside, are not faces of interest and are left out).
     pub other_faces: Vec<OtherFace>,
 }
 
