@@ -71,6 +71,9 @@ pub enum Error {
     /// A numerical routine that failed (non-convergence, non-finite values).
     #[error("numerical failure: {0}")]
     Numerical(String),
+    /// The caller's progress callback asked to stop (a closed connection, Ctrl-C).
+    #[error("cancelled")]
+    Cancelled,
 }
 
 /// Result alias for the library.

@@ -73,5 +73,5 @@ pub use derivatives::HessianProjection;
 pub use inset::{inset_polygon, InsetProblem};
 pub use model::ContactModel;
 pub use pairs::CandidatePair;
-pub use settings::{ContactSettings, MAX_KERF};
+pub use settings::{ContactSettings, MAX_KERF, MIN_KERF};
 pub use tracker::ClearanceTracker;
