@@ -7,7 +7,7 @@ use isogami::deploy::{build_report, deploy, frame_records, select_frames, Deploy
 use isogami::kinematics::Mechanism;
 use isogami::measure::expansion_profile;
 use isogami::render::{
-    expansion_plot_svg, frame_svg, gif_from_svgs, polar_plot_svg, view_box_for, FrameStyle,
+    expansion_plot_svg, frame_svg, gif_from_svgs, polar_plot_svg, view_box_for, Fonts, FrameStyle,
 };
 use isogami::topology::Design;
 use std::path::{Path, PathBuf};
@@ -99,7 +99,7 @@ pub fn run(args: Args) -> CliResult {
     }
     if let Some(path) = &args.gif {
         let svgs = frame_svgs(&mech, &contact, &frames, 480.0);
-        let bytes = gif_from_svgs(&svgs, 480, 6).map_err(|e| e.to_string())?;
+        let bytes = gif_from_svgs(&svgs, 480, 6, &Fonts::system()).map_err(|e| e.to_string())?;
         write_atomic(path, &bytes)?;
     }
     if let Some(path) = &args.plot {
