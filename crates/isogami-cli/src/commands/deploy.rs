@@ -1,6 +1,6 @@
 //! `isogami deploy`.
 
-use crate::output::{emit, print_json, write_atomic, CliResult};
+use crate::output::{emit, print_json, write_atomic, write_json, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami::contact::{ContactModel, ContactSettings};
 use isogami::deploy::{build_report, deploy, frame_records, select_frames, DeploySettings, Method};
@@ -124,9 +124,8 @@ pub fn run(args: Args) -> CliResult {
         let polar = polar_plot_svg(&profiles).map_err(|e| e.to_string())?;
         write_atomic(&sibling(path, "-polar"), polar.as_bytes())?;
     }
-    let json = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
     if let Some(path) = &args.out {
-        write_atomic(path, json.as_bytes())?;
+        write_json(path, &report)?;
     }
     if args.json {
         return print_json(&report);
