@@ -251,79 +251,50 @@ fn push_label(path: &mut String, label: &str) {
     path.push_str(label);
 }
 
-impl ser::SerializeSeq for Compound<'_> {
-    type Ok = ();
-    type Error = JsonCheckError;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), JsonCheckError> {
-        self.element(v)
-    }
-    fn end(self) -> Result<(), JsonCheckError> {
-        Ok(())
-    }
+/// The element-wise compounds (sequences, tuples): each element is labelled `[i]`.
+macro_rules! elements {
+    ($($trait:ident::$method:ident),*) => {$(
+        impl ser::$trait for Compound<'_> {
+            type Ok = ();
+            type Error = JsonCheckError;
+            fn $method<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), JsonCheckError> {
+                self.element(v)
+            }
+            fn end(self) -> Result<(), JsonCheckError> {
+                Ok(())
+            }
+        }
+    )*};
 }
 
-impl ser::SerializeTuple for Compound<'_> {
-    type Ok = ();
-    type Error = JsonCheckError;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), JsonCheckError> {
-        self.element(v)
-    }
-    fn end(self) -> Result<(), JsonCheckError> {
-        Ok(())
-    }
+elements!(
+    SerializeSeq::serialize_element,
+    SerializeTuple::serialize_element,
+    SerializeTupleStruct::serialize_field,
+    SerializeTupleVariant::serialize_field
+);
+
+/// The field-wise compounds (structs, struct variants): each field is labelled by its name.
+macro_rules! fields {
+    ($($trait:ident),*) => {$(
+        impl ser::$trait for Compound<'_> {
+            type Ok = ();
+            type Error = JsonCheckError;
+            fn serialize_field<T: Serialize + ?Sized>(
+                &mut self,
+                key: &'static str,
+                v: &T,
+            ) -> Result<(), JsonCheckError> {
+                self.child(key, v)
+            }
+            fn end(self) -> Result<(), JsonCheckError> {
+                Ok(())
+            }
+        }
+    )*};
 }
 
-impl ser::SerializeTupleStruct for Compound<'_> {
-    type Ok = ();
-    type Error = JsonCheckError;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), JsonCheckError> {
-        self.element(v)
-    }
-    fn end(self) -> Result<(), JsonCheckError> {
-        Ok(())
-    }
-}
-
-impl ser::SerializeTupleVariant for Compound<'_> {
-    type Ok = ();
-    type Error = JsonCheckError;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), JsonCheckError> {
-        self.element(v)
-    }
-    fn end(self) -> Result<(), JsonCheckError> {
-        Ok(())
-    }
-}
-
-impl ser::SerializeStruct for Compound<'_> {
-    type Ok = ();
-    type Error = JsonCheckError;
-    fn serialize_field<T: Serialize + ?Sized>(
-        &mut self,
-        key: &'static str,
-        v: &T,
-    ) -> Result<(), JsonCheckError> {
-        self.child(key, v)
-    }
-    fn end(self) -> Result<(), JsonCheckError> {
-        Ok(())
-    }
-}
-
-impl ser::SerializeStructVariant for Compound<'_> {
-    type Ok = ();
-    type Error = JsonCheckError;
-    fn serialize_field<T: Serialize + ?Sized>(
-        &mut self,
-        key: &'static str,
-        v: &T,
-    ) -> Result<(), JsonCheckError> {
-        self.child(key, v)
-    }
-    fn end(self) -> Result<(), JsonCheckError> {
-        Ok(())
-    }
-}
+fields!(SerializeStruct, SerializeStructVariant);
 
 /// A map being visited: keys become path labels (as serde_json would write them).
 struct MapCompound<'a> {
