@@ -1,7 +1,7 @@
 //! The fonts that text is rasterised with, as an explicit value: the caller decides whether
-//! to scan the system's font directories ([`Fonts::system`], tens of milliseconds of file
-//! I/O) or to rasterise without text ([`Fonts::empty`]). No library call loads fonts
-//! behind the caller's back.
+//! to scan the system's font directories ([`Fonts::system`], file I/O over every installed
+//! font) or to rasterise without text ([`Fonts::empty`]). No library call loads fonts behind
+//! the caller's back.
 //!
 //! Every SVG of this crate sets `font-family="sans-serif"`; fontdb maps that generic family
 //! to Arial, which many Linux machines lack, so [`Fonts::system`] points it at an installed
