@@ -1,6 +1,6 @@
 //! `isogami deploy`.
 
-use crate::output::{emit, print_json, write_atomic, CliResult};
+use crate::output::{emit, print_json, write_atomic, write_json, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami::api::{deploy, resolve_design, DeployRequest, FrameSelection};
 use isogami::contact::{ContactModel, ContactSettings};
@@ -8,7 +8,7 @@ use isogami::deploy::{DeploySettings, Method};
 use isogami::kinematics::Mechanism;
 use isogami::measure::expansion_profile;
 use isogami::render::{
-    expansion_plot_svg, frame_svg, gif_from_svgs, polar_plot_svg, view_box_for, FrameStyle,
+    expansion_plot_svg, frame_svg, gif_from_svgs, polar_plot_svg, view_box_for, Fonts, FrameStyle,
 };
 use std::path::{Path, PathBuf};
 
@@ -92,7 +92,7 @@ pub fn run(args: Args) -> CliResult {
     }
     if let Some(path) = &args.gif {
         let svgs = frame_svgs(mech, contact, frames, 480.0);
-        let bytes = gif_from_svgs(&svgs, 480, 6).map_err(|e| e.to_string())?;
+        let bytes = gif_from_svgs(&svgs, 480, 6, &Fonts::system()).map_err(|e| e.to_string())?;
         write_atomic(path, &bytes)?;
     }
     if let Some(path) = &args.plot {
@@ -117,9 +117,8 @@ pub fn run(args: Args) -> CliResult {
         let polar = polar_plot_svg(&profiles).map_err(|e| e.to_string())?;
         write_atomic(&sibling(path, "-polar"), polar.as_bytes())?;
     }
-    let json = serde_json::to_string_pretty(report).map_err(|e| e.to_string())?;
     if let Some(path) = &args.out {
-        write_atomic(path, json.as_bytes())?;
+        write_json(path, report)?;
     }
     if args.json {
         return print_json(report);

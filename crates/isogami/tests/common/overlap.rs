@@ -1,8 +1,8 @@
 //! An overlap check of deployment reports that shares nothing with the library's contact code
-//! but the kerf inset: it places every tile from the report's poses (pose = R(θ)(p − centroid)
-//! + (x, y), copies shifted by k_u·u + k_w·w), enumerates lattice copies by brute force over a
-//! block sized from nalgebra's singular values of [u w], and measures overlap with `geo`'s
-//! polygon intersection.
+//! but the kerf inset: it places every tile from the report's poses (vertex ↦
+//! R(θ)(v − centroid) plus (x, y); copies shifted by k_u·u + k_w·w), enumerates lattice copies
+//! by brute force over a block sized from nalgebra's singular values of [u w], and measures
+//! overlap with `geo`'s polygon intersection.
 #![allow(dead_code)]
 
 use geo::{Area, BooleanOps, Coord, LineString, Polygon};
