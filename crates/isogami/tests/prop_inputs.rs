@@ -10,26 +10,19 @@ use isogami::tiling::{Family, Tiling};
 use isogami::topology::{Design, DesignJson, JointChoice, SAMPLE_OPENING_DESIGNS};
 use proptest::prelude::*;
 
-/// A refusal is one non-empty line. Some messages still quote the input raw (see
-/// [`errors_escape_line_breaks_in_the_input`]), so the line rule is checked for inputs
-/// without line breaks; the CLI folds any message onto one line.
+/// A refusal is one non-empty line, whatever the input holds (quoted input is escaped).
 fn assert_one_line(e: &impl std::fmt::Display, input: &str) {
     let msg = e.to_string();
     assert!(!msg.trim().is_empty(), "empty error for {input:?}");
-    if !input.contains(['\n', '\r']) {
-        assert!(
-            !msg.contains('\n'),
-            "multi-line error for {input:?}: {msg:?}"
-        );
-    }
+    assert!(
+        !msg.contains(['\n', '\r']),
+        "multi-line error for {input:?}: {msg:?}"
+    );
 }
 
-/// Known defect, found by `any_text_resolves_or_is_refused_in_one_line`: `BadCell`
-/// (cell/dims.rs) and `UnknownFamily` (tiling/family.rs) quote the user's text unescaped, so
-/// a line break in it breaks the message. Run with `--ignored` once they escape it (as the
-/// spec parser's `truncate` does).
+/// Found by `any_text_resolves_or_is_refused_in_one_line`: `BadCell` and `UnknownFamily`
+/// used to quote the user's text unescaped, so a line break in it broke the message.
 #[test]
-#[ignore = "cell/dims.rs and tiling/family.rs quote raw input; outside this change"]
 fn errors_escape_line_breaks_in_the_input() {
     for text in ["IH1::\nx1:-", "IH\n28::1x1:-"] {
         let msg = Design::resolve(text).expect_err("invalid").to_string();
