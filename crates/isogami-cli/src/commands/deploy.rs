@@ -24,6 +24,10 @@ pub struct Args {
     /// Cut width relative to the mean edge length.
     #[arg(long, default_value_t = ContactSettings::default().kerf, allow_hyphen_values = true)]
     kerf: f64,
+    /// For a design with several degrees of freedom: open along basis motion K (0-based, as
+    /// listed by `analyze`) instead of the fastest-opening combination of all of them.
+    #[arg(long, value_name = "K")]
+    mode: Option<usize>,
     /// Number of frames to report (accepted states nearest to evenly spaced t).
     #[arg(long, default_value_t = 60)]
     frame_count: usize,
@@ -59,19 +63,20 @@ pub fn run(args: Args) -> CliResult {
         .parse()
         .map_err(|e: isogami::Error| e.to_string())?;
     let polar_t = parse_polar_t(&args.polar_t)?;
-    let request = DeployRequest {
+    let mut request = DeployRequest {
         settings: DeploySettings {
             method,
             contact: ContactSettings::with_kerf(args.kerf),
+            mode: args.mode,
             ..DeploySettings::default()
         },
-        frames: if args.all_steps {
-            FrameSelection::AllSteps
-        } else {
-            FrameSelection::Evenly(args.frame_count)
-        },
+        frames: FrameSelection::Evenly(args.frame_count),
     };
+    // --frame-count is checked even when --all-steps makes it moot.
     request.validate().map_err(|e| e.to_string())?;
+    if args.all_steps {
+        request.frames = FrameSelection::AllSteps;
+    }
     let design = resolve_design(&args.design).map_err(|e| e.to_string())?;
 
     let bar = ProgressBar::new_spinner();
