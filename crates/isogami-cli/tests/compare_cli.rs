@@ -33,6 +33,7 @@ fn json_has_every_measure_per_method() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("valid JSON");
     let row = &v.as_array().expect("one row per design")[0];
     assert_eq!(row["design"], "IH76::2x2:bbbbaaaa");
+    assert_eq!(row["dof"], 1);
     let results = row["results"].as_array().unwrap();
     let methods: Vec<&str> = results
         .iter()

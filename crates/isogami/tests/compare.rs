@@ -113,6 +113,7 @@ fn every_number_is_finite_and_every_t_in_unit_interval() {
 #[test]
 fn rigid_modes_reaches_the_contact_limit_and_the_largest_opening() {
     for run in runs() {
+        assert_eq!(run.comparison.dof, 1, "{}", run.spec);
         let rigid = result(run, Method::RigidModes);
         assert_eq!(rigid.final_t, 1.0, "{}", run.spec);
         assert_eq!(rigid.path_distance, 0.0, "{}", run.spec);

@@ -46,19 +46,20 @@ pub fn run(args: Args) -> CliResult {
         return print_json(&rows);
     }
     let mut o = String::new();
-    outln!(
-        o,
-        "t: last state along the rigid-modes path (1 = its contact limit); area: det F, largest \
-         (at t) and last; e: principal expansions, largest and smallest; rot: largest tile \
-         rotation (deg); peak: reached the rigid-modes path's largest area"
-    );
+    outln!(o, "t      last state along the rigid-modes path (1 = its contact limit)");
+    outln!(o, "off    its distance from that path (state space: edge lengths and radians)");
+    outln!(o, "area   largest det F, the t where it was reached, and det F at the end");
+    outln!(o, "e      largest and smallest principal expansion; rot: largest tile rotation (deg)");
+    outln!(o, "peak   whether the rigid-modes path's largest area was reached (within 1 %)");
     for row in &rows {
-        outln!(o, "{}", row.design);
+        outln!(o, "");
+        outln!(o, "{}  ({} DOF)", row.design, row.dof);
         outln!(
             o,
-            "  {:<12} {:>5} {:>6} {:>6} {:>6} {:>7} {:>7} {:>6} {:>5}  {:<20} {:>6} {:>9}",
+            "  {:<12} {:>5} {:>6} {:>8} {:>6} {:>8} {:>7} {:>7} {:>6} {:>5}  {:<20} {:>6} {:>8}",
             "method",
             "t",
+            "off",
             "area",
             "at t",
             "last",
@@ -73,9 +74,10 @@ pub fn run(args: Args) -> CliResult {
         for r in &row.results {
             outln!(
                 o,
-                "  {:<12} {:>5.3} {:>6.3} {:>6.3} {:>6.3} {:>7.3} {:>7.3} {:>6.1} {:>5}  {:<20} {:>6} {:>9.1}",
+                "  {:<12} {:>5.3} {:>6.3} {:>8.3} {:>6.3} {:>8.3} {:>7.3} {:>7.3} {:>6.1} {:>5}  {:<20} {:>6} {:>8.1}",
                 r.method.to_string(),
                 r.final_t,
+                r.path_distance,
                 r.max_area_ratio,
                 r.max_area_t,
                 r.final_area_ratio,

@@ -15,6 +15,7 @@ use crate::contact::ContactModel;
 use crate::error::{Error, Result};
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
+use crate::mobility::{analyze, MobilitySettings};
 use crate::topology::Design;
 use serde::Serialize;
 
@@ -94,6 +95,9 @@ pub struct MethodResult {
 pub struct DesignComparison {
     /// Design spec string.
     pub design: String,
+    /// Degrees of freedom of the closed sheet. With more than one, the baselines may follow
+    /// another motion than rigid modes: their `path_distance` says how far they left it.
+    pub dof: usize,
     /// One result per method, in the order of [`METHODS`].
     pub results: Vec<MethodResult>,
 }
@@ -102,9 +106,11 @@ pub struct DesignComparison {
 pub fn compare_design(design: &Design, settings: &DeploySettings) -> Result<DesignComparison> {
     let cell = design.cell()?;
     let mech = Mechanism::new(&cell, &design.joints)?;
+    let results = compare_methods(&mech, settings)?;
     Ok(DesignComparison {
         design: design.to_string(),
-        results: compare_methods(&mech, settings)?,
+        dof: analyze(&mech, &mech.rest, MobilitySettings::default())?.dof,
+        results,
     })
 }
 
@@ -122,7 +128,8 @@ pub fn compare_methods(mech: &Mechanism, settings: &DeploySettings) -> Result<Ve
         let traj = super::deploy(mech, &s, &mut |_| {})?;
         let millis = start.elapsed().as_secs_f64() * 1e3;
         let all: Vec<usize> = (0..traj.steps.len()).collect();
-        let frames = frame_records(mech, &contact, &traj, &all, settings.joint_tolerance)?;
+        let frames = frame_records(mech, &contact, &traj, &all, settings.joint_tolerance)
+            .map_err(|e| name_method(method, e))?;
         runs.push((method, traj, frames, millis));
     }
     let (_, reference, reference_frames, _) = &runs[0];
@@ -132,6 +139,14 @@ pub fn compare_methods(mech: &Mechanism, settings: &DeploySettings) -> Result<Ve
             summarise(*method, reference, peak_area, traj, frames, *millis)
         })
         .collect()
+}
+
+/// Says which method a numerical failure of a checked state came from.
+fn name_method(method: Method, e: Error) -> Error {
+    match e {
+        Error::Numerical(what) => Error::Numerical(format!("{method}: {what}")),
+        other => other,
+    }
 }
 
 /// Index and value of the largest area ratio over `frames`.
