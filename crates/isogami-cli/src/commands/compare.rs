@@ -46,11 +46,26 @@ pub fn run(args: Args) -> CliResult {
         return print_json(&rows);
     }
     let mut o = String::new();
-    outln!(o, "t      last state along the rigid-modes path (1 = its contact limit)");
-    outln!(o, "off    its distance from that path (state space: edge lengths and radians)");
-    outln!(o, "area   largest det F, the t where it was reached, and det F at the end");
-    outln!(o, "e      largest and smallest principal expansion; rot: largest tile rotation (deg)");
-    outln!(o, "peak   whether the rigid-modes path's largest area was reached (within 1 %)");
+    outln!(
+        o,
+        "t      last state along the rigid-modes path (1 = its contact limit)"
+    );
+    outln!(
+        o,
+        "off    its distance from that path (state space: edge lengths and radians)"
+    );
+    outln!(
+        o,
+        "area   largest det F, the t where it was reached, and det F at the end"
+    );
+    outln!(
+        o,
+        "e      largest and smallest principal expansion; rot: largest tile rotation (deg)"
+    );
+    outln!(
+        o,
+        "peak   whether the rigid-modes path's largest area was reached (within 1 %)"
+    );
     for row in &rows {
         outln!(o, "");
         outln!(o, "{}  ({} DOF)", row.design, row.dof);
