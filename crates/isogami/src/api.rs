@@ -9,7 +9,7 @@
 //! | mobility | [`analyze`] | [`Analysis`] |
 //! | deployment | [`deploy`] | [`Deployment`] (the serialisable report and the states) |
 //! | linkages | [`linkages`] | [`LinkageAnalysis`] |
-//! | baseline comparison | [`compare`] | one [`MethodResult`] per method |
+//! | baseline comparison | [`compare`] | [`DesignComparison`]: one result per method |
 //!
 //! ```
 //! use isogami::api::{deploy, resolve_design, DeployRequest};
@@ -24,8 +24,8 @@
 use crate::cell::UnitCell;
 use crate::contact::ContactModel;
 use crate::deploy::{
-    build_report, compare_methods, frame_records, select_frames, DeploySettings, DeploymentReport,
-    FrameRecord, MethodResult, Progress, Trajectory,
+    build_report, compare_design, frame_records, select_frames, DeploySettings, DeploymentReport,
+    DesignComparison, FrameRecord, Progress, Trajectory,
 };
 use crate::error::{Error, Result};
 use crate::kinematics::Mechanism;
@@ -199,9 +199,8 @@ pub fn linkages(design: &Design) -> Result<LinkageAnalysis> {
 }
 
 /// Rigid modes, NCM and springs on the same design with otherwise equal settings (paper §5,
-/// Fig. 4).
-pub fn compare(design: &Design, settings: &DeploySettings) -> Result<Vec<MethodResult>> {
+/// Fig. 4): how far along the rigid-modes path each gets and how much it opens.
+pub fn compare(design: &Design, settings: &DeploySettings) -> Result<DesignComparison> {
     settings.validate()?;
-    let (_, mech) = assemble(design)?;
-    compare_methods(&mech, settings)
+    compare_design(design, settings)
 }

@@ -30,7 +30,10 @@ mod settings;
 mod springs;
 mod trajectory;
 
-pub use compare::{compare_methods, MethodResult};
+pub use compare::{
+    compare_design, compare_methods, DesignComparison, MethodResult, COMPARISON_DESIGNS, METHODS,
+    PEAK_FRACTION,
+};
 pub use frames::{frame_records, select_frames, FrameRecord};
 pub use newton::{minimize, Objective, SolveOutcome};
 pub use report::{build_report, DeploymentReport, FrameReport, TilePose};
