@@ -112,7 +112,7 @@ impl ContactModel {
 
     /// For every pair, the bound of how fast its two polygons can approach per unit step
     /// along `dq`.
-    fn approach_rates(&self, pairs: &[CandidatePair], dq: &DVec) -> Vec<Real> {
+    pub(crate) fn approach_rates(&self, pairs: &[CandidatePair], dq: &DVec) -> Vec<Real> {
         let l = self.layout;
         let tile = |i: usize| {
             let k = l.tile(i);

@@ -3,7 +3,7 @@
 
 use super::model::ContactModel;
 use super::narrow::{min_vertex_edge_distance, polygon_distance, shifted_into, OVERLAP_TOL};
-use super::pairs::CandidatePair;
+use super::pairs::{for_each_near_pair, CandidatePair};
 use super::placement::Placement;
 use crate::geometry::interiors_overlap;
 use crate::kinematics::Mechanism;
@@ -64,16 +64,13 @@ impl ContactModel {
         let Some(placed) = self.place(mech, q) else {
             return 0.0;
         };
-        let Some(pairs) = self.near(&placed, CLEARANCE_REACH) else {
-            return 0.0;
-        };
         let mut best = CLEARANCE_REACH;
         let mut other = Vec::new();
-        for pair in &pairs {
+        let listed = for_each_near_pair(&placed, &self.extents, CLEARANCE_REACH, |pair| {
             let shift = placed.shift(pair.offset);
             let (ta, tb) = (&placed.tiles[pair.a], &placed.tiles[pair.b]);
             if ta.aabb.gap(&tb.aabb.shifted(shift)) >= best {
-                continue;
+                return;
             }
             shifted_into(&tb.world, shift, &mut other);
             let d = if check_overlap {
@@ -82,6 +79,9 @@ impl ContactModel {
                 min_vertex_edge_distance(&ta.world, &other)
             };
             best = best.min(d);
+        });
+        if listed.is_err() {
+            return 0.0;
         }
         best
     }

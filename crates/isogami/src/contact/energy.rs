@@ -2,6 +2,7 @@
 
 use super::barrier::barrier_energy;
 use super::model::ContactModel;
+use super::pairs::for_each_near_pair;
 use super::narrow::{for_each_close, shifted_into, OVERLAP_TOL};
 use crate::geometry::interiors_overlap;
 use crate::kinematics::Mechanism;
@@ -31,16 +32,17 @@ impl ContactModel {
             return Real::INFINITY;
         };
         let (dhat, kappa) = (self.settings.dhat, self.settings.stiffness);
-        let Some(pairs) = self.near(&placed, dhat) else {
-            return Real::INFINITY;
-        };
         let mut total = 0.0;
         let mut other = Vec::new();
-        for pair in &pairs {
+        let mut blocked = false;
+        let listed = for_each_near_pair(&placed, &self.extents, dhat, |pair| {
+            if blocked {
+                return;
+            }
             let shift = placed.shift(pair.offset);
             let (ta, tb) = (&placed.tiles[pair.a], &placed.tiles[pair.b]);
             if !ta.aabb.near(&tb.aabb.shifted(shift), dhat) {
-                continue;
+                return;
             }
             shifted_into(&tb.world, shift, &mut other);
             let mut e = 0.0;
@@ -50,9 +52,12 @@ impl ContactModel {
             if !e.is_finite()
                 || (check_overlap && interiors_overlap(&ta.world, &other, OVERLAP_TOL))
             {
-                return Real::INFINITY;
+                blocked = true;
             }
             total += e;
+        });
+        if blocked || listed.is_err() {
+            return Real::INFINITY;
         }
         total
     }

@@ -34,6 +34,17 @@ pub(crate) fn near_pairs(
     out: &mut Vec<CandidatePair>,
 ) -> Result<(), LatticeProblem> {
     out.clear();
+    for_each_near_pair(placed, extents, margin, |p| out.push(p))
+}
+
+/// [`near_pairs`] without a list: calls `f` with each pair (the hot paths, which would
+/// otherwise allocate a list per evaluation).
+pub(crate) fn for_each_near_pair(
+    placed: &Placement,
+    extents: &[Real],
+    margin: Real,
+    mut f: impl FnMut(CandidatePair),
+) -> Result<(), LatticeProblem> {
     let lattice = placed.lattice?;
     let n = placed.tiles.len();
     for a in 0..n {
@@ -42,7 +53,7 @@ pub(crate) fn near_pairs(
             let radius = extents[a] + extents[b] + margin;
             lattice.for_each_within(d, radius, |offset| {
                 if a < b || (offset[0], offset[1]) > (0, 0) {
-                    out.push(CandidatePair { a, b, offset });
+                    f(CandidatePair { a, b, offset });
                 }
             })?;
         }

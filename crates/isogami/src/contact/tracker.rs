@@ -2,22 +2,26 @@
 //! clearance, carried from step to step, that lets most line-search steps through without
 //! any geometry.
 
+use super::clearance::CLEARANCE_REACH;
 use super::model::ContactModel;
 use super::reach::{clearance_drop_rate, Rates, Spread};
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
 
 /// Keeps a lower bound on the smallest distance between any two collision polygons of the
-/// infinite sheet while a solver moves the state. A step α·Δ lowers every pair's distance by
-/// at most α·b (`reach::clearance_drop_rate`, valid for every lattice translate); while
-/// b stays below 90 % of the bound, the whole step is safe without any geometry. Otherwise
-/// the clearance is recomputed, and if that is still not enough the exact conservative
-/// advancement [`ContactModel::max_safe_step`] decides.
+/// infinite sheet while a solver moves the state. Pairs whose bounding circles are within
+/// [`CLEARANCE_REACH`] are listed with their cell offsets, and a step α·Δ brings each closer by
+/// at most α times its exact approach rate; every other pair is farther than the reach and
+/// is covered for all lattice translates at once by `reach::clearance_drop_rate`. While both
+/// bounds stay below 90 % of what they must not exceed, the whole step is safe without any
+/// distance computation. Otherwise the clearance is recomputed, and if that is still not
+/// enough the exact conservative advancement [`ContactModel::max_safe_step`] decides.
 #[derive(Debug, Clone)]
 pub struct ClearanceTracker {
     clearance_lb: Option<Real>,
-    /// Drop rate of the last direction asked about, and whether it was known.
-    pending: Option<Real>,
+    /// Per unit step of the last direction asked about: the largest approach rate of a pair
+    /// within reach, and the drop rate bound of the pairs beyond it (`None`: unknown).
+    pending: Option<(Real, Real)>,
 }
 
 impl ClearanceTracker {
@@ -30,13 +34,7 @@ impl ClearanceTracker {
     }
 
     /// A fraction α ∈ [0, 1] of `d` that is safe from `q` (which must be intersection-free).
-    pub fn fraction(
-        &mut self,
-        mech: &Mechanism,
-        contact: &ContactModel,
-        q: &DVec,
-        d: &DVec,
-    ) -> Real {
+    pub fn fraction(&mut self, mech: &Mechanism, contact: &ContactModel, q: &DVec, d: &DVec) -> Real {
         self.pending = None;
         if contact.check(mech, q).is_err() || d.len() != q.len() || d.iter().any(|x| !x.is_finite())
         {
@@ -50,21 +48,28 @@ impl ClearanceTracker {
         };
         let rates = Rates::of(contact.layout, &contact.extents, d);
         if rates.point == 0.0 && rates.lattice == 0.0 {
-            self.pending = Some(0.0);
+            self.pending = Some((0.0, 0.0));
             return 1.0;
         }
-        let safe = |c: Real| clearance_drop_rate(&spread, &rates, c).filter(|b| 0.9 * c >= *b);
-        if let Some(b) = self.clearance_lb.and_then(safe) {
-            self.pending = Some(b);
+        let Some(pairs) = contact.near(&placed, CLEARANCE_REACH) else {
+            return 0.0;
+        };
+        let near = contact
+            .approach_rates(&pairs, d)
+            .into_iter()
+            .fold(0.0, Real::max);
+        let far = clearance_drop_rate(&spread, &rates, CLEARANCE_REACH);
+        self.pending = far.map(|f| (near, f));
+        let far_safe = far.is_some_and(|f| 0.9 * CLEARANCE_REACH >= f);
+        let near_safe = |c: Real| 0.9 * c >= near;
+        if far_safe && self.clearance_lb.is_some_and(near_safe) {
             return 1.0;
         }
         let c = contact.min_clearance_in_free_set(mech, q);
         self.clearance_lb = Some(c);
-        if let Some(b) = safe(c) {
-            self.pending = Some(b);
+        if far_safe && near_safe(c) {
             return 1.0;
         }
-        self.pending = clearance_drop_rate(&spread, &rates, c);
         contact.max_safe_step(mech, q, d).min(1.0)
     }
 
@@ -77,7 +82,9 @@ impl ClearanceTracker {
     /// [`ClearanceTracker::fraction`] call, α at most what it returned.
     pub fn moved(&mut self, alpha: Real) {
         self.clearance_lb = match (self.clearance_lb, self.pending) {
-            (Some(c), Some(b)) => Some((c - alpha * b).max(0.0)),
+            (Some(c), Some((near, far))) => {
+                Some((c - alpha * near).min(CLEARANCE_REACH - alpha * far).max(0.0))
+            }
             _ => None,
         };
     }
