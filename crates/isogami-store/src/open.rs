@@ -118,15 +118,15 @@ pub(crate) fn put_meta(conn: &Connection, key: &str, value: &str) -> StoreResult
     Ok(())
 }
 
-/// The `schema_version` of a `meta` table, if it has a readable one.
-fn version_in_meta(conn: &Connection) -> Option<i64> {
+/// The `schema_version` of a `meta` table (None without that row; an error when the table
+/// cannot be read, e.g. another program's `meta` table without these columns).
+fn version_in_meta(conn: &Connection) -> rusqlite::Result<Option<String>> {
     conn.query_row(
         "SELECT value FROM meta WHERE key = 'schema_version'",
         [],
         |r| r.get::<_, String>(0),
     )
-    .ok()
-    .and_then(|v| v.trim().parse().ok())
+    .optional()
 }
 
 /// Tells an isogami database of this version from everything else. Reads only the header and
@@ -143,11 +143,12 @@ fn identify(conn: &Connection) -> StoreResult<()> {
     let has = |t: &str| tables.iter().any(|x| x == t);
     if app_id == APPLICATION_ID {
         let version = if has("meta") {
-            version_in_meta(conn)
+            version_in_meta(conn)?
         } else {
             None
         };
-        let found = version
+        let found: i64 = version
+            .and_then(|v| v.trim().parse().ok())
             .ok_or_else(|| StoreError::Damaged("the schema version cannot be read".into()))?;
         if found != SCHEMA_VERSION {
             return Err(StoreError::SchemaVersion {
@@ -162,7 +163,11 @@ fn identify(conn: &Connection) -> StoreResult<()> {
     }
     // isogami before schema version 2 wrote no application id, only meta.schema_version.
     if has("meta") {
-        if let Some(found) = version_in_meta(conn) {
+        if let Some(found) = version_in_meta(conn)
+            .ok()
+            .flatten()
+            .and_then(|v| v.trim().parse::<i64>().ok())
+        {
             if found == SCHEMA_VERSION {
                 return Err(StoreError::Damaged(
                     "the file's application id is wrong".into(),
@@ -189,17 +194,23 @@ fn integrity(conn: &Connection, check: Check) -> StoreResult<()> {
         Check::Full => "integrity_check",
     };
     let mut stmt = conn.prepare(&format!("PRAGMA {pragma}(10)"))?;
-    let problems: Vec<String> = stmt
+    let rows: Vec<String> = stmt
         .query_map([], |r| r.get::<_, String>(0))?
         .collect::<Result<_, _>>()?;
-    if problems.len() == 1 && problems[0] == "ok" {
+    if rows.len() == 1 && rows[0] == "ok" {
         return Ok(());
     }
-    let first = problems.first().map_or("no answer", String::as_str);
-    let more = if problems.len() > 1 {
-        format!(" and {} more", problems.len() - 1)
-    } else {
-        String::new()
+    // One row may hold several newline-separated problems under a "*** in database ***" line.
+    let problems: Vec<&str> = rows
+        .iter()
+        .flat_map(|r| r.lines())
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with("***"))
+        .collect();
+    let first = problems.first().copied().unwrap_or("no answer");
+    let more = match problems.len() {
+        0 | 1 => String::new(),
+        n => format!(" (and {} more problems)", n - 1),
     };
     Err(StoreError::Damaged(crate::error::one_line(&format!(
         "SQLite {pragma}: {first}{more}"
@@ -264,6 +275,22 @@ fn create_schema(conn: &mut Connection) -> StoreResult<()> {
     Ok(())
 }
 
+/// Identifies the file before a writer opens it. A file whose last writer was interrupted is
+/// identified from its main file alone (immutable mode ignores the journal): the writer may
+/// then roll the journal back, but only in an isogami database.
+fn precheck(path: &Path, wal: bool) -> StoreResult<()> {
+    match identify(&reader_connection(path, wal)?) {
+        Err(StoreError::InterruptedWrite) => {
+            let flags = OpenFlags::SQLITE_OPEN_READ_ONLY
+                | OpenFlags::SQLITE_OPEN_NO_MUTEX
+                | OpenFlags::SQLITE_OPEN_URI;
+            let conn = Connection::open_with_flags(uri(path, "immutable=1")?, flags)?;
+            identify(&conn).map_err(as_damage)
+        }
+        other => other.map_err(as_damage),
+    }
+}
+
 impl StoreWriter {
     /// Opens the database at `path` for writing by this process alone, creating it when the
     /// path is new or an empty file. With `run`, the file's settings must equal the run's (a
@@ -271,7 +298,7 @@ impl StoreWriter {
     pub fn open(path: &Path, run: Option<RunInfo<'_>>, check: Check) -> StoreResult<StoreWriter> {
         // Refuse what is not ours before creating anything beside it.
         if let FileState::Sqlite { wal } = inspect(path)? {
-            identify(&reader_connection(path, wal)?).map_err(as_damage)?;
+            precheck(path, wal)?;
         }
         let lock = WriterLock::acquire(path)?;
         let flags = OpenFlags::SQLITE_OPEN_READ_WRITE | OpenFlags::SQLITE_OPEN_NO_MUTEX;
@@ -290,7 +317,7 @@ impl StoreWriter {
                 conn
             }
             FileState::Sqlite { wal } => {
-                identify(&reader_connection(path, wal)?).map_err(as_damage)?;
+                precheck(path, wal)?;
                 let conn = Connection::open_with_flags(path, flags)?;
                 conn.busy_timeout(WRITER_BUSY)?;
                 if wal {
