@@ -34,7 +34,9 @@ pub(crate) const TABLES: [&str; 5] = [
 /// Shape parameter columns p0…p5 (isohedral families have at most six parameters).
 pub(crate) const PARAM_SLOTS: usize = 6;
 
-/// Tables and indexes, created in one transaction in a new or empty file.
+/// Tables and indexes, created in one transaction in a new or empty file. Every facet and
+/// every sortable measure has an index; a column that may be missing has a second index on
+/// `(column IS NULL, column)`, whose order is ascending with missing values last.
 pub(crate) const CREATE: &str = "
 CREATE TABLE meta (
     key      TEXT PRIMARY KEY,
@@ -61,7 +63,7 @@ CREATE TABLE stage_counts (
 );
 CREATE TABLE designs (
     id                INTEGER PRIMARY KEY,
-    spec              TEXT NOT NULL UNIQUE,
+    spec              TEXT NOT NULL,
     origin            TEXT NOT NULL CHECK (origin IN ('explored', 'user')),
     work_unit         TEXT REFERENCES work_units(id),
     family            INTEGER NOT NULL,
@@ -94,6 +96,7 @@ CREATE TABLE design_data (
     linkages TEXT,
     checksum INTEGER NOT NULL
 );
+CREATE UNIQUE INDEX designs_spec ON designs(spec);
 CREATE INDEX designs_work_unit ON designs(work_unit);
 CREATE INDEX designs_family ON designs(family);
 CREATE INDEX designs_cell ON designs(cell);
@@ -109,4 +112,8 @@ CREATE INDEX designs_tile_rotation ON designs(max_tile_rotation);
 CREATE INDEX designs_poisson_min ON designs(poisson_min);
 CREATE INDEX designs_poisson_max ON designs(poisson_max);
 CREATE INDEX designs_steps ON designs(steps);
+CREATE INDEX designs_behaviour_nulls_last ON designs(behaviour IS NULL, behaviour);
+CREATE INDEX designs_linkage_nulls_last ON designs(linkage_signature IS NULL, linkage_signature);
+CREATE INDEX designs_poisson_min_nulls_last ON designs(poisson_min IS NULL, poisson_min);
+CREATE INDEX designs_poisson_max_nulls_last ON designs(poisson_max IS NULL, poisson_max);
 ";

@@ -442,3 +442,49 @@ fn rows_are_verified_as_they_are_listed() {
         Err(StoreError::Damaged(_))
     ));
 }
+
+#[test]
+fn every_sort_key_orders_alike_whether_an_index_is_walked_or_rows_sorted() {
+    let s = store();
+    let all = s.summaries().unwrap();
+    let order = &fixture().1;
+    let mut keys = vec![
+        SortKey::Spec,
+        SortKey::Family,
+        SortKey::Cell,
+        SortKey::Behaviour,
+        SortKey::LinkageSignature,
+        SortKey::EndReason,
+        SortKey::Origin,
+    ];
+    keys.extend(Measure::all().map(SortKey::Measure));
+    for key in keys {
+        for descending in [false, true] {
+            // Unfiltered small pages walk the key's index (if it has one); a selective filter
+            // or a deep page sorts the matching rows.
+            let mut walk = DesignQuery::default();
+            walk.sort_by(key, descending);
+            walk.limit = 7;
+            walk.offset = 3;
+            let mut deep = walk.clone();
+            deep.offset = 590;
+            let mut selective = walk.clone();
+            selective.offset = 0;
+            selective.range(Measure::MaxExpansion, Some(1.3), None);
+            for q in [walk, deep, selective] {
+                let sort = q.sort.unwrap();
+                let mut expected: Vec<&DesignSummary> =
+                    all.iter().filter(|d| matches(&q, d, None)).collect();
+                expected.sort_by(|a, b| compare(sort, a, b, order));
+                let want: Vec<&DesignSummary> = expected
+                    .into_iter()
+                    .skip(q.offset as usize)
+                    .take(q.limit as usize)
+                    .collect();
+                let page = s.page(&q).unwrap();
+                assert!(!want.is_empty());
+                assert_eq!(page.rows.iter().collect::<Vec<_>>(), want, "{q:?}");
+            }
+        }
+    }
+}

@@ -89,9 +89,14 @@ pub fn run(cmd: DbCommand) -> CliResult {
 /// The per-stage and per-family report.
 pub fn stats_table(s: &DbStats) -> String {
     let mut o = String::new();
+    let user = if s.user_designs > 0 {
+        format!(", {} of them saved by users", s.user_designs)
+    } else {
+        String::new()
+    };
     let _ = writeln!(
         o,
-        "{} work units, {} designs (schema {}, isogami {})",
+        "{} work units, {} designs{user} (schema {}, isogami {})",
         s.work_units,
         s.designs,
         s.schema_version,

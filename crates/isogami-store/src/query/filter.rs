@@ -1,7 +1,7 @@
 //! A query's filters as an SQL WHERE clause with bound values. Column names come only from
 //! the query enums; every value is a parameter.
 
-use super::types::{DesignQuery, Facet, QueryError, Sort, SortKey, MAX_LIMIT};
+use super::types::{DesignQuery, Facet, Measure, QueryError, Sort, SortKey, MAX_LIMIT};
 use rusqlite::types::Value;
 
 /// A WHERE clause and its parameters.
@@ -12,6 +12,11 @@ pub(crate) struct Where {
 }
 
 impl Where {
+    /// True when nothing is filtered.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.clauses.is_empty()
+    }
+
     /// `WHERE …` or nothing.
     pub(crate) fn sql(&self) -> String {
         if self.clauses.is_empty() {
@@ -129,45 +134,91 @@ pub(crate) fn filters(q: &DesignQuery, skip: Option<Facet>) -> Result<Where, Que
                 });
             }
         }
+        // `+column`: a range never drives an index search. Without statistics SQLite takes
+        // ranges for selective, and fetching most rows through an index costs several times a
+        // scan of the compact summary table.
         if let Some(min) = r.min {
-            w.push(format!("{column} >= ?"), [Value::Real(min)]);
+            w.push(format!("+{column} >= ?"), [Value::Real(min)]);
         }
         if let Some(max) = r.max {
-            w.push(format!("{column} <= ?"), [Value::Real(max)]);
+            w.push(format!("+{column} <= ?"), [Value::Real(max)]);
         }
     }
     Ok(w)
 }
 
-/// `ORDER BY …` for a sort (default: spec ascending); ties by insertion order, same direction.
-pub(crate) fn order_by(sort: Option<Sort>) -> Result<String, QueryError> {
-    let sort = sort.unwrap_or(Sort {
+/// The sort, spec ascending by default.
+pub(crate) fn sort_or_default(sort: Option<Sort>) -> Sort {
+    sort.unwrap_or(Sort {
         key: SortKey::Spec,
         descending: false,
-    });
-    let dir = if sort.descending { "DESC" } else { "ASC" };
-    let (columns, nullable): (&[&str], bool) = match sort.key {
-        SortKey::Spec => (&["spec"], false),
-        SortKey::Family => (&["family"], false),
-        SortKey::Cell => (&["cell_a", "cell_b"], false),
-        SortKey::Behaviour => (&["behaviour"], true),
-        SortKey::LinkageSignature => (&["linkage_signature"], true),
-        SortKey::EndReason => (&["end_reason"], false),
-        SortKey::Origin => (&["origin"], false),
-        SortKey::Measure(m) => {
-            let c = m.column()?;
-            return Ok(format!(
-                "ORDER BY {c} {dir}{}, id {dir}",
-                if m.nullable() { " NULLS LAST" } else { "" }
-            ));
-        }
+    })
+}
+
+/// The sort's key columns and whether they may be missing.
+fn key_columns(key: SortKey) -> Result<(Vec<&'static str>, bool), QueryError> {
+    Ok(match key {
+        SortKey::Spec => (vec!["spec"], false),
+        SortKey::Family => (vec!["family"], false),
+        SortKey::Cell => (vec!["cell_a", "cell_b"], false),
+        SortKey::Behaviour => (vec!["behaviour"], true),
+        SortKey::LinkageSignature => (vec!["linkage_signature"], true),
+        SortKey::EndReason => (vec!["end_reason"], false),
+        SortKey::Origin => (vec!["origin"], false),
+        SortKey::Measure(m) => (vec![m.column()?], m.nullable()),
+    })
+}
+
+/// An index whose order is the sort's order (key with missing values last, then id), and the
+/// ORDER BY that SQLite matches against it.
+pub(crate) fn index_order(sort: Sort) -> Result<Option<(&'static str, String)>, QueryError> {
+    let (plain, nulls_last) = match sort.key {
+        SortKey::Spec => ("designs_spec", None),
+        SortKey::Family => ("designs_family", None),
+        SortKey::EndReason => ("designs_end_reason", None),
+        SortKey::Origin => ("designs_origin", None),
+        SortKey::Behaviour => ("designs_behaviour", Some("designs_behaviour_nulls_last")),
+        SortKey::LinkageSignature => ("designs_linkage", Some("designs_linkage_nulls_last")),
+        SortKey::Measure(m) => match m {
+            Measure::MaxExpansion => ("designs_max_expansion", None),
+            Measure::MinExpansion => ("designs_min_expansion", None),
+            Measure::MaxAreaRatio => ("designs_area_ratio", None),
+            Measure::MaxTileRotation => ("designs_tile_rotation", None),
+            Measure::Steps => ("designs_steps", None),
+            Measure::TileCount => ("designs_tile_count", None),
+            Measure::PoissonMin => (
+                "designs_poisson_min",
+                Some("designs_poisson_min_nulls_last"),
+            ),
+            Measure::PoissonMax => (
+                "designs_poisson_max",
+                Some("designs_poisson_max_nulls_last"),
+            ),
+            Measure::Kerf | Measure::Param(_) => return Ok(None),
+        },
+        SortKey::Cell => return Ok(None),
     };
+    let (columns, _) = key_columns(sort.key)?;
+    let c = columns[0];
+    Ok(Some(match (sort.descending, nulls_last) {
+        // SQLite orders NULL first, so walking an index backwards puts missing values last.
+        (true, _) => (plain, format!("ORDER BY {c} DESC, id DESC")),
+        (false, None) => (plain, format!("ORDER BY {c} ASC, id ASC")),
+        (false, Some(index)) => (index, format!("ORDER BY {c} IS NULL, {c} ASC, id ASC")),
+    }))
+}
+
+/// `ORDER BY …` for sorting the filtered rows (keys written `+key` so that no index is walked):
+/// missing values last, ties by insertion order in the same direction.
+pub(crate) fn sorted_order(sort: Sort) -> Result<String, QueryError> {
+    let dir = if sort.descending { "DESC" } else { "ASC" };
+    let (columns, nullable) = key_columns(sort.key)?;
     let nulls = if nullable { " NULLS LAST" } else { "" };
     let keys: Vec<String> = columns
         .iter()
-        .map(|c| format!("{c} {dir}{nulls}"))
+        .map(|c| format!("+{c} {dir}{nulls}"))
         .collect();
-    Ok(format!("ORDER BY {}, id {dir}", keys.join(", ")))
+    Ok(format!("ORDER BY {}, +id {dir}", keys.join(", ")))
 }
 
 /// Checks limit and offset.

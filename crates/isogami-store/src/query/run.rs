@@ -1,6 +1,8 @@
 //! Running queries against the store.
 
-use super::filter::{check_page, facet_column, filters, order_by};
+use super::filter::{
+    check_page, facet_column, filters, index_order, sort_or_default, sorted_order,
+};
 use super::types::{DesignQuery, Facet, FacetCount, FacetValue, Measure, Page, ScatterPoint};
 use crate::error::{StoreError, StoreResult};
 use crate::open::Store;
@@ -8,6 +10,10 @@ use crate::records::Origin;
 use crate::rows::{read_design, DESIGN_COLUMNS};
 use rusqlite::params_from_iter;
 use rusqlite::types::Value;
+
+/// A page walks the sort index when the filtered set has at least this many times the rows
+/// the page needs (offset + limit): the walk then visits at most 1/WALK_FACTOR of the table.
+const WALK_FACTOR: u64 = 10;
 
 /// A stored facet value as the typed value, or damage.
 fn facet_value(facet: Facet, v: Value) -> StoreResult<FacetValue> {
@@ -40,28 +46,47 @@ impl Store {
     /// filtered set. Every row returned is checked against its checksum.
     pub fn page(&self, query: &DesignQuery) -> StoreResult<Page> {
         check_page(query)?;
+        let sort = sort_or_default(query.sort);
         let w = filters(query, None)?;
         let total: i64 = self.conn.query_row(
             &format!("SELECT count(*) FROM designs {}", w.sql()),
             params_from_iter(w.params.iter()),
             |r| r.get(0),
         )?;
-        let sql = format!(
-            "SELECT {DESIGN_COLUMNS}, checksum FROM designs {} {} LIMIT ? OFFSET ?",
-            w.sql(),
-            order_by(query.sort)?
-        );
-        let mut params = w.params.clone();
-        params.push(Value::Integer(i64::from(query.limit)));
-        params.push(Value::Integer(query.offset as i64));
-        let mut stmt = self.conn.prepare_cached(&sql)?;
-        let mut rows = stmt.query(params_from_iter(params.iter()))?;
+        let total = total as u64;
         let mut out = Vec::with_capacity(query.limit as usize);
-        while let Some(row) = rows.next()? {
-            out.push(read_design(row, 0)?.0);
+        if query.offset < total {
+            let mut params = w.params.clone();
+            params.push(Value::Integer(i64::from(query.limit)));
+            params.push(Value::Integer(query.offset as i64));
+            // Walking the sort key's index and stopping after offset + limit matches is fast
+            // unless the filter is selective (most rows walked are then rejected): the count
+            // just taken tells which. Otherwise the matches are sorted, as (key, id) pairs
+            // only, and the page's rows fetched by id.
+            let wanted = query.offset + u64::from(query.limit);
+            let sql = match index_order(sort)?.filter(|_| total >= WALK_FACTOR * wanted) {
+                Some((index, order)) => format!(
+                    "SELECT {DESIGN_COLUMNS}, checksum FROM designs INDEXED BY {index} {} {order} \
+                     LIMIT ? OFFSET ?",
+                    w.sql()
+                ),
+                None => {
+                    let order = sorted_order(sort)?;
+                    format!(
+                        "SELECT {DESIGN_COLUMNS}, checksum FROM designs WHERE id IN \
+                         (SELECT id FROM designs {} {order} LIMIT ? OFFSET ?) {order}",
+                        w.sql()
+                    )
+                }
+            };
+            let mut stmt = self.conn.prepare_cached(&sql)?;
+            let mut rows = stmt.query(params_from_iter(params.iter()))?;
+            while let Some(row) = rows.next()? {
+                out.push(read_design(row, 0)?.0);
+            }
         }
         Ok(Page {
-            total: total as u64,
+            total,
             offset: query.offset,
             rows: out,
         })
@@ -72,8 +97,11 @@ impl Store {
     pub fn facet_counts(&self, query: &DesignQuery, facet: Facet) -> StoreResult<Vec<FacetCount>> {
         let w = filters(query, Some(facet))?;
         let column = facet_column(facet);
+        // Unfiltered, the facet's own index holds every value (a covering scan); filtered,
+        // `+column` keeps SQLite from walking that index and fetching every row through it.
+        let group = if w.is_empty() { "" } else { "+" };
         let sql = format!(
-            "SELECT {column}, count(*) FROM designs {} GROUP BY {column} \
+            "SELECT {column}, count(*) FROM designs {} GROUP BY {group}{column} \
              ORDER BY count(*) DESC, {column}",
             w.sql()
         );
