@@ -21,6 +21,7 @@
 //!   row's checksum and every document parsed.
 
 #[path = "../tests/common/synthetic.rs"]
+#[allow(dead_code)]
 mod synthetic;
 
 use criterion::{criterion_group, criterion_main, Criterion};

@@ -28,7 +28,7 @@ fn invalid(spec: &str, problem: impl Into<String>) -> StoreError {
 /// [`POISSON_OPEN_FRACTION`]); None when no frame has.
 fn poisson_range(report: &DeploymentReport) -> Option<(f64, f64)> {
     let open = POISSON_OPEN_FRACTION * report.max_expansion;
-    if !(report.max_expansion > 0.0) {
+    if report.max_expansion.is_nan() || report.max_expansion <= 0.0 {
         return None;
     }
     report

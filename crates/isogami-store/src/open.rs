@@ -284,7 +284,8 @@ fn create_schema(conn: &mut Connection) -> StoreResult<()> {
 /// identified from its main file alone (immutable mode ignores the journal): the writer may
 /// then roll the journal back, but only in an isogami database.
 fn precheck(path: &Path, wal: bool) -> StoreResult<()> {
-    match identify(&reader_connection(path, wal)?) {
+    // Setting up the reader already reads the schema, so the interrupted write can show there.
+    match reader_connection(path, wal).and_then(|c| identify(&c)) {
         Err(StoreError::InterruptedWrite) => {
             let flags = OpenFlags::SQLITE_OPEN_READ_ONLY
                 | OpenFlags::SQLITE_OPEN_NO_MUTEX

@@ -148,29 +148,29 @@ fn compare(
 fn random_query(rng: &mut Rng, all: &[DesignSummary]) -> DesignQuery {
     let mut q = DesignQuery::default();
     let pick = |rng: &mut Rng| all[(rng.next() % all.len() as u64) as usize].clone();
-    if rng.next() % 3 == 0 {
+    if rng.one_in(3) {
         for _ in 0..1 + rng.next() % 6 {
             q.families.push(pick(rng).family);
         }
     }
-    if rng.next() % 4 == 0 {
+    if rng.one_in(4) {
         q.cells.push(pick(rng).cell);
     }
-    if rng.next() % 5 == 0 {
+    if rng.one_in(5) {
         q.tile_counts.push(pick(rng).tile_count);
     }
-    if rng.next() % 3 == 0 {
+    if rng.one_in(3) {
         q.behaviours.push(pick(rng).behaviour);
         q.behaviours.push(pick(rng).behaviour);
     }
-    if rng.next() % 4 == 0 {
+    if rng.one_in(4) {
         q.linkage_signatures
             .push(Some(rng.pick(&SIGNATURES).to_string()));
     }
-    if rng.next() % 5 == 0 {
+    if rng.one_in(5) {
         q.end_reasons.push(pick(rng).end_reason);
     }
-    if rng.next() % 6 == 0 {
+    if rng.one_in(6) {
         q.origins.push(rng.pick(&[Origin::Explored, Origin::User]));
     }
     let measures: Vec<Measure> = Measure::all().collect();
@@ -204,18 +204,14 @@ fn random_query(rng: &mut Rng, all: &[DesignSummary]) -> DesignQuery {
         SortKey::Origin,
         SortKey::Measure(rng.pick(&measures)),
     ];
-    if rng.next() % 5 != 0 {
+    if !rng.one_in(5) {
         q.sort = Some(Sort {
             key: rng.pick(&keys),
-            descending: rng.next() % 2 == 0,
+            descending: rng.one_in(2),
         });
     }
     q.limit = rng.pick(&[1, 7, 50, 1000]);
-    q.offset = if rng.next() % 2 == 0 {
-        0
-    } else {
-        rng.next() % 40
-    };
+    q.offset = if rng.one_in(2) { 0 } else { rng.next() % 40 };
     q
 }
 
@@ -309,8 +305,10 @@ fn scatter_points_are_the_filtered_designs_that_have_both_measures() {
     let s = store();
     let all = s.summaries().unwrap();
     let order = &fixture().1;
-    let mut q = DesignQuery::default();
-    q.behaviours = vec![Some(BehaviourClass::IsotropicAuxetic), None];
+    let q = DesignQuery {
+        behaviours: vec![Some(BehaviourClass::IsotropicAuxetic), None],
+        ..DesignQuery::default()
+    };
     for (x, y) in [
         (Measure::MaxExpansion, Measure::MinExpansion),
         (Measure::PoissonMin, Measure::Param(2)),
@@ -378,9 +376,11 @@ fn bad_queries_are_refused_with_a_typed_error() {
 #[test]
 fn filter_values_are_data_never_sql() {
     let s = store();
-    let mut q = DesignQuery::default();
-    q.linkage_signatures = vec![Some("x') OR 1=1; DROP TABLE designs; --".into())];
-    q.end_reasons = vec!["' OR ''='".into()];
+    let q = DesignQuery {
+        linkage_signatures: vec![Some("x') OR 1=1; DROP TABLE designs; --".into())],
+        end_reasons: vec!["' OR ''='".into()],
+        ..DesignQuery::default()
+    };
     assert_eq!(s.page(&q).unwrap().total, 0);
     assert_eq!(s.design_count().unwrap() as usize, N + 2);
 }
@@ -434,8 +434,10 @@ fn rows_are_verified_as_they_are_listed() {
         .unwrap();
     drop(c);
     let s = Store::open_read(&path, Check::Quick).unwrap();
-    let mut q = DesignQuery::default();
-    q.limit = 1000;
+    let q = DesignQuery {
+        limit: 1000,
+        ..DesignQuery::default()
+    };
     assert!(matches!(s.page(&q), Err(StoreError::Damaged(_))));
     assert!(matches!(
         Store::open_read(&path, Check::Full),
