@@ -1,5 +1,8 @@
 //! `isogami`: the command line. Parses arguments, calls the library, prints or writes the
 //! results. No pipeline logic lives here.
+//!
+//! Exit codes: 0 on success (and for `--help`, `--version`), 2 on any error, reported as one
+//! line on stderr (`error: …`), usage errors with a hint naming the help to read.
 
 #[macro_use]
 mod output;
@@ -42,7 +45,11 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    let cli = match Cli::try_parse_from(&args) {
+        Ok(cli) => cli,
+        Err(e) => return output::usage::report(&e, &args),
+    };
     let result = match cli.command {
         Command::Families(a) => commands::families::run(a),
         Command::Cell(a) => commands::cell::run(a),
@@ -57,7 +64,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            eprintln!("error: {}", output::usage::one_line(&e));
             ExitCode::from(2)
         }
     }

@@ -1,5 +1,13 @@
-//! Printing and file writing shared by the commands.
+//! Printing and file writing shared by the commands, and the output boundary: every JSON
+//! value a command prints or writes goes through [`json_text`] (no NaN, infinity or `null`
+//! standing in for a number), and every text it prints through [`emit`] (no formatted NaN or
+//! infinity). A violation is a one-line error (exit code 2) instead of output.
 
+mod finite;
+mod text;
+pub mod usage;
+
+pub use finite::check_finite;
 use serde::Serialize;
 use std::io::Write;
 use std::path::Path;
@@ -7,10 +15,22 @@ use std::path::Path;
 /// A command's failure, printed as one line.
 pub type CliResult = Result<(), String>;
 
-/// Prints a value as pretty JSON on stdout.
-pub fn print_json<T: Serialize>(value: &T) -> CliResult {
-    let text = serde_json::to_string_pretty(value).map_err(|e| format!("JSON output: {e}"))?;
-    emit(&(text + "\n"))
+/// `value` as pretty JSON, after checking that every number in it is finite (serde_json
+/// would write NaN and infinities as `null`).
+pub fn json_text<T: Serialize + ?Sized>(value: &T) -> Result<String, String> {
+    check_finite(value)
+        .map_err(|e| format!("refusing to write JSON with a non-finite number: {e}"))?;
+    serde_json::to_string_pretty(value).map_err(|e| format!("JSON output: {e}"))
+}
+
+/// Prints a value as pretty JSON on stdout (checked by [`json_text`]).
+pub fn print_json<T: Serialize + ?Sized>(value: &T) -> CliResult {
+    write_stdout(&(json_text(value)? + "\n"))
+}
+
+/// Writes a value as pretty JSON to `path` (checked by [`json_text`], written atomically).
+pub fn write_json<T: Serialize + ?Sized>(path: &Path, value: &T) -> CliResult {
+    write_atomic(path, json_text(value)?.as_bytes())
 }
 
 /// Writes `contents` to `path` atomically: a temporary file beside it, then a rename, so a
@@ -63,8 +83,19 @@ macro_rules! outln {
     }};
 }
 
-/// Writes a finished text to stdout; a closed pipe (`| head`) is not an error.
+/// Writes a finished text to stdout; a closed pipe (`| head`) is not an error. A text
+/// holding a formatted NaN or infinity is refused whole (nothing is printed).
 pub fn emit(text: &str) -> CliResult {
+    if let Some((line, word)) = text::find_non_finite(text) {
+        return Err(format!(
+            "refusing to print a non-finite number ('{word}' in output line {line})"
+        ));
+    }
+    write_stdout(text)
+}
+
+/// Writes `text` to stdout as it is; a closed pipe (`| head`) is not an error.
+fn write_stdout(text: &str) -> CliResult {
     let mut out = std::io::stdout().lock();
     match out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
         Ok(()) => Ok(()),

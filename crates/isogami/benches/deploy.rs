@@ -17,7 +17,7 @@ fn bench(c: &mut Criterion) {
         let d = Design::resolve(spec).unwrap();
         let mech = Mechanism::new(&d.cell().unwrap(), &d.joints).unwrap();
         let settings = DeploySettings::default();
-        let traj = deploy(&mech, &settings, &mut |_| {}).unwrap();
+        let traj = deploy(&mech, &settings, &mut |_| true).unwrap();
         eprintln!(
             "{spec}: {} states, {} attempts, {}",
             traj.steps.len(),
@@ -26,7 +26,7 @@ fn bench(c: &mut Criterion) {
         );
         let name = format!("{}-{}", d.family, d.joints.len());
         group.bench_with_input(BenchmarkId::new("trajectory", name), &mech, |b, mech| {
-            b.iter(|| black_box(deploy(mech, &settings, &mut |_| {}).unwrap().steps.len()))
+            b.iter(|| black_box(deploy(mech, &settings, &mut |_| true).unwrap().steps.len()))
         });
     }
     group.finish();

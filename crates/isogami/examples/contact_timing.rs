@@ -79,7 +79,12 @@ fn main() -> isogami::Result<()> {
     let d = Design::resolve("rotating-squares")?;
     let mech = Mechanism::new(&d.cell()?, &d.joints)?;
     let model = ContactModel::new(&mech, settings)?;
-    println!("rotating squares: {} candidate pairs", model.pairs().len());
+    println!(
+        "rotating squares: {} pairs within d̂ at rest",
+        model
+            .pairs_at(&mech, &mech.rest, settings.dhat)
+            .map_or(0, |p| p.len())
+    );
     let v = analyze(&mech, &mech.rest, Default::default())?
         .motion
         .ok_or_else(|| isogami::Error::Numerical("rotating squares has no motion".into()))?
@@ -120,8 +125,10 @@ fn main() -> isogami::Result<()> {
         black_box(ContactModel::new(&mech, settings).ok());
     });
     println!(
-        "IH28 2x1: {} candidate pairs, ContactModel::new {build:.1} µs",
-        model.pairs().len()
+        "IH28 2x1: {} pairs within d̂ at rest, ContactModel::new {build:.1} µs",
+        model
+            .pairs_at(&mech, &mech.rest, settings.dhat)
+            .map_or(0, |p| p.len())
     );
     let n = mech.layout.len();
     let mut seed = 0x2545_F491_4F6C_DD1D_u64;

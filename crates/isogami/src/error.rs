@@ -65,12 +65,12 @@ pub enum Error {
     /// A design with nothing to deploy.
     #[error("{0}")]
     Rigid(String),
-    /// Rendering (SVG parsing, rasterising, encoding) failed.
-    #[error("render: {0}")]
-    Render(String),
     /// A numerical routine that failed (non-convergence, non-finite values).
     #[error("numerical failure: {0}")]
     Numerical(String),
+    /// The caller's progress callback asked to stop (a closed connection, Ctrl-C).
+    #[error("cancelled")]
+    Cancelled,
 }
 
 /// Result alias for the library.

@@ -6,7 +6,11 @@
 //! specs) → [`kinematics`] (rigid tiles + pin joints + periodic lattice: residuals,
 //! Jacobian, Hessian) → [`mobility`] (spectrum of H = JᵀJ, degrees of freedom, motion).
 //! [`render`] turns results into SVG text. The library does no I/O: front ends read and write.
+//!
+//! Front ends call the entry points of [`api`]: one function per job (resolve a design,
+//! analyse, deploy, linkages, compare), plain data in and out.
 
+pub mod api;
 pub mod catalog;
 pub mod cell;
 pub mod contact;

@@ -64,8 +64,12 @@ pub struct Mobility {
     /// log10(smallest_nonzero / largest_zero): how many decades separate the two groups
     /// (None when one group is empty; capped at 300).
     pub gap_decades: Option<Real>,
-    /// The deployment direction: the first null vector, signed to open the sheet (None if
-    /// rigid).
+    /// The deployment direction (None if rigid): for one degree of freedom the null vector,
+    /// signed to open the sheet; for several, the unit combination of all first-order motions
+    /// that increases the cell area fastest (the projection of ∇det[u w] on the null space),
+    /// which, unlike any single basis vector of a degenerate eigenspace, does not depend on
+    /// how the eigen-solver picked the basis. When no first-order motion changes the area, the
+    /// first mode.
     pub motion: Option<Motion>,
     /// A basis of all first-order motions (dof vectors).
     pub modes: Vec<Motion>,
@@ -103,6 +107,10 @@ pub fn analyze(mech: &Mechanism, q: &DVec, settings: MobilitySettings) -> Result
             to_motion(mech, q, v)
         })
         .collect();
+    let motion = match modes.len() {
+        0 | 1 => modes.first().cloned(),
+        _ => Some(fastest_opening(mech, q, &modes)),
+    };
     Ok(Mobility {
         dof,
         eigenvalues: spec.values,
@@ -110,9 +118,24 @@ pub fn analyze(mech: &Mechanism, q: &DVec, settings: MobilitySettings) -> Result
         largest_zero,
         smallest_nonzero,
         gap_decades,
-        motion: modes.first().cloned(),
+        motion,
         modes,
     })
+}
+
+/// The unit combination of `modes` (orthonormal) along which det[u w] grows fastest: the
+/// area rate is linear in the velocity, g·v, so the best unit v in their span is the
+/// normalised projection Σ (g·m_k) m_k. Falls back to the first mode when every mode leaves
+/// the area unchanged to first order.
+fn fastest_opening(mech: &Mechanism, q: &DVec, modes: &[Motion]) -> Motion {
+    let mut v = DVec::zeros(mech.layout.len());
+    for m in modes {
+        v.axpy(area_rate(mech, q, &m.vector), &m.vector, 1.0);
+    }
+    if v.norm() <= 1e-9 {
+        return modes[0].clone();
+    }
+    to_motion(mech, q, v)
 }
 
 /// Rate of change of det[u w] along v.

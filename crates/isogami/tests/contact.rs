@@ -2,7 +2,7 @@
 //! the exact overlap test and conservative advancement.
 
 use isogami::cell::{CellDims, UnitCell};
-use isogami::contact::{ContactModel, ContactSettings, HessianProjection, KEEP_FRACTION};
+use isogami::contact::{ContactModel, ContactSettings, HessianProjection, Overlap, KEEP_FRACTION};
 use isogami::geometry::{interiors_overlap, point_in_polygon_strict, point_segment_distance};
 use isogami::kinematics::{Mechanism, StateLayout};
 use isogami::math::{symmetric_eigen, vec2, DMat, DVec, Real, Vec2};
@@ -378,10 +378,10 @@ fn overlapping_pair_detects_overlap_the_barrier_cannot_see() {
     q[3] = p0.x;
     q[4] = p0.y;
     q[5] = std::f64::consts::FRAC_PI_4;
-    let found = model
-        .overlapping_pair(&mech, &q)
-        .expect("overlap not found");
-    assert_eq!((found.0, found.2), (0, 1));
+    let Some(Overlap::Tiles(found)) = model.overlapping_pair(&mech, &q) else {
+        panic!("overlap not found");
+    };
+    assert_eq!((found.a, found.b), (0, 1));
     assert_eq!(model.energy(&mech, &q), Real::INFINITY);
     assert_eq!(model.min_clearance(&mech, &q), 0.0);
     assert_eq!(model.max_safe_step(&mech, &q, &DVec::zeros(q.len())), 0.0);
@@ -392,11 +392,10 @@ fn overlapping_pair_detects_overlap_the_barrier_cannot_see() {
     for k in l.u()..l.len() {
         q[k] *= 0.98;
     }
-    let (a, oa, b, ob) = model
-        .overlapping_pair(&mech, &q)
-        .expect("overlap not found");
-    assert_eq!(oa, [0, 0]);
-    assert_ne!(ob, [0, 0], "tiles {a}, {b}");
+    let Some(Overlap::Tiles(found)) = model.overlapping_pair(&mech, &q) else {
+        panic!("overlap not found");
+    };
+    assert_ne!(found.offset, [0, 0], "tiles {}, {}", found.a, found.b);
     assert_eq!(model.energy(&mech, &q), Real::INFINITY);
 }
 
@@ -531,40 +530,55 @@ fn brute_force_clearance(model: &ContactModel, mech: &Mechanism, q: &DVec) -> Re
 }
 
 #[test]
-fn candidate_pairs_include_every_tile_that_touches() {
-    // Every tile of the 7×7 block either is a candidate against each centre tile or keeps
-    // at least half an edge length from it in the closed state. In IH38–IH40 a tile shares a
-    // vertex with a tile two cells away, which the 3×3 block alone would miss.
+fn candidate_pairs_include_every_tile_that_comes_near() {
+    // Every tile of the 9×9 block either is listed against each centre tile by the broad
+    // phase with a margin of half an edge length, or keeps at least that far from it. In
+    // IH38–IH40 a tile shares a vertex with a tile two cells away, which a fixed 3×3 block of
+    // cells would miss.
     let settings = ContactSettings::default();
+    let margin = 0.5;
     let mut beyond_block = Vec::new();
     for family in Family::all() {
         for dims in [CellDims::MINIMAL, CellDims::new(2, 1).unwrap()] {
             let mech = unjointed(family, dims);
             let model = ContactModel::new(&mech, settings).unwrap();
-            let pairs: HashSet<_> = model.pairs().iter().map(|p| (p.a, p.b, p.offset)).collect();
-            for p in model.pairs() {
-                if p.offset.iter().any(|k| k.abs() > 1) {
-                    beyond_block.push(format!("{family} {dims}"));
-                }
-            }
+            let q = &mech.rest;
+            let listed_pairs = model.pairs_at(&mech, q, margin).unwrap();
+            let pairs: HashSet<_> = listed_pairs.iter().map(|p| (p.a, p.b, p.offset)).collect();
             let n = mech.layout.tiles;
+            let polygon = |i: usize, o: [i32; 2]| -> Vec<Vec2> {
+                let (p, th) = mech.pose(q, i);
+                let (u, w) = mech.lattice(q);
+                let shift = p + u * Real::from(o[0]) + w * Real::from(o[1]);
+                let r = isogami::math::rotation(th);
+                model.collision_shapes()[i]
+                    .iter()
+                    .map(|s| r * s + shift)
+                    .collect()
+            };
             for a in 0..n {
-                let pa = mech.tile_polygon(&mech.rest, a, [0, 0]);
+                let pa = polygon(a, [0, 0]);
                 for b in 0..n {
-                    for ku in -3..=3 {
-                        for kw in -3..=3 {
+                    for ku in -4..=4 {
+                        for kw in -4..=4 {
                             let o = [ku, kw];
                             if a == b && o == [0, 0] {
                                 continue;
                             }
                             let listed =
                                 pairs.contains(&(a, b, o)) || pairs.contains(&(b, a, [-ku, -kw]));
-                            let pb = mech.tile_polygon(&mech.rest, b, o);
-                            let d = pairwise_distance(&pa, &pb);
+                            let d = pairwise_distance(&pa, &polygon(b, o));
                             assert!(
-                                listed || d >= 0.5,
+                                listed || d >= margin,
                                 "{family} {dims}: tiles {a} and {b} at {o:?} are {d} apart"
                             );
+                            let touching = pairwise_distance(
+                                &mech.tile_polygon(q, a, [0, 0]),
+                                &mech.tile_polygon(q, b, o),
+                            ) <= 1e-7;
+                            if listed && touching && o.iter().any(|k| k.abs() > 1) {
+                                beyond_block.push(format!("{family} {dims}"));
+                            }
                         }
                     }
                 }

@@ -23,7 +23,7 @@ fn mech_of(spec: &str) -> Mechanism {
 /// Deploys and checks every accepted state independently of the solver: joints closed to
 /// 1e-8 L, the exact overlap test, no NaN.
 fn checked(mech: &Mechanism, settings: &DeploySettings) -> Trajectory {
-    let traj = deploy(mech, settings, &mut |_| {}).unwrap();
+    let traj = deploy(mech, settings, &mut |_| true).unwrap();
     let contact = ContactModel::new(mech, settings.contact).unwrap();
     let all: Vec<usize> = (0..traj.steps.len()).collect();
     frame_records(mech, &contact, &traj, &all, 1e-8)
@@ -119,7 +119,7 @@ fn every_frame_keeps_joints_closed_and_tiles_apart() {
     for spec in OPENING_DESIGNS {
         let mech = mech_of(spec);
         let settings = DeploySettings::default();
-        let traj = deploy(&mech, &settings, &mut |_| {}).unwrap();
+        let traj = deploy(&mech, &settings, &mut |_| true).unwrap();
         assert_eq!(traj.end_reason, EndReason::ContactLimit, "{spec}");
         assert!(traj.steps.len() > 5, "{spec}");
         let contact = ContactModel::new(&mech, settings.contact).unwrap();
@@ -145,7 +145,7 @@ fn blocked_design_is_locked() {
     let mech = mech_of("IH1:0.12239750492,0.5,0.143395479017,0.625:2x1:a-a-bb");
     let mob = isogami::mobility::analyze(&mech, &mech.rest, Default::default()).unwrap();
     assert_eq!(mob.dof, 1, "first-order mobile");
-    let traj = deploy(&mech, &DeploySettings::default(), &mut |_| {}).unwrap();
+    let traj = deploy(&mech, &DeploySettings::default(), &mut |_| true).unwrap();
     assert_eq!(traj.end_reason, EndReason::Locked);
     assert_eq!(traj.steps.len(), 1);
 }
@@ -154,7 +154,7 @@ fn blocked_design_is_locked() {
 fn rigid_design_is_refused() {
     let (d, cell, _) = rotating_squares();
     let welded = Mechanism::new(&cell, &vec![JointChoice::Both; d.joints.len()]).unwrap();
-    match deploy(&welded, &DeploySettings::default(), &mut |_| {}) {
+    match deploy(&welded, &DeploySettings::default(), &mut |_| true) {
         Err(Error::Rigid(msg)) => assert!(msg.contains("rigid")),
         other => panic!("expected a rigid error, got {other:?}"),
     }
@@ -168,7 +168,7 @@ fn bad_settings_are_refused() {
             contact: ContactSettings::with_kerf(kerf),
             ..DeploySettings::default()
         };
-        assert!(deploy(&mech, &s, &mut |_| {}).is_err(), "kerf {kerf}");
+        assert!(deploy(&mech, &s, &mut |_| true).is_err(), "kerf {kerf}");
     }
 }
 
@@ -179,7 +179,7 @@ fn bad_settings_are_refused() {
 fn baselines_stop_early_on_turning_designs() {
     for spec in [OPENING_DESIGNS[0], OPENING_DESIGNS[1]] {
         let mech = mech_of(spec);
-        let rigid = deploy(&mech, &DeploySettings::default(), &mut |_| {}).unwrap();
+        let rigid = deploy(&mech, &DeploySettings::default(), &mut |_| true).unwrap();
         let min_dot = rigid
             .steps
             .iter()

@@ -382,7 +382,8 @@ fn svg_has_a_legend_and_rasterises() {
     let svg = linkage_svg(&c, &d.joints, &a);
     assert!(svg.contains("3× 4-bar") && svg.contains("3× 6-bar"));
     assert!(svg.contains(isogami::render::linkage_colour(6)));
-    assert!(isogami::render::png_from_svg(&svg, 200).is_ok());
+    #[cfg(feature = "render")]
+    assert!(isogami::render::png_from_svg(&svg, 200, &isogami::render::Fonts::empty()).is_ok());
     // An analysis that does not belong to the cell draws no linkage, and does not panic.
     let other = analysis("rotating-squares").2;
     let _ = linkage_svg(&c, &d.joints[..2], &other);

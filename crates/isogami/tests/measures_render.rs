@@ -1,17 +1,25 @@
 //! Measures on exact rotating-squares states, frame SVGs, plots, PNG and GIF output.
 //!
 //! Set ISOGAMI_RENDER_OUT=/some/dir to also write the rendered files there for a look.
+//! Needs the `render` feature (see Cargo.toml).
 
 use isogami::kinematics::Mechanism;
 use isogami::math::{DVec, Real};
 use isogami::measure::{classify, expansion_profile, BehaviourClass, FrameMeasures};
 use isogami::render::{
-    expansion_plot_svg, frame_svg, gif_from_svgs, png_from_svg, polar_plot_svg, raster_font,
-    view_box_for, FrameStyle,
+    expansion_plot_svg, frame_svg, gif_from_svgs, png_from_svg, polar_plot_svg, view_box_for,
+    Fonts, FrameStyle, RenderError,
 };
 use isogami::topology::Design;
 use resvg::tiny_skia::Pixmap;
 use resvg::usvg;
+use std::sync::OnceLock;
+
+/// The system fonts, scanned once for the whole test binary.
+fn fonts() -> &'static Fonts {
+    static FONTS: OnceLock<Fonts> = OnceLock::new();
+    FONTS.get_or_init(Fonts::system)
+}
 
 fn rotating_squares() -> Mechanism {
     let d = Design::resolve("rotating-squares").unwrap();
@@ -145,7 +153,7 @@ fn frame_svg_draws_the_3x3_block() {
     assert!(!svg3.contains("NaN"));
     assert_eq!(svg3.matches(r#"class="tile""#).count(), 9 * (n - 1));
     parse_svg(&svg3);
-    let png = png_from_svg(&svg, 400).unwrap();
+    let png = png_from_svg(&svg, 400, fonts()).unwrap();
     assert!(png.starts_with(b"\x89PNG"));
     assert!(non_white_pixels(&png) > 1000);
     dump("frame_rest.svg", svg.as_bytes());
@@ -198,10 +206,13 @@ fn gif_has_every_frame() {
         })
         .collect();
     let width = 240u32;
-    let gif_bytes = gif_from_svgs(&svgs, width, 8).unwrap();
+    let gif_bytes = gif_from_svgs(&svgs, width, 8, fonts()).unwrap();
     assert!(gif_bytes.starts_with(b"GIF89a"));
     dump("rotating_squares.gif", &gif_bytes);
-    dump("frame_open.png", &png_from_svg(&svgs[5], 400).unwrap());
+    dump(
+        "frame_open.png",
+        &png_from_svg(&svgs[5], 400, fonts()).unwrap(),
+    );
     let expected_h = (Real::from(width) * vb.height() / vb.width()).round() as u16;
     let mut opts = gif::DecodeOptions::new();
     opts.set_color_output(gif::ColorOutput::RGBA);
@@ -215,7 +226,8 @@ fn gif_has_every_frame() {
         assert_eq!(frame.delay, 8);
         assert_eq!((frame.width, frame.height), (gw, gh));
         // The palette-quantised frame looks like the direct render of its SVG.
-        let direct = Pixmap::decode_png(&png_from_svg(&svgs[count], width).unwrap()).unwrap();
+        let direct =
+            Pixmap::decode_png(&png_from_svg(&svgs[count], width, fonts()).unwrap()).unwrap();
         assert_eq!(direct.data().len(), frame.buffer.len());
         let diff: u64 = direct
             .data()
@@ -239,8 +251,20 @@ fn gif_has_every_frame() {
         count += 1;
     }
     assert_eq!(count, svgs.len());
-    assert!(gif_from_svgs(&[], width, 8).is_err());
-    assert!(gif_from_svgs(&["<svg".to_string()], width, 8).is_err());
+    let none = Fonts::empty();
+    assert_eq!(
+        gif_from_svgs(&[], width, 8, &none),
+        Err(RenderError::NoFrames)
+    );
+    let bad = [svgs[0].clone(), "<svg".to_string()];
+    assert!(matches!(
+        gif_from_svgs(&bad, width, 8, &none),
+        Err(RenderError::InvalidSvg { frame: Some(1), .. })
+    ));
+    assert!(matches!(
+        gif_from_svgs(&svgs, 0, 8, &none),
+        Err(RenderError::Width { width: 0, .. })
+    ));
 }
 
 #[test]
@@ -268,11 +292,11 @@ fn plots_are_valid_svg_without_nan() {
     assert!(!polar.contains("NaN"));
     assert!(polar.contains("unit circle"));
 
-    let png = png_from_svg(&plot, 800).unwrap();
+    let png = png_from_svg(&plot, 800, fonts()).unwrap();
     assert!(non_white_pixels(&png) > 1000);
     dump("expansion.svg", plot.as_bytes());
     dump("expansion.png", &png);
-    dump("polar.png", &png_from_svg(&polar, 640).unwrap());
+    dump("polar.png", &png_from_svg(&polar, 640, fonts()).unwrap());
 }
 
 #[test]
@@ -301,12 +325,17 @@ fn plots_reject_bad_input_by_name() {
 
 #[test]
 fn text_is_rasterised_with_an_installed_font() {
-    let font = raster_font();
+    let font = fonts().sans_family();
     assert!(
         font.is_some(),
         "no system font found: text would vanish from PNG/GIF output"
     );
     let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="200" height="60"><text x="10" y="40" font-size="30" font-family="sans-serif">Text</text></svg>"#;
-    let png = png_from_svg(svg, 200).unwrap();
+    let png = png_from_svg(svg, 200, fonts()).unwrap();
     assert!(non_white_pixels(&png) > 50, "font {font:?} drew nothing");
+    // Without fonts the text is left out: nothing is drawn, and nothing fails.
+    let empty = Fonts::empty();
+    assert_eq!((empty.sans_family(), empty.face_count()), (None, 0));
+    let blank = png_from_svg(svg, 200, &empty).unwrap();
+    assert_eq!(non_white_pixels(&blank), 0);
 }

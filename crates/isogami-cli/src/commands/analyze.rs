@@ -1,9 +1,8 @@
 //! `isogami analyze`.
 
 use crate::output::{emit, print_json, CliResult};
-use isogami::kinematics::Mechanism;
-use isogami::mobility::{analyze, Mobility, MobilitySettings};
-use isogami::topology::Design;
+use isogami::api::{analyze, resolve_design};
+use isogami::mobility::MobilitySettings;
 
 /// Arguments of `analyze`.
 #[derive(Debug, clap::Args)]
@@ -20,35 +19,12 @@ pub struct Args {
     json: bool,
 }
 
-#[derive(serde::Serialize)]
-struct AnalyzeOut<'a> {
-    design: String,
-    tiles: usize,
-    edges: usize,
-    joints: usize,
-    length_scale: f64,
-    #[serde(flatten)]
-    mobility: &'a Mobility,
-}
-
 /// Runs the mobility analysis of one design.
 pub fn run(args: Args) -> CliResult {
-    if !(args.tol.is_finite() && args.tol > 0.0) {
-        return Err(format!("--tol must be a positive number, got {}", args.tol));
-    }
-    let design = Design::resolve(&args.design).map_err(|e| e.to_string())?;
-    let cell = design.cell().map_err(|e| e.to_string())?;
-    let mech = Mechanism::new(&cell, &design.joints).map_err(|e| e.to_string())?;
-    let settings = MobilitySettings { rel_tol: args.tol };
-    let mob = analyze(&mech, &mech.rest, settings).map_err(|e| e.to_string())?;
-    let out = AnalyzeOut {
-        design: design.to_string(),
-        tiles: cell.tiles.len(),
-        edges: cell.edges.len(),
-        joints: mech.joints.len(),
-        length_scale: mech.length_scale,
-        mobility: &mob,
-    };
+    let design = resolve_design(&args.design).map_err(|e| e.to_string())?;
+    let out =
+        analyze(&design, MobilitySettings { rel_tol: args.tol }).map_err(|e| e.to_string())?;
+    let mob = &out.mobility;
     if args.json {
         return print_json(&out);
     }
@@ -95,7 +71,7 @@ pub fn run(args: Args) -> CliResult {
         outln!(
             o,
             "motion      (unit vector, lengths in units of L = {:.6}; area rate {:+.4})",
-            mech.length_scale,
+            out.length_scale,
             m.area_rate
         );
         for (i, t) in m.tiles.iter().enumerate() {

@@ -1,15 +1,15 @@
 //! `isogami deploy`.
 
-use crate::output::{emit, print_json, write_atomic, CliResult};
+use crate::output::{emit, print_json, write_atomic, write_json, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
+use isogami::api::{deploy, resolve_design, DeployRequest, FrameSelection};
 use isogami::contact::{ContactModel, ContactSettings};
-use isogami::deploy::{build_report, deploy, frame_records, select_frames, DeploySettings, Method};
+use isogami::deploy::{DeploySettings, Method};
 use isogami::kinematics::Mechanism;
 use isogami::measure::expansion_profile;
 use isogami::render::{
-    expansion_plot_svg, frame_svg, gif_from_svgs, polar_plot_svg, view_box_for, FrameStyle,
+    expansion_plot_svg, frame_svg, gif_from_svgs, polar_plot_svg, view_box_for, Fonts, FrameStyle,
 };
-use isogami::topology::Design;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `deploy`.
@@ -24,6 +24,10 @@ pub struct Args {
     /// Cut width relative to the mean edge length.
     #[arg(long, default_value_t = ContactSettings::default().kerf, allow_hyphen_values = true)]
     kerf: f64,
+    /// For a design with several degrees of freedom: open along basis motion K (0-based, as
+    /// listed by `analyze`) instead of the fastest-opening combination of all of them.
+    #[arg(long, value_name = "K")]
+    mode: Option<usize>,
     /// Number of frames to report (accepted states nearest to evenly spaced t).
     #[arg(long, default_value_t = 60)]
     frame_count: usize,
@@ -59,47 +63,41 @@ pub fn run(args: Args) -> CliResult {
         .parse()
         .map_err(|e: isogami::Error| e.to_string())?;
     let polar_t = parse_polar_t(&args.polar_t)?;
-    if args.frame_count < 2 || args.frame_count > 10_000 {
-        return Err(format!(
-            "--frame-count must lie in 2..=10000, got {}",
-            args.frame_count
-        ));
-    }
-    let settings = DeploySettings {
-        method,
-        contact: ContactSettings::with_kerf(args.kerf),
-        ..DeploySettings::default()
+    let mut request = DeployRequest {
+        settings: DeploySettings {
+            method,
+            contact: ContactSettings::with_kerf(args.kerf),
+            mode: args.mode,
+            ..DeploySettings::default()
+        },
+        frames: FrameSelection::Evenly(args.frame_count),
     };
-    settings.validate().map_err(|e| e.to_string())?;
-    let design = Design::resolve(&args.design).map_err(|e| e.to_string())?;
-    let cell = design.cell().map_err(|e| e.to_string())?;
-    let mech = Mechanism::new(&cell, &design.joints).map_err(|e| e.to_string())?;
-    let contact = ContactModel::new(&mech, settings.contact).map_err(|e| e.to_string())?;
+    // --frame-count is checked even when --all-steps makes it moot.
+    request.validate().map_err(|e| e.to_string())?;
+    if args.all_steps {
+        request.frames = FrameSelection::AllSteps;
+    }
+    let design = resolve_design(&args.design).map_err(|e| e.to_string())?;
 
     let bar = ProgressBar::new_spinner();
     bar.set_style(
         ProgressStyle::with_template("{spinner} deploying: {pos} states, {elapsed}")
             .expect("valid template"),
     );
-    let traj =
-        deploy(&mech, &settings, &mut |n| bar.set_position(n as u64)).map_err(|e| e.to_string())?;
+    let run = deploy(&design, &request, &mut |n| {
+        bar.set_position(n as u64);
+        true
+    })
+    .map_err(|e| e.to_string())?;
     bar.finish_and_clear();
-
-    let indices = if args.all_steps {
-        (0..traj.steps.len()).collect()
-    } else {
-        select_frames(&traj, args.frame_count)
-    };
-    let frames =
-        frame_records(&mech, &contact, &traj, &indices, 1e-8).map_err(|e| e.to_string())?;
-    let report = build_report(&design.to_string(), &mech, &settings, &traj, &frames);
+    let (mech, contact, frames, report) = (&run.mechanism, &run.contact, &run.frames, &run.report);
 
     if let Some(dir) = &args.frames {
-        write_frames(dir, &mech, &contact, &frames)?;
+        write_frames(dir, mech, contact, frames)?;
     }
     if let Some(path) = &args.gif {
-        let svgs = frame_svgs(&mech, &contact, &frames, 480.0);
-        let bytes = gif_from_svgs(&svgs, 480, 6).map_err(|e| e.to_string())?;
+        let svgs = frame_svgs(mech, contact, frames, 480.0);
+        let bytes = gif_from_svgs(&svgs, 480, 6, &Fonts::system()).map_err(|e| e.to_string())?;
         write_atomic(path, &bytes)?;
     }
     if let Some(path) = &args.plot {
@@ -124,12 +122,11 @@ pub fn run(args: Args) -> CliResult {
         let polar = polar_plot_svg(&profiles).map_err(|e| e.to_string())?;
         write_atomic(&sibling(path, "-polar"), polar.as_bytes())?;
     }
-    let json = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
     if let Some(path) = &args.out {
-        write_atomic(path, json.as_bytes())?;
+        write_json(path, report)?;
     }
     if args.json {
-        return print_json(&report);
+        return print_json(report);
     }
     let mut o = String::new();
     outln!(o, "design       {}", report.design);
@@ -139,12 +136,20 @@ pub fn run(args: Args) -> CliResult {
         report.method,
         report.kerf
     );
+    if report.dof > 1 {
+        outln!(
+            o,
+            "dof          {} (not self-deployable: this is the fastest-opening of many paths)",
+            report.dof
+        );
+    }
     outln!(o, "end          {}", report.end_reason);
     outln!(
         o,
-        "states       {} accepted of {} attempted, arc length {:.4}",
-        report.steps,
+        "steps        {} accepted of {} attempted ({} states with the closed one), arc length {:.4}",
+        report.steps - 1,
         report.attempts,
+        report.steps,
         report.arc_length
     );
     outln!(

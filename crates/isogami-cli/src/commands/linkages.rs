@@ -1,9 +1,9 @@
 //! `isogami linkages`.
 
 use crate::output::{emit, print_json, write_atomic, CliResult};
-use isogami::linkage::{analyze_linkages, FaceIssue, Node};
+use isogami::api::{linkages, resolve_design};
+use isogami::linkage::{FaceIssue, Node};
 use isogami::render::linkage_svg;
-use isogami::topology::Design;
 use std::path::PathBuf;
 
 /// Arguments of `linkages`.
@@ -22,9 +22,9 @@ pub struct Args {
 
 /// Prints the linkage signature, the linkages and the tile degrees of a design.
 pub fn run(args: Args) -> CliResult {
-    let design = Design::resolve(&args.design).map_err(|e| e.to_string())?;
+    let design = resolve_design(&args.design).map_err(|e| e.to_string())?;
+    let a = linkages(&design).map_err(|e| e.to_string())?;
     let cell = design.cell().map_err(|e| e.to_string())?;
-    let a = analyze_linkages(&cell, &design.joints).map_err(|e| e.to_string())?;
     if let Some(path) = &args.svg {
         write_atomic(path, linkage_svg(&cell, &design.joints, &a).as_bytes())?;
     }

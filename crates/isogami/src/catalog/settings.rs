@@ -1,5 +1,6 @@
 //! Settings of the catalogue stages.
 
+use crate::api::{DeployRequest, FrameSelection};
 use crate::deploy::{DeploySettings, Method};
 use crate::error::{Error, Result};
 use crate::explore::TopologyOptions;
@@ -24,7 +25,9 @@ pub struct CatalogSettings {
     pub frame_count: usize,
     /// Topology enumeration options.
     pub topology: TopologyOptions,
-    /// Deployment settings (rigid modes).
+    /// Deployment settings (rigid modes). Its mobility tolerance is replaced by the
+    /// topology's, so one tolerance decides the DOF everywhere (see
+    /// [`CatalogSettings::deploy_request`]).
     pub deploy: DeploySettings,
 }
 
@@ -49,6 +52,13 @@ struct SettingsRecord {
     shape_levels: usize,
     shape_span: Real,
     frame_count: usize,
+    frame_joint_tolerance: Real,
+    joint_tolerance: Real,
+    step_tolerance: Real,
+    growth: Real,
+    max_steps: usize,
+    max_attempts: usize,
+    max_stretch: Real,
     max_edges: usize,
     max_dims: u8,
     mobility_rel_tol: Real,
@@ -94,10 +104,19 @@ impl CatalogSettings {
                 self.shape_span
             )));
         }
-        if self.frame_count < 2 {
-            return Err(Error::Settings("frame count must be at least 2".into()));
+        self.deploy_request().validate()
+    }
+
+    /// What every work unit deploys with: the deploy settings with the topology's mobility
+    /// tolerance (the one the fingerprint records), `frame_count` frames.
+    pub fn deploy_request(&self) -> DeployRequest {
+        DeployRequest {
+            settings: DeploySettings {
+                mobility: self.topology.mobility,
+                ..self.deploy
+            },
+            frames: FrameSelection::Evenly(self.frame_count),
         }
-        Ok(())
     }
 
     /// A canonical JSON text of every setting that changes results (stored with the
@@ -110,6 +129,13 @@ impl CatalogSettings {
             shape_levels: self.shape_levels,
             shape_span: self.shape_span,
             frame_count: self.frame_count,
+            frame_joint_tolerance: d.frame_joint_tolerance,
+            joint_tolerance: d.joint_tolerance,
+            step_tolerance: d.step_tolerance,
+            growth: d.growth,
+            max_steps: d.max_steps,
+            max_attempts: d.max_attempts,
+            max_stretch: d.max_stretch,
             max_edges: self.topology.max_edges,
             max_dims: self.topology.max_dims,
             mobility_rel_tol: self.topology.mobility.rel_tol,

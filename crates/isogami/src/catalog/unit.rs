@@ -1,16 +1,12 @@
 //! One work unit: a family on one supercell, from joint masks to catalogue entries.
 
 use super::settings::CatalogSettings;
+use crate::api;
 use crate::cell::{CellDims, UnitCell};
-use crate::contact::ContactModel;
-use crate::deploy::{
-    build_report, deploy, frame_records, select_frames, DeploymentReport, EndReason,
-};
+use crate::deploy::{DeploymentReport, EndReason};
 use crate::error::Result;
 use crate::explore::{enumerate_topologies, TopologyReport};
-use crate::kinematics::Mechanism;
-use crate::linkage::{analyze_linkages, LinkageAnalysis};
-use crate::mobility::analyze;
+use crate::linkage::LinkageAnalysis;
 use crate::tiling::{shape_grid, Family, Tiling};
 use crate::topology::Design;
 use serde::Serialize;
@@ -90,34 +86,30 @@ fn topology_tallies(r: &TopologyReport) -> Vec<StageTally> {
 }
 
 /// Deploys `design` and characterises it; `None` when it does not reach the threshold (or
-/// is not a one-DOF mechanism at this shape, or is locked).
+/// is not a one-DOF mechanism at this shape, or is locked). Uses the library's one deploy
+/// entry point with the catalogue's settings, so `isogami deploy` with the same settings
+/// gives the same report.
 fn characterise(
     design: &Design,
     topology: &str,
     settings: &CatalogSettings,
 ) -> Result<Option<CatalogEntry>> {
-    let cell = design.cell()?;
-    let mech = Mechanism::new(&cell, &design.joints)?;
-    if analyze(&mech, &mech.rest, settings.topology.mobility)?.dof != 1 {
+    if api::analyze(design, settings.topology.mobility)?
+        .mobility
+        .dof
+        != 1
+    {
         return Ok(None);
     }
-    let traj = deploy(&mech, &settings.deploy, &mut |_| {})?;
-    if matches!(traj.end_reason, EndReason::Locked) || traj.steps.len() < 2 {
+    let run = api::deploy(design, &settings.deploy_request(), &mut |_| true)?;
+    let report = run.report;
+    if matches!(report.end_reason, EndReason::Locked) || report.steps < 2 {
         return Ok(None);
     }
-    let contact = ContactModel::new(&mech, settings.deploy.contact)?;
-    let frames = frame_records(
-        &mech,
-        &contact,
-        &traj,
-        &select_frames(&traj, settings.frame_count),
-        1e-8,
-    )?;
-    let report = build_report(&design.to_string(), &mech, &settings.deploy, &traj, &frames);
     if report.max_expansion.is_nan() || report.max_expansion < settings.threshold {
         return Ok(None);
     }
-    let linkages = analyze_linkages(&cell, &design.joints)?;
+    let linkages = api::linkages(design)?;
     Ok(Some(CatalogEntry {
         design: design.clone(),
         topology: topology.to_string(),

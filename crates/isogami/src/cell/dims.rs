@@ -62,7 +62,7 @@ impl fmt::Display for CellDims {
 impl FromStr for CellDims {
     type Err = Error;
     fn from_str(s: &str) -> Result<CellDims> {
-        let bad = || Error::BadCell(s.to_string());
+        let bad = || Error::BadCell(crate::topology::quote_input(s));
         let (a, b) = s.trim().split_once(['x', 'X']).ok_or_else(bad)?;
         let digit = |t: &str| {
             if t.len() == 1 && t.as_bytes()[0].is_ascii_digit() {

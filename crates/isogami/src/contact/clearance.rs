@@ -13,10 +13,41 @@ use crate::math::{DVec, Real, Vec2};
 /// their clearance in [`pair_clearance`] instead of the exact distance.
 const EXACT_WITHIN: Real = 0.25;
 
+/// Clearances are searched up to this distance (units of L): a reported clearance is the
+/// smallest distance between collision polygons, or this value when every pair is farther.
+pub const CLEARANCE_REACH: Real = 0.5;
+
+/// Where two collision polygons of the sheet overlap.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Overlap {
+    /// Tile `a` of the centre cell overlaps tile `b` of the cell at `offset`.
+    Tiles(CandidatePair),
+    /// The tiling vectors no longer span the plane (or the cell is far too small for its
+    /// tiles), so translates of a tile coincide.
+    DegenerateLattice,
+}
+
+impl std::fmt::Display for Overlap {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Overlap::Tiles(p) => write!(
+                f,
+                "tile {} in cell [0, 0] overlaps tile {} in cell {:?}",
+                p.a, p.b, p.offset
+            ),
+            Overlap::DegenerateLattice => {
+                f.write_str("the tiling vectors no longer span the plane")
+            }
+        }
+    }
+}
+
 impl ContactModel {
-    /// Smallest distance between the collision polygons of any candidate pair at q
-    /// (non-dimensional). For polygons that do not overlap this is the smallest vertex–edge
-    /// distance; overlapping polygons count as 0, and so does a q that does not fit.
+    /// Smallest distance between any two collision polygons of the infinite sheet at q
+    /// (non-dimensional), capped at [`CLEARANCE_REACH`]. For polygons that do not overlap this
+    /// is the smallest vertex–edge distance; overlapping polygons count as 0, and so does a q
+    /// that does not fit or whose lattice is degenerate. Always a lower bound of every pair's
+    /// distance.
     pub fn min_clearance(&self, mech: &Mechanism, q: &DVec) -> Real {
         self.clearance(mech, q, true)
     }
@@ -33,9 +64,12 @@ impl ContactModel {
         let Some(placed) = self.place(mech, q) else {
             return 0.0;
         };
-        let mut best = Real::INFINITY;
+        let Some(pairs) = self.near(&placed, CLEARANCE_REACH) else {
+            return 0.0;
+        };
+        let mut best = CLEARANCE_REACH;
         let mut other = Vec::new();
-        for pair in &self.pairs {
+        for pair in &pairs {
             let shift = placed.shift(pair.offset);
             let (ta, tb) = (&placed.tiles[pair.a], &placed.tiles[pair.b]);
             if ta.aabb.gap(&tb.aabb.shifted(shift)) >= best {
@@ -52,30 +86,24 @@ impl ContactModel {
         best
     }
 
-    /// The first candidate pair whose collision polygons overlap at q, as
-    /// (tile, [0, 0], tile, [k_u, k_w]), by the exact polygon test
-    /// [`crate::geometry::interiors_overlap`] with a 10⁻¹² L tolerance. `None` when no pair
-    /// overlaps (or when `mech`, q do not fit; see [`ContactModel::check`]).
-    pub fn overlapping_pair(
-        &self,
-        mech: &Mechanism,
-        q: &DVec,
-    ) -> Option<(usize, [i32; 2], usize, [i32; 2])> {
+    /// The first pair of collision polygons of the infinite sheet that overlap at q, by the
+    /// exact polygon test [`crate::geometry::interiors_overlap`] with a 10⁻¹² L tolerance,
+    /// over every lattice translate whose bounding circle meets the tile's. `None` when no
+    /// pair overlaps or when `mech`, q do not fit (see [`ContactModel::check`]).
+    pub fn overlapping_pair(&self, mech: &Mechanism, q: &DVec) -> Option<Overlap> {
         let placed = self.place(mech, q)?;
+        let Some(pairs) = self.near(&placed, 0.0) else {
+            return Some(Overlap::DegenerateLattice);
+        };
         let mut other = Vec::new();
-        self.pairs.iter().find_map(|pair| {
+        pairs.into_iter().find_map(|pair| {
             let ta = &placed.tiles[pair.a];
             shifted_into(
                 &placed.tiles[pair.b].world,
                 placed.shift(pair.offset),
                 &mut other,
             );
-            interiors_overlap(&ta.world, &other, OVERLAP_TOL).then_some((
-                pair.a,
-                [0, 0],
-                pair.b,
-                pair.offset,
-            ))
+            interiors_overlap(&ta.world, &other, OVERLAP_TOL).then_some(Overlap::Tiles(pair))
         })
     }
 }

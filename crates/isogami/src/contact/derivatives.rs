@@ -62,9 +62,12 @@ impl ContactModel {
             return;
         }
         let dhat = self.settings.dhat;
+        let Some(pairs) = self.near(&placed, dhat) else {
+            return;
+        };
         let mut other = Vec::new();
         let mut close = Vec::new();
-        for pair in &self.pairs {
+        for pair in &pairs {
             let shift = placed.shift(pair.offset);
             let (ta, tb) = (&placed.tiles[pair.a], &placed.tiles[pair.b]);
             if !ta.aabb.near(&tb.aabb.shifted(shift), dhat) {

@@ -14,8 +14,8 @@ impl ContactModel {
     ///
     /// +∞ when some vertex lies on an edge (d ≤ 0), when two collision polygons overlap (the
     /// exact test, so a tile that jumped through another is caught), or when `mech`, q do
-    /// not fit the model. Pairs whose bounding boxes are farther apart than d̂ cost one box
-    /// test.
+    /// not fit the model or its lattice is degenerate. Pairs come from the broad phase (every
+    /// lattice translate whose bounding circle is within d̂), then one box test each.
     pub fn energy(&self, mech: &Mechanism, q: &DVec) -> Real {
         self.barrier_sum(mech, q, true)
     }
@@ -31,9 +31,12 @@ impl ContactModel {
             return Real::INFINITY;
         };
         let (dhat, kappa) = (self.settings.dhat, self.settings.stiffness);
+        let Some(pairs) = self.near(&placed, dhat) else {
+            return Real::INFINITY;
+        };
         let mut total = 0.0;
         let mut other = Vec::new();
-        for pair in &self.pairs {
+        for pair in &pairs {
             let shift = placed.shift(pair.offset);
             let (ta, tb) = (&placed.tiles[pair.a], &placed.tiles[pair.b]);
             if !ta.aabb.near(&tb.aabb.shifted(shift), dhat) {

@@ -10,7 +10,7 @@ const SPIKE_TOL: Real = 1e-9;
 
 /// Why a polygon cannot be inset.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) enum InsetProblem {
+pub enum InsetProblem {
     /// The input is not a counter-clockwise polygon with non-zero edges.
     BadInput(String),
     /// The polygon folds back by 180° at this vertex.
@@ -32,11 +32,13 @@ impl std::fmt::Display for InsetProblem {
     }
 }
 
+impl std::error::Error for InsetProblem {}
+
 /// The polygon `poly` (counter-clockwise, possibly non-convex, collinear consecutive edges
 /// allowed) with every edge moved inward by `h > 0`. Vertex k of the result belongs to
 /// vertex k of the input. Fails when the result is not a simple counter-clockwise polygon
 /// whose edges keep their directions.
-pub(crate) fn inset_polygon(poly: &[Vec2], h: Real) -> Result<Vec<Vec2>, InsetProblem> {
+pub fn inset_polygon(poly: &[Vec2], h: Real) -> Result<Vec<Vec2>, InsetProblem> {
     let n = poly.len();
     if n < 3 {
         return Err(InsetProblem::BadInput("fewer than three vertices".into()));

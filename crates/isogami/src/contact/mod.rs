@@ -4,15 +4,18 @@
 //! collision polygon is the tile inset by half the kerf (a real cut width, default 1 % of
 //! the mean edge length L), so in the closed state neighbouring collision polygons are a
 //! kerf apart while the pin joints stay at the tiling vertices. Contact is checked between
-//! every tile of the centre cell and every tile of the 3×3 block of cells around it, plus
-//! the few tiles farther out that touch a centre tile in the closed state (IH38–IH40), each
-//! physical pair once. The module provides:
+//! every tile of the centre cell and every lattice translate of every tile that can come
+//! within reach, each physical pair once: the broad phase (`pairs`, on a reduced basis of
+//! the current lattice, `lattice`) is redone at every state, so a sheet that shears or
+//! stretches far from its closed cell still sees every neighbour. The module provides:
 //!
 //! - E_coll(q): a log barrier b(d) = −κ (d − d̂)² ln(d/d̂) on the unsigned (unsquared)
 //!   distance d of every vertex–edge pair (both directions) closer than d̂ < kerf, with its
 //!   exact gradient and a Hessian whose per-term blocks are projected to PSD;
 //! - the smallest clearance, an exact overlap test independent of the barrier, and a
-//!   conservative-advancement step bound for line searches that must stay intersection-free;
+//!   conservative-advancement step bound for line searches that must stay intersection-free,
+//!   with a cheap clearance tracker in front of it ([`ClearanceTracker`]);
+//! - the kerf inset itself ([`inset_polygon`]), for fabrication export;
 //! - the world collision polygons of the 3×3 block, for rendering.
 //!
 //! Everything is non-dimensional (units of L) like the mechanism's state. A bounding-box
@@ -53,16 +56,22 @@ mod derivatives;
 mod distance;
 mod energy;
 mod inset;
+mod lattice;
 mod local;
 mod model;
 mod narrow;
 mod pairs;
 mod placement;
 mod psd;
+mod reach;
 mod settings;
+mod tracker;
 
 pub use advance::KEEP_FRACTION;
+pub use clearance::{Overlap, CLEARANCE_REACH};
 pub use derivatives::HessianProjection;
+pub use inset::{inset_polygon, InsetProblem};
 pub use model::ContactModel;
-pub use pairs::{CandidatePair, SEARCH_RING};
-pub use settings::{ContactSettings, MAX_KERF};
+pub use pairs::CandidatePair;
+pub use settings::{ContactSettings, MAX_KERF, MIN_KERF};
+pub use tracker::ClearanceTracker;

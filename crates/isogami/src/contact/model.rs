@@ -1,16 +1,12 @@
 //! The contact model of one mechanism: inset collision polygons and candidate pairs.
 
 use super::inset::inset_polygon;
-use super::narrow::{min_vertex_edge_distance, shifted_into};
-use super::pairs::{candidate_pairs, CandidatePair};
+use super::pairs::{near_pairs, CandidatePair};
 use super::placement::Placement;
 use super::settings::ContactSettings;
 use crate::error::{Error, Result};
 use crate::kinematics::{Mechanism, StateLayout};
 use crate::math::{DVec, Real, Vec2};
-
-/// Tiles closer than this in the closed state (units of L) touch.
-const TOUCH_TOL: Real = 1e-7;
 
 /// Collision geometry and barrier of one mechanism, precomputed once.
 ///
@@ -24,17 +20,14 @@ pub struct ContactModel {
     pub(crate) layout: StateLayout,
     /// Inset polygons in each tile's frame (counter-clockwise, units of L).
     pub(crate) shapes: Vec<Vec<Vec2>>,
-    /// Largest |s| over each inset polygon's vertices: the lever arm of a rotation.
+    /// Largest |s| over each inset polygon's vertices: the lever arm of a rotation and the
+    /// radius of the polygon's bounding circle about its reference point.
     pub(crate) extents: Vec<Real>,
-    pub(crate) pairs: Vec<CandidatePair>,
 }
 
 impl ContactModel {
-    /// Insets every tile of `mech` by kerf / 2 and lists the candidate pairs: every pair of
-    /// the 3×3 block of cells, plus any tile farther out (up to [`super::SEARCH_RING`] cells)
-    /// that touches a tile of the centre cell in the closed state `mech.rest`. The 3×3 block
-    /// holds every touching tile in most families, but not in IH38–IH40, whose cells are
-    /// skewed enough that a tile shares a vertex with a tile two cells away.
+    /// Insets every tile of `mech` by kerf / 2. Which tiles can touch is decided afresh at
+    /// every state, over every lattice translate (see [`ContactModel::pairs_at`]).
     ///
     /// Fails on invalid settings, or naming the tile whose inset polygon is not simple,
     /// flips orientation or loses an edge (the kerf is too wide for that tile).
@@ -64,7 +57,6 @@ impl ContactModel {
             layout,
             shapes,
             extents,
-            pairs: touching_candidates(mech),
         })
     }
 
@@ -79,9 +71,21 @@ impl ContactModel {
         &self.shapes
     }
 
-    /// The candidate pairs (see [`ContactModel::new`]), fixed at construction.
-    pub fn pairs(&self) -> &[CandidatePair] {
-        &self.pairs
+    /// Every physical pair of tiles of the infinite sheet (tile `a` of the centre cell, tile
+    /// `b` of the cell at `offset`, each pair once) whose collision polygons' bounding circles
+    /// come within `margin` (units of L) of each other at state q. Every pair whose polygons
+    /// are closer than `margin` is among them, from whatever lattice translate. `None` when
+    /// `mech`, q do not fit the model or the lattice of q is degenerate (u ∥ w).
+    pub fn pairs_at(&self, mech: &Mechanism, q: &DVec, margin: Real) -> Option<Vec<CandidatePair>> {
+        let placed = self.place(mech, q)?;
+        self.near(&placed, margin)
+    }
+
+    /// [`ContactModel::pairs_at`] on a placement.
+    pub(crate) fn near(&self, placed: &Placement, margin: Real) -> Option<Vec<CandidatePair>> {
+        let mut out = Vec::new();
+        near_pairs(placed, &self.extents, margin, &mut out).ok()?;
+        Some(out)
     }
 
     /// Checks that `mech` and `q` fit this model: same number of tiles, q of length 3n + 4,
@@ -147,21 +151,4 @@ fn inset_all(tiles: &[Vec<Vec2>], h: Real) -> Result<Vec<Vec<Vec2>>> {
             })
         })
         .collect()
-}
-
-/// The candidate pairs of `mech`: the 3×3 block plus tiles farther out that touch a tile of
-/// the centre cell in the closed state (the tiles themselves, not their insets).
-fn touching_candidates(mech: &Mechanism) -> Vec<CandidatePair> {
-    let rest = Placement::new(mech.layout, &mech.tile_shapes, &mech.rest);
-    let mut other = Vec::new();
-    let touching = |a: usize, b: usize, o: [i32; 2]| {
-        let (ta, tb) = (&rest.tiles[a], &rest.tiles[b]);
-        let shift = rest.shift(o);
-        if ta.aabb.gap(&tb.aabb.shifted(shift)) > TOUCH_TOL {
-            return false;
-        }
-        shifted_into(&tb.world, shift, &mut other);
-        min_vertex_edge_distance(&ta.world, &other) <= TOUCH_TOL
-    };
-    candidate_pairs(mech.layout.tiles, touching)
 }

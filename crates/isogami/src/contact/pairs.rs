@@ -1,86 +1,101 @@
-//! Candidate tile pairs: the 3×3 block of cells, plus tiles farther out that touch a tile of
-//! the centre cell; each physical pair once.
+//! The broad phase: which tiles of the infinite sheet can be near each other at a state.
+//!
+//! A pair is tile `a` of the centre cell against tile `b` of the cell at offset (k_u, k_w).
+//! Each tile's collision polygon lies inside the circle of radius r (its extent) about the
+//! tile's reference point, so two polygons are at least |p_b + k_u·u + k_w·w − p_a| − r_a − r_b
+//! apart. [`near_pairs`] lists every pair whose circles come within a margin, over every
+//! lattice translate (found exactly by [`super::lattice::Lattice`], not from a fixed block of
+//! cells), each physical pair once. Energy, derivatives, clearance, the overlap test and
+//! conservative advancement all take their pairs from here.
+
+use super::lattice::LatticeProblem;
+use super::placement::Placement;
+use crate::math::Real;
 
 /// Tile `a` of the centre cell against tile `b` of the cell at `offset` = (k_u, k_w).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct CandidatePair {
     /// Tile of the centre cell.
     pub a: usize,
-    /// Tile of the neighbouring (or centre) cell.
+    /// Tile of the other (or the centre) cell.
     pub b: usize,
-    /// Cell offset of tile `b`'s copy: in {−1, 0, 1}² for the 3×3 block, up to
-    /// [`SEARCH_RING`] for the extra touching pairs.
+    /// Cell offset of tile `b`'s copy.
     pub offset: [i32; 2],
 }
 
-/// How many rings of cells around the centre are searched for touching tiles.
-pub const SEARCH_RING: i32 = 3;
-
-/// The pairs (a, 0)–(b, o) with o ∈ {−1,0,1}², plus those with o farther out (up to
-/// [`SEARCH_RING`]) for which `touches(a, b, o)`; never a tile against itself; each physical
-/// pair once: (a, 0)–(b, o) is the translate of (b, 0)–(a, −o), so only the triple with
-/// a < b, or a == b and o lexicographically positive, is kept.
-pub(crate) fn candidate_pairs(
-    tiles: usize,
-    mut touches: impl FnMut(usize, usize, [i32; 2]) -> bool,
-) -> Vec<CandidatePair> {
-    let mut out = Vec::new();
-    for a in 0..tiles {
-        for b in a..tiles {
-            for ku in -SEARCH_RING..=SEARCH_RING {
-                for kw in -SEARCH_RING..=SEARCH_RING {
-                    if a == b && (ku, kw) <= (0, 0) {
-                        continue;
-                    }
-                    let block = ku.abs() <= 1 && kw.abs() <= 1;
-                    if block || touches(a, b, [ku, kw]) {
-                        out.push(CandidatePair {
-                            a,
-                            b,
-                            offset: [ku, kw],
-                        });
-                    }
+/// Fills `out` with every physical pair whose bounding circles (radii `extents` about the
+/// tiles' reference points) are at most `margin` apart at `placed`. (a, 0)–(b, o) is the
+/// translate of (b, 0)–(a, −o), so only a < b, or a == b with o lexicographically positive,
+/// is listed; a tile is never paired with itself.
+pub(crate) fn near_pairs(
+    placed: &Placement,
+    extents: &[Real],
+    margin: Real,
+    out: &mut Vec<CandidatePair>,
+) -> Result<(), LatticeProblem> {
+    out.clear();
+    let lattice = placed.lattice?;
+    let n = placed.tiles.len();
+    for a in 0..n {
+        for b in a..n {
+            let d = placed.tiles[b].centre - placed.tiles[a].centre;
+            let radius = extents[a] + extents[b] + margin;
+            lattice.for_each_within(d, radius, |offset| {
+                if a < b || (offset[0], offset[1]) > (0, 0) {
+                    out.push(CandidatePair { a, b, offset });
                 }
-            }
+            })?;
         }
     }
-    out
+    Ok(())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kinematics::StateLayout;
+    use crate::math::{vec2, DVec, Vec2};
     use std::collections::HashSet;
 
-    #[test]
-    fn every_physical_pair_of_the_block_once() {
-        for n in 1..5 {
-            let pairs = candidate_pairs(n, |_, _, _| false);
-            // Ordered combinations 9n², minus n self-pairs, halved.
-            assert_eq!(pairs.len(), (9 * n * n - n) / 2);
-            let set: HashSet<_> = pairs.iter().map(|p| (p.a, p.b, p.offset)).collect();
-            assert_eq!(set.len(), pairs.len());
-            for p in &pairs {
-                assert!(!(p.a == p.b && p.offset == [0, 0]));
-                assert!(p.offset.iter().all(|k| k.abs() <= 1));
-                let mirror = (p.b, p.a, [-p.offset[0], -p.offset[1]]);
-                assert!(!set.contains(&mirror), "{p:?} and its mirror both kept");
-            }
+    /// A unit square at the origin in a cell of `n` tiles on a row, u = (n, 0), w = (0, 1).
+    fn row(n: usize) -> (Placement, Vec<Real>) {
+        let layout = StateLayout { tiles: n };
+        let sq = vec![
+            vec2(-0.5, -0.5),
+            vec2(0.5, -0.5),
+            vec2(0.5, 0.5),
+            vec2(-0.5, 0.5),
+        ];
+        let shapes: Vec<Vec<Vec2>> = vec![sq; n];
+        let mut q = DVec::zeros(layout.len());
+        for i in 0..n {
+            q[layout.tile(i)] = i as Real;
         }
+        q[layout.u()] = n as Real;
+        q[layout.w() + 1] = 1.0;
+        let extents = vec![0.5 * Real::sqrt(2.0); n];
+        (Placement::new(layout, &shapes, &q), extents)
     }
 
     #[test]
-    fn touching_pairs_beyond_the_block_are_added_once() {
-        // Tile 0 touches tile 1 two cells along u (and so tile 1 touches tile 0 at −2u).
-        let touches = |a: usize, b: usize, o: [i32; 2]| {
-            (a, b, o) == (0, 1, [2, 0]) || (a, b, o) == (1, 0, [-2, 0])
-        };
-        let pairs = candidate_pairs(2, touches);
-        assert_eq!(pairs.len(), (9 * 4 - 2) / 2 + 1);
-        assert!(pairs.contains(&CandidatePair {
-            a: 0,
-            b: 1,
-            offset: [2, 0]
-        }));
+    fn neighbours_of_a_square_grid_each_once() {
+        for n in 1..5 {
+            let (placed, extents) = row(n);
+            let mut pairs = Vec::new();
+            // Circles of the 8 neighbours of a unit square touch or overlap it; the next ring
+            // (centre distance 2) lies beyond 2r = 1.414.
+            near_pairs(&placed, &extents, 0.0, &mut pairs).unwrap();
+            assert_eq!(pairs.len(), 4 * n, "n = {n}");
+            let set: HashSet<_> = pairs.iter().map(|p| (p.a, p.b, p.offset)).collect();
+            assert_eq!(set.len(), pairs.len());
+            for p in &pairs {
+                assert!(p.a <= p.b && !(p.a == p.b && p.offset == [0, 0]));
+                let mirror = (p.b, p.a, [-p.offset[0], -p.offset[1]]);
+                assert!(p.a == p.b || !set.contains(&mirror));
+            }
+            // A wider margin reaches the next ring: 24 neighbours within distance 2√2.
+            near_pairs(&placed, &extents, Real::sqrt(2.0), &mut pairs).unwrap();
+            assert_eq!(pairs.len(), 12 * n, "n = {n}");
+        }
     }
 }

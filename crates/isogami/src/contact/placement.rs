@@ -1,6 +1,7 @@
 //! Collision polygons placed in the world at a state q: x = R(θ)s + p + k_u u + k_w w.
 
 use super::aabb::Aabb;
+use super::lattice::{Lattice, LatticeProblem};
 use crate::kinematics::StateLayout;
 use crate::math::{rotation, DVec, Real, Vec2};
 
@@ -13,6 +14,8 @@ pub(crate) struct PlacedTile {
     pub(crate) world: Vec<Vec2>,
     /// Bounding box of `world`.
     pub(crate) aabb: Aabb,
+    /// The tile's reference point p (the centre of its bounding circle).
+    pub(crate) centre: Vec2,
 }
 
 /// Every tile's collision polygon in the centre cell, plus the tiling vectors.
@@ -21,6 +24,8 @@ pub(crate) struct Placement {
     pub(crate) tiles: Vec<PlacedTile>,
     pub(crate) u: Vec2,
     pub(crate) w: Vec2,
+    /// The lattice of u and w (or why it has none).
+    pub(crate) lattice: Result<Lattice, LatticeProblem>,
 }
 
 impl Placement {
@@ -35,14 +40,21 @@ impl Placement {
                 let arms: Vec<Vec2> = shape.iter().map(|s| r * s).collect();
                 let world: Vec<Vec2> = arms.iter().map(|a| a + p).collect();
                 let aabb = Aabb::of(&world);
-                PlacedTile { arms, world, aabb }
+                PlacedTile {
+                    arms,
+                    world,
+                    aabb,
+                    centre: p,
+                }
             })
             .collect();
         let (iu, iw) = (layout.u(), layout.w());
+        let (u, w) = (Vec2::new(q[iu], q[iu + 1]), Vec2::new(q[iw], q[iw + 1]));
         Placement {
             tiles,
-            u: Vec2::new(q[iu], q[iu + 1]),
-            w: Vec2::new(q[iw], q[iw + 1]),
+            u,
+            w,
+            lattice: Lattice::new(u, w),
         }
     }
 

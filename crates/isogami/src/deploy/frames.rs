@@ -73,10 +73,8 @@ pub fn frame_records(
                     "step {k}: joint residual {joint_residual:.3e} above {joint_tolerance:.1e}"
                 )));
             }
-            if let Some((i, oi, j, oj)) = contact.overlapping_pair(mech, q) {
-                return Err(Error::Numerical(format!(
-                    "step {k}: tile {i} in cell {oi:?} overlaps tile {j} in cell {oj:?}"
-                )));
+            if let Some(overlap) = contact.overlapping_pair(mech, q) {
+                return Err(Error::Numerical(format!("step {k}: {overlap}")));
             }
             let t = traj.t(k);
             Ok(FrameRecord {

@@ -4,8 +4,9 @@
 use super::newton::SolveOutcome;
 use super::settings::DeploySettings;
 use super::trajectory::{EndReason, RawStep};
+use super::Progress;
 use crate::contact::ContactModel;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
 
@@ -92,7 +93,7 @@ pub(super) fn march(
     previous: &DVec,
     arc_limit: Option<Real>,
     attempts: &mut usize,
-    progress: &mut dyn FnMut(usize),
+    progress: Progress<'_>,
 ) -> Result<MarchEnd> {
     let dhat = settings.contact.dhat;
     let mut prev = previous.clone();
@@ -102,8 +103,10 @@ pub(super) fn march(
     // so grinding towards contact with ever smaller steps ends.
     let min_beta = settings.initial_step / Real::powi(2.0, settings.max_halvings as i32);
     let mut s: Real = steps.iter().map(|st| st.beta).sum();
+    let (u0, w0) = mech.lattice(&mech.rest);
+    let stretch_limit = settings.max_stretch * (u0.norm() + w0.norm());
     loop {
-        if steps.len() > settings.max_steps {
+        if steps.len() > settings.max_steps || *attempts >= settings.max_attempts {
             return Ok(MarchEnd::Ended(EndReason::MaxSteps));
         }
         let last = steps.last().expect("march starts from a state");
@@ -120,10 +123,21 @@ pub(super) fn march(
         let tried = policy.solve(mech, contact, settings, &input)?;
         let out = &tried.outcome;
         if out.q.iter().any(|x| !x.is_finite()) {
-            return Ok(MarchEnd::Ended(EndReason::SolverFailure {
+            return Ok(MarchEnd::Ended(EndReason::Diverged {
                 diagnostics: format!(
                     "non-finite state after step {} (beta {beta:.3e})",
                     steps.len()
+                ),
+            }));
+        }
+        let (u, w) = mech.lattice(&out.q);
+        if u.norm().max(w.norm()) > stretch_limit {
+            return Ok(MarchEnd::Ended(EndReason::Diverged {
+                diagnostics: format!(
+                    "after step {} a tiling vector is {:.3e} times the closed cell's size: the \
+                     sheet comes apart",
+                    steps.len(),
+                    u.norm().max(w.norm()) / (u0.norm() + w0.norm())
                 ),
             }));
         }
@@ -144,7 +158,9 @@ pub(super) fn march(
                 direction: tried.direction.clone(),
                 nullity: tried.nullity,
             });
-            progress(steps.len());
+            if !progress(steps.len()) {
+                return Err(Error::Cancelled);
+            }
             s += beta;
             prev = tried.direction;
             beta = (beta * settings.growth).min(settings.max_step);

@@ -30,41 +30,62 @@ mod settings;
 mod springs;
 mod trajectory;
 
-pub use compare::{compare_methods, MethodResult};
+pub use compare::{
+    compare_design, compare_methods, DesignComparison, MethodResult, COMPARISON_DESIGNS, METHODS,
+    PEAK_FRACTION,
+};
 pub use frames::{frame_records, select_frames, FrameRecord};
 pub use newton::{minimize, Objective, SolveOutcome};
 pub use report::{build_report, DeploymentReport, FrameReport, TilePose};
 pub use settings::{DeploySettings, Method};
 pub use trajectory::{EndReason, RawStep, Trajectory};
 
+/// A progress callback: called with the number of states so far, returns `false` to cancel.
+pub type Progress<'a> = &'a mut dyn FnMut(usize) -> bool;
+
 use crate::contact::ContactModel;
 use crate::error::{Error, Result};
 use crate::kinematics::Mechanism;
-use crate::mobility::{analyze, MobilitySettings};
+use crate::mobility::analyze;
 
 /// Deploys `mech` with `settings`. Refuses rigid designs with a clear error; a design whose
 /// opening is blocked by contact at once comes back with [`EndReason::Locked`].
 ///
-/// `progress` is called after every accepted step with the number of states so far.
+/// `progress` is called after every accepted step with the number of states so far; when it
+/// returns `false` the deployment stops with [`Error::Cancelled`].
 pub fn deploy(
     mech: &Mechanism,
     settings: &DeploySettings,
-    progress: &mut dyn FnMut(usize),
+    progress: Progress<'_>,
 ) -> Result<Trajectory> {
     settings.validate()?;
     let contact = ContactModel::new(mech, settings.contact)?;
-    let mob = analyze(mech, &mech.rest, MobilitySettings::default())?;
+    let mob = analyze(mech, &mech.rest, settings.mobility)?;
     if mob.dof == 0 {
         return Err(Error::Rigid(
             "the design is rigid (0 degrees of freedom): nothing to deploy".into(),
         ));
     }
+    let opening = match settings.mode {
+        None => mob.motion.as_ref(),
+        Some(k) => Some(mob.modes.get(k).ok_or_else(|| {
+            Error::Settings(format!(
+                "mode {k} does not exist: the design has {} degree(s) of freedom (modes 0..{})",
+                mob.dof, mob.dof
+            ))
+        })?),
+    }
+    .ok_or_else(|| Error::Rigid("the design is rigid: nothing to deploy".into()))?
+    .vector
+    .clone();
     let policy: &dyn march::StepPolicy = match settings.method {
         Method::RigidModes => &rigid_modes::RigidModes,
         Method::Ncm => &ncm::Ncm,
         Method::Springs => &springs::Springs,
     };
-    let mut traj = opening::open_and_march(mech, &contact, settings, &mob, policy, progress)?;
+    let mut traj = opening::open_and_march(
+        mech, &contact, settings, &opening, mob.dof, policy, progress,
+    )?;
     // The springs do not fail a step: they stop moving the sheet.
     if settings.method == Method::Springs && traj.end_reason == EndReason::StepSizeExhausted {
         traj.end_reason = EndReason::Stalled;

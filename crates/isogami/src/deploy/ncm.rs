@@ -4,8 +4,9 @@
 //! method cannot go on.
 
 use super::march::{unit_displacement, StepInput, StepPolicy, StepTry};
-use super::newton::{minimize, Objective, SafeStepper};
+use super::newton::{minimize, Objective};
 use super::settings::DeploySettings;
+use crate::contact::ClearanceTracker;
 use crate::contact::ContactModel;
 use crate::error::Result;
 use crate::kinematics::Mechanism;
@@ -31,9 +32,9 @@ impl StepPolicy for Ncm {
         } = *input;
         // Predict along the last direction actually travelled.
         let predictor = previous * beta;
-        let mut stepper = SafeStepper::new(mech, Some(clearance));
+        let mut stepper = ClearanceTracker::new(Some(clearance));
         let alpha = stepper.fraction(mech, contact, q, &predictor);
-        stepper.moved(mech, &predictor, alpha);
+        stepper.moved(alpha);
         let start = q + &predictor * alpha;
         let target = s + beta;
         let obj = Objective {

@@ -1,7 +1,7 @@
 //! Newton's method for one deployment step, with tile 0 held fixed and a line search that
 //! never leaves the intersection-free set.
 
-use crate::contact::{ContactModel, HessianProjection};
+use crate::contact::{ClearanceTracker, ContactModel, HessianProjection};
 use crate::kinematics::Mechanism;
 use crate::math::{DMat, DVec, Real};
 
@@ -95,7 +95,7 @@ pub fn minimize(
     let mut f = total(mech, contact, obj, &q);
     let mut converged = false;
     let mut iterations = 0;
-    let mut stepper = SafeStepper::new(mech, start_clearance);
+    let mut stepper = ClearanceTracker::new(start_clearance);
     while iterations < max_iterations && f.is_finite() {
         iterations += 1;
         let jac = mech.jacobian(&q);
@@ -122,7 +122,7 @@ pub fn minimize(
             let trial = &q + &d * alpha;
             let ft = total(mech, contact, obj, &trial);
             if ft.is_finite() && ft <= f + 1e-4 * alpha * slope {
-                stepper.moved(mech, &d, alpha);
+                stepper.moved(alpha);
                 q = trial;
                 f = ft;
                 accepted = true;
@@ -171,84 +171,4 @@ fn solve_regularised(mut h: DMat, g: &DVec) -> Option<DVec> {
         mu *= 100.0;
     }
     None
-}
-
-/// Largest distance of a tile vertex from the tile's reference point, per tile.
-fn tile_radii(mech: &Mechanism) -> Vec<Real> {
-    mech.tile_shapes
-        .iter()
-        .map(|s| s.iter().map(|v| v.norm()).fold(0.0, Real::max))
-        .collect()
-}
-
-/// Keeps line-search steps intersection-free cheaply. No vertex of tile i in cell k moves
-/// more than |Δp_i| + |Δθ_i| r_i + |k|(|Δu| + |Δw|) along a step Δ, so a pair's distance
-/// shrinks by at most twice the largest such bound. The tracker keeps a lower bound on the
-/// current clearance, lowered by every step taken; while a whole step's bound stays below
-/// 90 % of it the step is safe without any geometry. Only otherwise is the clearance
-/// recomputed, and if that is still not enough the exact conservative advancement of
-/// `contact` decides.
-pub(crate) struct SafeStepper {
-    radii: Vec<Real>,
-    clearance_lb: Option<Real>,
-}
-
-impl SafeStepper {
-    /// A tracker for `mech`, with a known clearance of the starting state if there is one.
-    pub(crate) fn new(mech: &Mechanism, clearance: Option<Real>) -> SafeStepper {
-        SafeStepper {
-            radii: tile_radii(mech),
-            clearance_lb: clearance,
-        }
-    }
-
-    fn bound(&self, mech: &Mechanism, d: &DVec) -> Real {
-        let l = mech.layout;
-        let tile_bound = (0..l.tiles)
-            .map(|i| {
-                let k = l.tile(i);
-                (d[k] * d[k] + d[k + 1] * d[k + 1]).sqrt() + d[k + 2].abs() * self.radii[i]
-            })
-            .fold(0.0, Real::max);
-        let (iu, iw) = (l.u(), l.w());
-        let lattice = (d[iu] * d[iu] + d[iu + 1] * d[iu + 1]).sqrt()
-            + (d[iw] * d[iw] + d[iw + 1] * d[iw + 1]).sqrt();
-        2.0 * tile_bound + Real::from(crate::contact::SEARCH_RING) * lattice
-    }
-
-    /// A fraction α ≤ 1 of `d` that is safe from `q`.
-    pub(crate) fn fraction(
-        &mut self,
-        mech: &Mechanism,
-        contact: &ContactModel,
-        q: &DVec,
-        d: &DVec,
-    ) -> Real {
-        let bound = self.bound(mech, d);
-        if bound == 0.0 {
-            return 1.0;
-        }
-        if self.clearance_lb.is_some_and(|c| 0.9 * c >= bound) {
-            return 1.0;
-        }
-        let c = contact.min_clearance_in_free_set(mech, q);
-        self.clearance_lb = Some(c);
-        if 0.9 * c >= bound {
-            return 1.0;
-        }
-        contact.max_safe_step(mech, q, d).min(1.0)
-    }
-
-    /// The current lower bound on the clearance, if known.
-    pub(crate) fn clearance(&self) -> Option<Real> {
-        self.clearance_lb
-    }
-
-    /// Records that the state moved by α·d.
-    pub(crate) fn moved(&mut self, mech: &Mechanism, d: &DVec, alpha: Real) {
-        let b = self.bound(mech, d) * alpha;
-        if let Some(c) = self.clearance_lb.as_mut() {
-            *c = (*c - b).max(0.0);
-        }
-    }
 }

@@ -9,11 +9,11 @@
 use super::march::{march, rest_step, MarchEnd, StepPolicy};
 use super::settings::DeploySettings;
 use super::trajectory::{EndReason, Trajectory};
+use super::Progress;
 use crate::contact::ContactModel;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::kinematics::Mechanism;
 use crate::math::DVec;
-use crate::mobility::Mobility;
 
 /// Arc length (in kerfs) a sign must travel to count as opening.
 pub const PROBE_KERFS: f64 = 4.0;
@@ -23,16 +23,12 @@ pub(super) fn open_and_march(
     mech: &Mechanism,
     contact: &ContactModel,
     settings: &DeploySettings,
-    mob: &Mobility,
+    v0: &DVec,
+    dof: usize,
     policy: &dyn StepPolicy,
-    progress: &mut dyn FnMut(usize),
+    progress: Progress<'_>,
 ) -> Result<Trajectory> {
-    let v0 = mob
-        .motion
-        .as_ref()
-        .ok_or_else(|| Error::Rigid("the design is rigid: nothing to deploy".into()))?
-        .vector
-        .clone();
+    let v0 = v0.clone();
     let probe = PROBE_KERFS * settings.contact.kerf;
     let mut attempts = 0;
     let mut failures = Vec::new();
@@ -43,7 +39,7 @@ pub(super) fn open_and_march(
                   prev: &DVec,
                   limit,
                   attempts: &mut usize,
-                  progress: &mut dyn FnMut(usize)| {
+                  progress: Progress<'_>| {
             march(
                 mech, contact, settings, policy, steps, &dir, prev, limit, attempts, progress,
             )
@@ -60,6 +56,7 @@ pub(super) fn open_and_march(
                     end_reason: end,
                     initial_direction: dir,
                     attempts,
+                    dof,
                 });
             }
             MarchEnd::Ended(e) => failures.push((e, steps, dir)),
@@ -73,6 +70,7 @@ pub(super) fn open_and_march(
             end_reason: EndReason::Locked,
             initial_direction: v0,
             attempts,
+            dof,
         });
     }
     let (end_reason, steps, initial_direction) = failures
@@ -84,5 +82,6 @@ pub(super) fn open_and_march(
         end_reason,
         initial_direction,
         attempts,
+        dof,
     })
 }

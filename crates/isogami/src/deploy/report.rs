@@ -57,11 +57,14 @@ pub struct DeploymentReport {
     pub kerf: Real,
     /// Mean edge length L (tiling units).
     pub length_scale: Real,
+    /// Degrees of freedom of the closed state. 1 for a self-deployable sheet; with several the
+    /// path follows the fastest-opening first-order motion (one of a family of paths).
+    pub dof: usize,
     /// Why the deployment ended.
     pub end_reason: EndReason,
-    /// Accepted states.
+    /// States of the trajectory, the closed state included (accepted steps + 1).
     pub steps: usize,
-    /// Attempted steps.
+    /// Attempted steps, accepted or not, both opening signs together.
     pub attempts: usize,
     /// Arc length of the path (non-dimensional).
     pub arc_length: Real,
@@ -130,6 +133,7 @@ pub fn build_report(
         method: settings.method,
         kerf: settings.contact.kerf,
         length_scale: l,
+        dof: traj.dof,
         end_reason: traj.end_reason.clone(),
         steps: traj.steps.len(),
         attempts: traj.attempts,
@@ -143,4 +147,63 @@ pub fn build_report(
         max_tile_rotation: fold(0.0, &|m| m.max_tile_rotation, true),
         frames: frame_reports,
     }
+}
+
+impl DeploymentReport {
+    /// Checks that every number of the report is finite (a report with NaN or ∞ must never
+    /// reach a front end); the error names the first offending field.
+    pub fn check_finite(&self) -> crate::Result<()> {
+        let scalars = [
+            ("kerf", self.kerf),
+            ("length_scale", self.length_scale),
+            ("arc_length", self.arc_length),
+            ("max_joint_residual", self.max_joint_residual),
+            ("min_clearance", self.min_clearance),
+            ("max_expansion", self.max_expansion),
+            ("min_expansion", self.min_expansion),
+            ("max_area_ratio", self.max_area_ratio),
+            ("max_tile_rotation", self.max_tile_rotation),
+        ];
+        first_non_finite(scalars.iter().map(|&(n, v)| (n.to_string(), v)))?;
+        for (k, f) in self.frames.iter().enumerate() {
+            let m = &f.measures;
+            let mut values: Vec<(&str, Real)> = vec![
+                ("t", f.t),
+                ("joint_residual", f.joint_residual),
+                ("min_clearance", f.min_clearance),
+                ("lattice_rotation", m.lattice_rotation),
+                ("min_expansion", m.min_expansion),
+                ("max_expansion", m.max_expansion),
+                ("principal_angle", m.principal_angle),
+                ("area_ratio", m.area_ratio),
+                ("max_tile_rotation", m.max_tile_rotation),
+            ];
+            values.extend(f.f.iter().flatten().map(|&v| ("F", v)));
+            values.extend(m.u.iter().flatten().map(|&v| ("U", v)));
+            values.extend(f.u.iter().chain(&f.w).map(|&v| ("u/w", v)));
+            values.extend(m.tile_rotations.iter().map(|&v| ("tile_rotations", v)));
+            values.extend(
+                f.tiles
+                    .iter()
+                    .flat_map(|p| [("tiles", p.x), ("tiles", p.y), ("tiles", p.theta)]),
+            );
+            first_non_finite(
+                values
+                    .into_iter()
+                    .map(|(n, v)| (format!("frames[{k}].{n}"), v)),
+            )?;
+        }
+        Ok(())
+    }
+}
+
+fn first_non_finite(values: impl Iterator<Item = (String, Real)>) -> crate::Result<()> {
+    for (name, v) in values {
+        if !v.is_finite() {
+            return Err(crate::Error::Numerical(format!(
+                "deployment report field {name} is {v}"
+            )));
+        }
+    }
+    Ok(())
 }

@@ -2,8 +2,9 @@
 
 use super::direction::motion_direction;
 use super::march::{StepInput, StepPolicy, StepTry};
-use super::newton::{minimize, Objective, SafeStepper};
+use super::newton::{minimize, Objective};
 use super::settings::DeploySettings;
+use crate::contact::ClearanceTracker;
 use crate::contact::ContactModel;
 use crate::error::Result;
 use crate::kinematics::Mechanism;
@@ -29,9 +30,9 @@ impl StepPolicy for RigidModes {
         } = *input;
         let (v, nullity) = motion_direction(mech, q, previous)?;
         let predictor = &v * beta;
-        let mut stepper = SafeStepper::new(mech, Some(clearance));
+        let mut stepper = ClearanceTracker::new(Some(clearance));
         let alpha = stepper.fraction(mech, contact, q, &predictor);
-        stepper.moved(mech, &predictor, alpha);
+        stepper.moved(alpha);
         let start = q + &predictor * alpha;
         let obj = Objective {
             progress: Some((v.clone(), q.clone(), beta, settings.step_weight)),

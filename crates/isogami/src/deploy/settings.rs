@@ -3,6 +3,7 @@
 use crate::contact::ContactSettings;
 use crate::error::{Error, Result};
 use crate::math::Real;
+use crate::mobility::MobilitySettings;
 
 /// Which deployment algorithm to run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -65,6 +66,23 @@ pub struct DeploySettings {
     pub step_tolerance: Real,
     /// Largest joint residual of an accepted state (units of L).
     pub joint_tolerance: Real,
+    /// Largest joint residual of a reported frame, re-checked independently of the solver
+    /// (units of L).
+    pub frame_joint_tolerance: Real,
+    /// Largest number of attempted steps (accepted or not, both opening signs together):
+    /// with `max_steps`, it bounds the run time of every deployment.
+    pub max_attempts: usize,
+    /// A state whose tiling vectors grew beyond this multiple of the closed cell's size
+    /// (|u₀| + |w₀|) ends the run as diverged: the sheet has come apart (a design whose
+    /// pieces are not held together moves them apart without limit) or the method ran away.
+    pub max_stretch: Real,
+    /// Mobility tolerance used to count the degrees of freedom and pick the opening motion.
+    pub mobility: MobilitySettings,
+    /// For a design with several degrees of freedom, which first-order motion to open along:
+    /// `None` (the default) the fastest-opening combination of all of them
+    /// ([`crate::mobility::Mobility::motion`]), `Some(k)` the k-th basis motion of
+    /// [`crate::mobility::Mobility::modes`] (0-based, must be below the DOF).
+    pub mode: Option<usize>,
 }
 
 impl Default for DeploySettings {
@@ -80,6 +98,11 @@ impl Default for DeploySettings {
             max_steps: 5000,
             step_tolerance: 1e-3,
             joint_tolerance: 1e-9,
+            frame_joint_tolerance: 1e-8,
+            max_attempts: 20_000,
+            max_stretch: 100.0,
+            mobility: MobilitySettings::default(),
+            mode: None,
         }
     }
 }
@@ -102,14 +125,36 @@ impl DeploySettings {
         positive("max_step", self.max_step)?;
         positive("step_tolerance", self.step_tolerance)?;
         positive("joint_tolerance", self.joint_tolerance)?;
+        positive("frame_joint_tolerance", self.frame_joint_tolerance)?;
+        positive("mobility tolerance", self.mobility.rel_tol)?;
+        if !(self.max_stretch.is_finite() && self.max_stretch > 1.0) {
+            return Err(Error::Settings(format!(
+                "max_stretch must be a finite number above 1, got {}",
+                self.max_stretch
+            )));
+        }
+        if self.frame_joint_tolerance < self.joint_tolerance {
+            return Err(Error::Settings(format!(
+                "frame_joint_tolerance {} must be at least joint_tolerance {}",
+                self.frame_joint_tolerance, self.joint_tolerance
+            )));
+        }
         if !(self.growth.is_finite() && self.growth >= 1.0) {
             return Err(Error::Settings(format!(
                 "growth must be >= 1, got {}",
                 self.growth
             )));
         }
-        if self.max_steps == 0 {
-            return Err(Error::Settings("max_steps must be at least 1".into()));
+        if self.max_steps == 0 || self.max_attempts == 0 {
+            return Err(Error::Settings(
+                "max_steps and max_attempts must be at least 1".into(),
+            ));
+        }
+        if self.max_halvings > 50 {
+            return Err(Error::Settings(format!(
+                "max_halvings must be at most 50, got {}",
+                self.max_halvings
+            )));
         }
         Ok(())
     }

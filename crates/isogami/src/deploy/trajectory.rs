@@ -37,8 +37,15 @@ pub enum EndReason {
     StepSizeExhausted,
     /// The baseline stopped moving (springs: further load steps give no motion).
     Stalled,
-    /// The step limit was reached before any other end.
+    /// The step limit (accepted states or attempted steps) was reached before any other end.
     MaxSteps,
+    /// The state ran away: the tiling vectors grew without limit (the sheet comes apart) or
+    /// the solver produced a non-finite state. The trajectory stops at the last good state;
+    /// `diagnostics` says what happened.
+    Diverged {
+        /// What ran away.
+        diagnostics: String,
+    },
     /// The solver failed; `diagnostics` says where and why.
     SolverFailure {
         /// What went wrong.
@@ -54,6 +61,7 @@ impl std::fmt::Display for EndReason {
             EndReason::StepSizeExhausted => f.write_str("step size exhausted"),
             EndReason::Stalled => f.write_str("stalled"),
             EndReason::MaxSteps => f.write_str("step limit reached"),
+            EndReason::Diverged { diagnostics } => write!(f, "diverged: {diagnostics}"),
             EndReason::SolverFailure { diagnostics } => write!(f, "solver failure: {diagnostics}"),
         }
     }
@@ -70,6 +78,9 @@ pub struct Trajectory {
     pub initial_direction: DVec,
     /// Attempted steps, accepted or not (a cost measure).
     pub attempts: usize,
+    /// Degrees of freedom of the closed state (several: the path follows the fastest-opening
+    /// first-order motion, see [`crate::mobility::Mobility::motion`]).
+    pub dof: usize,
 }
 
 impl Trajectory {

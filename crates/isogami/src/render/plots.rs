@@ -3,8 +3,7 @@
 //! Inputs are checked first: a NaN or infinity is an error naming the series and sample,
 //! never a broken SVG.
 
-use super::animation::render_error;
-use crate::error::Result;
+use super::error::{RenderError, RenderResult};
 use crate::math::Real;
 use plotters::prelude::*;
 use std::f64::consts::TAU;
@@ -37,30 +36,29 @@ fn nominal_size(svg: String, w: u32, h: u32) -> String {
     svg.replacen(&big, &small, 1)
 }
 
-fn plot_err<E: std::fmt::Display>(e: E) -> crate::Error {
-    render_error(format!("plot: {e}"))
+fn plot_err<E: std::fmt::Display>(e: E) -> RenderError {
+    RenderError::Plot(e.to_string())
 }
 
-fn check_finite(what: &str, values: &[Real]) -> Result<()> {
+fn check_finite(series: &'static str, values: &[Real]) -> RenderResult<()> {
     match values.iter().position(|v| !v.is_finite()) {
-        Some(i) => Err(render_error(format!(
-            "{what}[{i}] is {} (plots need finite numbers)",
-            values[i]
-        ))),
+        Some(index) => Err(RenderError::NotFinite {
+            series,
+            index,
+            value: values[index],
+        }),
         None => Ok(()),
     }
 }
 
-fn finish(svg: String, w: u32, h: u32) -> Result<String> {
+fn finish(svg: String, w: u32, h: u32) -> RenderResult<String> {
     let svg = nominal_size(svg, w, h);
     if !svg.starts_with(&format!(r#"<svg width="{w}" height="{h}" "#)) {
-        return Err(render_error(
-            "plot: unexpected SVG header from plotters".into(),
-        ));
+        return Err(plot_err("unexpected SVG header from plotters"));
     }
     // Belt and braces: inputs are checked, but a non-finite coordinate must never escape.
     if svg.contains("NaN") || svg.contains("=\"inf") || svg.contains("=\"-inf") {
-        return Err(render_error("plot produced a non-finite coordinate".into()));
+        return Err(plot_err("a non-finite coordinate in the SVG"));
     }
     Ok(svg)
 }
@@ -77,14 +75,18 @@ fn padded(lo: Real, hi: Real) -> (Real, Real) {
 ///
 /// `t`, `min` and `max` must have the same, non-zero length and hold finite numbers. The
 /// t axis spans [0, 1] (wider if some t lies outside); the expansion axis includes 0.
-pub fn expansion_plot_svg(t: &[Real], min: &[Real], max: &[Real], title: &str) -> Result<String> {
+pub fn expansion_plot_svg(
+    t: &[Real],
+    min: &[Real],
+    max: &[Real],
+    title: &str,
+) -> RenderResult<String> {
     if t.is_empty() || t.len() != min.len() || t.len() != max.len() {
-        return Err(render_error(format!(
-            "expansion plot needs equally long, non-empty series: t has {}, min {}, max {}",
-            t.len(),
-            min.len(),
-            max.len()
-        )));
+        return Err(RenderError::SeriesLengths {
+            t: t.len(),
+            min: min.len(),
+            max: max.len(),
+        });
     }
     check_finite("t", t)?;
     check_finite("min", min)?;
@@ -165,28 +167,33 @@ pub fn expansion_plot_svg(t: &[Real], min: &[Real], max: &[Real], title: &str) -
 /// at radius r(θ) = 1 + ε(θ) (closed), with the unit circle (the closed sheet) for
 /// reference, a polar grid, equal aspect ratio, 640×640 px. Every θ and ε must be finite,
 /// every profile non-empty and every radius 1 + ε non-negative.
-pub fn polar_plot_svg<S: AsRef<str>>(profiles: &[(S, Vec<(Real, Real)>)]) -> Result<String> {
+pub fn polar_plot_svg<S: AsRef<str>>(profiles: &[(S, Vec<(Real, Real)>)]) -> RenderResult<String> {
     let mut curves = Vec::with_capacity(profiles.len());
     let mut r_max: Real = 1.0;
     for (label, samples) in profiles {
         let label = label.as_ref();
         if samples.is_empty() {
-            return Err(render_error(format!(
-                "polar profile '{label}' has no samples"
-            )));
+            return Err(RenderError::EmptyProfile {
+                label: label.to_string(),
+            });
         }
         let mut pts = Vec::with_capacity(samples.len() + 1);
         for (i, &(theta, eps)) in samples.iter().enumerate() {
             if !theta.is_finite() || !eps.is_finite() {
-                return Err(render_error(format!(
-                    "polar profile '{label}' sample {i} is (θ = {theta}, ε = {eps}): not finite"
-                )));
+                return Err(RenderError::ProfileNotFinite {
+                    label: label.to_string(),
+                    index: i,
+                    theta,
+                    eps,
+                });
             }
             let r = 1.0 + eps;
             if r < 0.0 {
-                return Err(render_error(format!(
-                    "polar profile '{label}' sample {i} has radius 1 + ε = {r} < 0"
-                )));
+                return Err(RenderError::NegativeRadius {
+                    label: label.to_string(),
+                    index: i,
+                    radius: r,
+                });
             }
             r_max = r_max.max(r);
             pts.push((r * theta.cos(), r * theta.sin()));

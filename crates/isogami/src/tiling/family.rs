@@ -144,12 +144,12 @@ impl FromStr for Family {
             .or_else(|| t.strip_prefix("Ih"))
             .unwrap_or(t);
         if digits.is_empty() || digits.len() > 3 || !digits.bytes().all(|b| b.is_ascii_digit()) {
-            return Err(Error::UnknownFamily(s.to_string()));
+            return Err(Error::UnknownFamily(crate::topology::quote_input(s)));
         }
         let n: u32 = digits
             .parse()
-            .map_err(|_| Error::UnknownFamily(s.to_string()))?;
-        Family::from_number(n).map_err(|_| Error::UnknownFamily(s.to_string()))
+            .map_err(|_| Error::UnknownFamily(crate::topology::quote_input(s)))?;
+        Family::from_number(n).map_err(|_| Error::UnknownFamily(crate::topology::quote_input(s)))
     }
 }
 

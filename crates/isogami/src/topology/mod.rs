@@ -11,3 +11,4 @@ mod spec;
 pub use design::{Design, JointChoice};
 pub use json::{DesignJson, JointJson};
 pub use named::{named_design, NAMED_DESIGNS, SAMPLE_OPENING_DESIGNS};
+pub(crate) use spec::truncate as quote_input;

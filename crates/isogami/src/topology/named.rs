@@ -42,7 +42,7 @@ fn rotating_squares() -> Design {
     let cell = UnitCell::new(&Tiling::default_for(family), dims).expect("square grid builds");
     // A square of even chessboard parity hinges every edge at the edge's counter-clockwise
     // end; seen from the odd neighbour that vertex is the edge's start.
-    let parity = |t: usize| (cell.tiles[t].copy[0] + cell.tiles[t].copy[1]) % 2 == 0;
+    let parity = |t: usize| (cell.tiles[t].copy[0] + cell.tiles[t].copy[1]).is_multiple_of(2);
     let joints = cell
         .edges
         .iter()

@@ -90,6 +90,8 @@ fn parse_params(family: Family, text: &str) -> Result<Vec<f64>> {
 }
 
 /// At most 40 characters of user input, for error messages.
+/// User input as it may appear inside a one-line message: at most 40 characters, control
+/// characters and line breaks escaped.
 pub(crate) fn truncate(s: &str) -> String {
     let mut out: String = s.chars().take(40).collect();
     if s.chars().count() > 40 {

@@ -74,3 +74,4 @@ pub fn perturbed_params(rng: &mut Rng, family: Family, rel: f64) -> Vec<f64> {
     }
     panic!("{family}: no valid perturbation of size {rel} found in 50 tries");
 }
+pub mod overlap;

@@ -1,0 +1,206 @@
+//! The library's entry points: one function per job, plain data in and out. The CLI, the
+//! exploration and the coming server and Python bindings call these and hold no pipeline
+//! logic of their own, so every front end resolves, validates, analyses and deploys a design
+//! the same way.
+//!
+//! | job | function | returns |
+//! |---|---|---|
+//! | read a design (name, spec string or JSON) | [`resolve_design`] | [`Design`] |
+//! | mobility | [`analyze`] | [`Analysis`] |
+//! | deployment | [`deploy`] | [`Deployment`] (the serialisable report and the states) |
+//! | linkages | [`linkages`] | [`LinkageAnalysis`] |
+//! | baseline comparison | [`compare`] | [`DesignComparison`]: one result per method |
+//!
+//! ```
+//! use isogami::api::{deploy, resolve_design, DeployRequest};
+//!
+//! let design = resolve_design("rotating-squares")?;
+//! let run = deploy(&design, &DeployRequest::default(), &mut |_| true)?;
+//! assert_eq!(run.report.dof, 1);
+//! assert!((run.report.max_area_ratio - 2.0).abs() < 1e-3); // 45°: cos φ + sin φ = √2
+//! # Ok::<(), isogami::Error>(())
+//! ```
+
+use crate::cell::UnitCell;
+use crate::contact::ContactModel;
+use crate::deploy::{
+    build_report, compare_design, frame_records, select_frames, DeploySettings, DeploymentReport,
+    DesignComparison, FrameRecord, Progress, Trajectory,
+};
+use crate::error::{Error, Result};
+use crate::kinematics::Mechanism;
+use crate::linkage::{analyze_linkages, LinkageAnalysis};
+use crate::math::Real;
+use crate::mobility::{Mobility, MobilitySettings};
+pub use crate::topology::Design;
+use serde::Serialize;
+
+/// Most frames a deployment report may hold when frames are picked evenly in t.
+pub const MAX_FRAME_COUNT: usize = 10_000;
+
+/// Reads a design given as a name (`rotating-squares`), a spec string
+/// (`FAMILY:PARAMS:CELL:JOINTS`) or design JSON, and checks that it builds: valid shape
+/// parameters, a supported cell, one joint choice per unique edge.
+pub fn resolve_design(text: &str) -> Result<Design> {
+    let design = Design::resolve(text)?;
+    design.cell()?;
+    Ok(design)
+}
+
+/// The mobility analysis of a design, with the counts a reader wants beside it.
+#[derive(Debug, Clone, Serialize)]
+pub struct Analysis {
+    /// Spec string.
+    pub design: String,
+    /// Tiles in the cell.
+    pub tiles: usize,
+    /// Unique edges of the cell.
+    pub edges: usize,
+    /// Pin joints.
+    pub joints: usize,
+    /// Mean edge length L (tiling units).
+    pub length_scale: Real,
+    /// Degrees of freedom, spectrum, gap and first-order motions.
+    #[serde(flatten)]
+    pub mobility: Mobility,
+}
+
+/// The cell and mechanism of a design.
+fn assemble(design: &Design) -> Result<(UnitCell, Mechanism)> {
+    let cell = design.cell()?;
+    let mech = Mechanism::new(&cell, &design.joints)?;
+    Ok((cell, mech))
+}
+
+/// Mobility of a design in its closed state (paper §3.2).
+pub fn analyze(design: &Design, settings: MobilitySettings) -> Result<Analysis> {
+    if !(settings.rel_tol.is_finite() && settings.rel_tol > 0.0) {
+        return Err(Error::Settings(format!(
+            "mobility tolerance must be a positive number, got {}",
+            settings.rel_tol
+        )));
+    }
+    let (cell, mech) = assemble(design)?;
+    let mobility = crate::mobility::analyze(&mech, &mech.rest, settings)?;
+    Ok(Analysis {
+        design: design.to_string(),
+        tiles: cell.tiles.len(),
+        edges: cell.edges.len(),
+        joints: mech.joints.len(),
+        length_scale: mech.length_scale,
+        mobility,
+    })
+}
+
+/// Which accepted states a deployment report keeps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FrameSelection {
+    /// About this many states, nearest to evenly spaced t (first and last always), in
+    /// 2..=[`MAX_FRAME_COUNT`].
+    Evenly(usize),
+    /// Every accepted state.
+    AllSteps,
+}
+
+/// What to deploy with and what to keep.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DeployRequest {
+    /// Method, contact, step control, tolerances.
+    pub settings: DeploySettings,
+    /// Which states become frames.
+    pub frames: FrameSelection,
+}
+
+impl Default for DeployRequest {
+    /// Rigid modes with default settings, 60 frames.
+    fn default() -> Self {
+        DeployRequest {
+            settings: DeploySettings::default(),
+            frames: FrameSelection::Evenly(60),
+        }
+    }
+}
+
+impl DeployRequest {
+    /// Checks the settings and the frame selection.
+    pub fn validate(&self) -> Result<()> {
+        self.settings.validate()?;
+        if let FrameSelection::Evenly(n) = self.frames {
+            if !(2..=MAX_FRAME_COUNT).contains(&n) {
+                return Err(Error::Settings(format!(
+                    "frame count must lie in 2..={MAX_FRAME_COUNT}, got {n}"
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A finished deployment: the report every front end shows or stores, and the mechanism,
+/// contact model and checked frame states that renderers and exporters need.
+#[derive(Debug, Clone)]
+pub struct Deployment {
+    /// The serialisable report.
+    pub report: DeploymentReport,
+    /// The frames behind the report (non-dimensional states), in the same order.
+    pub frames: Vec<FrameRecord>,
+    /// The mechanism the states belong to.
+    pub mechanism: Mechanism,
+    /// Its contact model (kerf-inset collision polygons).
+    pub contact: ContactModel,
+    /// Every accepted state.
+    pub trajectory: Trajectory,
+}
+
+/// Deploys a design from its closed state to the contact limit (paper §3.2) with the
+/// request's method and settings. Rigid designs are refused; a design with several degrees
+/// of freedom follows its fastest-opening first-order motion and says so (`report.dof`).
+/// Every reported frame is re-checked: joints closed to `frame_joint_tolerance`, no two
+/// collision polygons of the sheet overlapping, every number finite.
+///
+/// `progress` is called after every accepted step with the number of states so far; when it
+/// returns `false` the run stops with [`Error::Cancelled`].
+pub fn deploy(
+    design: &Design,
+    request: &DeployRequest,
+    progress: Progress<'_>,
+) -> Result<Deployment> {
+    request.validate()?;
+    let settings = &request.settings;
+    let (_, mech) = assemble(design)?;
+    let contact = ContactModel::new(&mech, settings.contact)?;
+    let trajectory = crate::deploy::deploy(&mech, settings, progress)?;
+    let indices = match request.frames {
+        FrameSelection::AllSteps => (0..trajectory.steps.len()).collect(),
+        FrameSelection::Evenly(n) => select_frames(&trajectory, n),
+    };
+    let frames = frame_records(
+        &mech,
+        &contact,
+        &trajectory,
+        &indices,
+        settings.frame_joint_tolerance,
+    )?;
+    let report = build_report(&design.to_string(), &mech, settings, &trajectory, &frames);
+    report.check_finite()?;
+    Ok(Deployment {
+        report,
+        frames,
+        mechanism: mech,
+        contact,
+        trajectory,
+    })
+}
+
+/// The linkage analysis of a design (paper §5.1).
+pub fn linkages(design: &Design) -> Result<LinkageAnalysis> {
+    let cell = design.cell()?;
+    analyze_linkages(&cell, &design.joints)
+}
+
+/// Rigid modes, NCM and springs on the same design with otherwise equal settings (paper §5,
+/// Fig. 4): how far along the rigid-modes path each gets and how much it opens.
+pub fn compare(design: &Design, settings: &DeploySettings) -> Result<DesignComparison> {
+    settings.validate()?;
+    compare_design(design, settings)
+}
