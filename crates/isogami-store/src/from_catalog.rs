@@ -103,6 +103,8 @@ impl DesignRecord {
             linkage_signature: linkages.map(|l| l.signature.clone()),
             end_reason: end_reason_kind(&spec, report)?,
             method: report.method,
+            dof: u32::try_from(report.dof)
+                .map_err(|_| invalid(&spec, format!("{} degrees of freedom", report.dof)))?,
             kerf: report.kerf,
             max_expansion: report.max_expansion,
             min_expansion: report.min_expansion,
@@ -113,6 +115,9 @@ impl DesignRecord {
             steps: report.steps as u64,
         };
         check_finite(&summary)?;
+        report
+            .check_finite()
+            .map_err(|e| invalid(&spec, format!("deployment report: {e}")))?;
         let report_json =
             serde_json::to_string(report).map_err(|e| invalid(&spec, format!("report: {e}")))?;
         if let Err(e) = serde_json::from_str::<DeploymentReport>(&report_json) {

@@ -91,6 +91,9 @@ pub struct DesignSummary {
     pub end_reason: String,
     /// Deployment method.
     pub method: Method,
+    /// Degrees of freedom of the closed state (1 for explored designs; a user design with more
+    /// was deployed along one chosen motion, see the report).
+    pub dof: u32,
     /// Kerf relative to the mean edge length.
     pub kerf: f64,
     /// Largest principal expansion reached.

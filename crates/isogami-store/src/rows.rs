@@ -15,11 +15,11 @@ use rusqlite::Row;
 /// Columns of a `designs` row, in the order of [`design_values`] (checksum excluded).
 pub(crate) const DESIGN_COLUMNS: &str = "spec, origin, work_unit, family, cell, cell_a, cell_b, \
     tile_count, joints, topology, param_count, p0, p1, p2, p3, p4, p5, behaviour, \
-    linkage_signature, end_reason, method, kerf, max_expansion, min_expansion, max_area_ratio, \
+    linkage_signature, end_reason, method, dof, kerf, max_expansion, min_expansion, max_area_ratio, \
     max_tile_rotation, poisson_min, poisson_max, steps";
 
 /// Number of columns in [`DESIGN_COLUMNS`].
-pub(crate) const DESIGN_COLUMN_COUNT: usize = 29;
+pub(crate) const DESIGN_COLUMN_COUNT: usize = 30;
 
 fn text(s: &str) -> Value {
     Value::Text(s.to_string())
@@ -54,6 +54,7 @@ pub(crate) fn design_values(s: &DesignSummary, work_unit: Option<&str>) -> Vec<V
         opt_text(s.linkage_signature.as_deref()),
         text(&s.end_reason),
         text(&s.method.to_string()),
+        Value::Integer(i64::from(s.dof)),
         Value::Real(s.kerf),
         Value::Real(s.max_expansion),
         Value::Real(s.min_expansion),
@@ -198,6 +199,7 @@ pub(crate) fn design_from_values(
     let method: Method = method_name
         .parse()
         .map_err(|e: isogami::Error| e.to_string())?;
+    let dof = small(r.int()?, "dof")?;
     Ok((
         DesignSummary {
             spec,
@@ -212,6 +214,7 @@ pub(crate) fn design_from_values(
             linkage_signature,
             end_reason,
             method,
+            dof,
             kerf: r.real()?,
             max_expansion: r.real()?,
             min_expansion: r.real()?,

@@ -79,6 +79,7 @@ CREATE TABLE designs (
     linkage_signature TEXT,
     end_reason        TEXT NOT NULL,
     method            TEXT NOT NULL,
+    dof               INTEGER NOT NULL,
     kerf              REAL NOT NULL,
     max_expansion     REAL NOT NULL,
     min_expansion     REAL NOT NULL,

@@ -60,6 +60,7 @@ fn reports_and_linkages_read_back_as_the_library_types() {
         Some(e.linkages.signature.as_str())
     );
     assert_eq!(s.origin, Origin::Explored);
+    assert_eq!((s.dof, e.report.dof), (1, 1));
     assert!(store.design("IH1::1x1:---").unwrap().is_none());
 }
 
