@@ -1,4 +1,4 @@
-//! Store errors.
+//! Store errors: one variant per thing a user can be told, each a single line.
 
 use thiserror::Error;
 
@@ -6,25 +6,117 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 #[non_exhaustive]
 pub enum StoreError {
-    /// SQLite failed (locked, corrupt, disk full, …).
-    #[error("database error: {0}")]
-    Sqlite(#[from] rusqlite::Error),
-    /// The file was written by another schema version.
+    /// A reading command was pointed at a file that does not exist.
+    #[error("no such database")]
+    NotFound,
+    /// The path exists but is not a regular file.
+    #[error("not a file")]
+    NotAFile,
+    /// The file exists but is not an SQLite database at all.
+    #[error("not an isogami database (not an SQLite file, or its header is damaged)")]
+    NotSqlite,
+    /// An empty file, where a reading command needs a database.
+    #[error("empty file, not an isogami database")]
+    EmptyFile,
+    /// An SQLite database that some other program made.
+    #[error("not an isogami database (an SQLite file with {tables})")]
+    Foreign {
+        /// Its tables, e.g. "tables designs, users" or "no tables".
+        tables: String,
+    },
+    /// An isogami database of another schema version.
     #[error(
-        "database schema version {found}, this isogami needs {expected}: explore into a new file"
+        "made by isogami database schema version {found}, this isogami reads version \
+         {expected}: re-run explore into a new file"
     )]
     SchemaVersion {
         /// Version in the file.
         found: i64,
-        /// Version this build writes.
+        /// Version this build reads and writes.
         expected: i64,
     },
+    /// The file is damaged: SQLite's integrity check failed, a row fails its checksum, or a
+    /// stored value cannot be read.
+    #[error("damaged database ({0}); restore it from a copy or re-run explore into a new file")]
+    Damaged(String),
+    /// A writer was killed in the middle of a commit; its rollback journal is still there.
+    #[error(
+        "an interrupted write left its rollback journal beside the file; run the same explore \
+         (or merge --into) on it once to roll it back before reading"
+    )]
+    InterruptedWrite,
+    /// Another process holds the writer lock.
+    #[error(
+        "another isogami process (explore or merge) is writing to this database; wait for it \
+         to finish or use another file"
+    )]
+    Busy,
+    /// SQLite kept reporting the file busy past the timeout.
+    #[error("the database stayed locked by another process for too long; try again")]
+    Locked,
     /// The file was made with other settings than the run that opens it.
     #[error("database was made with other settings ({0}); use a new file or the same settings")]
     SettingsMismatch(String),
-    /// A stored JSON value that cannot be read.
-    #[error("stored JSON: {0}")]
-    Json(#[from] serde_json::Error),
+    /// A stored report or linkage analysis is intact but does not match this build's types.
+    #[error("stored {what} of {spec} cannot be read by this build: {message}")]
+    StoredJson {
+        /// Spec of the design.
+        spec: String,
+        /// "deployment report" or "linkage analysis".
+        what: &'static str,
+        /// The parser's message.
+        message: String,
+    },
+    /// A record offered for writing cannot be stored faithfully.
+    #[error("design {spec} cannot be stored: {problem}")]
+    InvalidRecord {
+        /// Spec of the design.
+        spec: String,
+        /// What is wrong with it.
+        problem: String,
+    },
+    /// A user design whose spec is already in the database.
+    #[error("design {0} is already in the database")]
+    DuplicateSpec(String),
+    /// A query with a bad bound, limit or parameter slot.
+    #[error("invalid query: {0}")]
+    InvalidQuery(#[from] crate::query::QueryError),
+    /// The file system refused (creating, locking, reading the header).
+    #[error("{0}")]
+    Io(#[from] std::io::Error),
+    /// Any other SQLite failure (disk full, read-only directory, …).
+    #[error("database error: {0}")]
+    Sqlite(rusqlite::Error),
+}
+
+impl From<rusqlite::Error> for StoreError {
+    /// Sorts SQLite failures into the variants a user can act on.
+    fn from(e: rusqlite::Error) -> StoreError {
+        use rusqlite::ffi::ErrorCode;
+        if let rusqlite::Error::SqliteFailure(f, _) = &e {
+            if f.extended_code == rusqlite::ffi::SQLITE_READONLY_ROLLBACK {
+                return StoreError::InterruptedWrite;
+            }
+            match f.code {
+                ErrorCode::DatabaseCorrupt => {
+                    return StoreError::Damaged(one_line(&format!("SQLite: {e}")))
+                }
+                ErrorCode::NotADatabase => return StoreError::NotSqlite,
+                ErrorCode::DatabaseBusy | ErrorCode::DatabaseLocked => return StoreError::Locked,
+                _ => {}
+            }
+        }
+        StoreError::Sqlite(e)
+    }
+}
+
+/// Joins the lines of a message so that every error prints as one line.
+pub(crate) fn one_line(text: &str) -> String {
+    text.split(['\n', '\r'])
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ")
 }
 
 /// Result alias.

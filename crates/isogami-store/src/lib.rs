@@ -1,25 +1,59 @@
 //! The design database: the only code in isogami that knows SQL.
 //!
-//! An embedded SQLite file holds the exploration's results: one row per finished work unit
-//! (with per-stage counts and times), one row per kept design (summary columns for filtering
-//! and sorting, plus the full deployment report and linkage analysis as JSON), and the tool
-//! version and settings the run used, so any row can be regenerated. Every work unit is
-//! written in one transaction: a run killed at any moment keeps exactly the units it had
-//! committed, and a resumed run skips them. The schema carries a version; a file with
-//! another version is refused rather than misread.
+//! An embedded SQLite file holds the exploration's results and the designs users save: one
+//! row per finished work unit (with per-stage counts and times), one row per design (every
+//! column a catalogue filters, sorts, facets or plots by) with its full deployment report and
+//! linkage analysis as JSON beside it, and the tool version and settings of the run, so any
+//! row can be regenerated.
 //!
-//! Plain records in and out; this crate does not know how designs are found or deployed.
+//! Safety, in order of what can go wrong:
+//! - **Reading never writes.** [`Store::open_read`] opens read-only and creates nothing
+//!   beside the file (the database uses a rollback journal, not WAL).
+//! - **Only new or empty files are created.** [`StoreWriter::open`] refuses another program's
+//!   SQLite file, a non-SQLite file and another schema version, leaving them byte-for-byte
+//!   unchanged.
+//! - **Damage is refused.** Every open runs SQLite's `quick_check` (or the full
+//!   `integrity_check`); every row carries a CRC-32 over its values, verified whenever it is
+//!   read, which catches changed bytes inside stored values that SQLite's checks cannot see.
+//!   Stored reports and linkage analyses are parsed back into the library's types.
+//! - **One writer.** A writer holds an OS lock on `FILE.lock` (released when the process
+//!   ends in any way); a second writer is refused at once.
+//! - **Atomic work units.** Every work unit is one transaction: a run killed at any moment
+//!   keeps exactly the units it had committed, and a resumed run skips them.
+//!
+//! What is not detected: an index entry changed so that it still points at a valid row is
+//! seen only by [`Check::Full`] (SQLite's integrity_check), not by `quick_check`; facet
+//! counts and scatter points aggregate inside SQLite and are not checksum-verified row by
+//! row; a file truncated to zero bytes is indistinguishable from a new empty file.
+//!
+//! Plain records in and out; this crate does not know how designs are found or deployed. It
+//! builds its records from the library's plain data types (`CatalogEntry`,
+//! `DeploymentReport`, `LinkageAnalysis`).
 
+mod checksum;
 mod error;
+mod file;
+mod from_catalog;
+mod lock;
 mod merge;
+mod open;
+pub mod query;
+mod read;
 mod records;
+mod rows;
 mod schema;
 mod stats;
-mod store;
+mod verify;
+mod write;
 
 pub use error::{StoreError, StoreResult};
+pub use file::sidecar_paths;
+pub use from_catalog::POISSON_OPEN_FRACTION;
 pub use merge::MergeReport;
-pub use records::{DesignRecord, StageCount, WorkUnitRecord};
+pub use open::{Check, RunInfo, Store, StoreWriter};
+pub use query::{DesignQuery, Facet, FacetCount, FacetValue, Measure, Page, SortKey};
+pub use records::{
+    DesignRecord, DesignSummary, Origin, StageCount, StoredDesign, UnitRecords, WorkUnitRecord,
+};
 pub use schema::SCHEMA_VERSION;
 pub use stats::{DbStats, FamilyStats};
-pub use store::Store;

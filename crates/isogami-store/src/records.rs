@@ -1,5 +1,10 @@
 //! Plain records exchanged with the store.
 
+use isogami::cell::CellDims;
+use isogami::deploy::{DeploymentReport, Method};
+use isogami::linkage::LinkageAnalysis;
+use isogami::measure::BehaviourClass;
+use isogami::tiling::Family;
 use serde::{Deserialize, Serialize};
 
 /// One finished work unit.
@@ -30,39 +35,129 @@ pub struct StageCount {
     pub seconds: f64,
 }
 
-/// One kept design with its summary and full results.
+/// Where a design came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Origin {
+    /// Found by the exploration (belongs to a work unit).
+    Explored,
+    /// Saved by a user, e.g. from live editing in the browser.
+    User,
+}
+
+impl Origin {
+    /// The name stored in the database and used in JSON.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Origin::Explored => "explored",
+            Origin::User => "user",
+        }
+    }
+
+    /// The origin with this stored name.
+    pub fn from_name(name: &str) -> Option<Origin> {
+        match name {
+            "explored" => Some(Origin::Explored),
+            "user" => Some(Origin::User),
+            _ => None,
+        }
+    }
+}
+
+/// The summary of one design: every value a catalogue lists, filters, sorts, facets or plots.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct DesignRecord {
-    /// Spec string (primary key).
+pub struct DesignSummary {
+    /// Spec string (unique in a database).
     pub spec: String,
-    /// Family name.
-    pub family: String,
-    /// Shape parameters as a JSON array.
-    pub params: String,
-    /// Cell, e.g. `2x1`.
-    pub cell: String,
-    /// Joint characters.
+    /// Explored or saved by a user.
+    pub origin: Origin,
+    /// Tiling family.
+    pub family: Family,
+    /// Supercell.
+    pub cell: CellDims,
+    /// Tiles in the cell.
+    pub tile_count: u32,
+    /// Joint characters, one per unique edge.
     pub joints: String,
     /// Spec of the topology at default parameters this design was sampled from.
     pub topology: String,
-    /// Behaviour class, if any.
-    pub behaviour: Option<String>,
-    /// End reason of the deployment.
+    /// Shape parameters (the family's count, at most six).
+    pub params: Vec<f64>,
+    /// Behaviour class (None when the sheet does not expand).
+    pub behaviour: Option<BehaviourClass>,
+    /// Linkage signature such as "2×4-bar + 1×6-bar" (None without a linkage analysis).
+    pub linkage_signature: Option<String>,
+    /// Why the deployment ended, as the report's `end_reason.kind`, e.g. `contact_limit`.
     pub end_reason: String,
-    /// Largest principal expansion.
+    /// Deployment method.
+    pub method: Method,
+    /// Degrees of freedom of the closed state (1 for explored designs; a user design with more
+    /// was deployed along one chosen motion, see the report).
+    pub dof: u32,
+    /// Kerf relative to the mean edge length.
+    pub kerf: f64,
+    /// Largest principal expansion reached.
     pub max_expansion: f64,
-    /// Smallest principal expansion.
+    /// Smallest principal expansion reached.
     pub min_expansion: f64,
-    /// Largest area ratio.
+    /// Largest area ratio reached.
     pub max_area_ratio: f64,
-    /// Largest tile rotation (radians).
+    /// Largest tile rotation reached (radians).
     pub max_tile_rotation: f64,
+    /// Smallest Poisson-like ratio −ε_min/ε_max over the open frames (see
+    /// [`DesignRecord::from_parts`]); None when the sheet never opens.
+    pub poisson_min: Option<f64>,
+    /// Largest Poisson-like ratio over the open frames.
+    pub poisson_max: Option<f64>,
     /// Accepted deployment states.
     pub steps: u64,
-    /// Linkage signature such as "2×4-bar + 1×6-bar".
-    pub linkage_signature: Option<String>,
-    /// Full deployment report (JSON).
-    pub report: String,
-    /// Full linkage analysis (JSON).
-    pub linkages: Option<String>,
+}
+
+/// One design as written: its summary and the JSON of its full results. Built from typed
+/// library values by [`DesignRecord::from_parts`] or [`DesignRecord::from_entry`], so the
+/// summary always agrees with the report and the JSON always reads back.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DesignRecord {
+    pub(crate) summary: DesignSummary,
+    pub(crate) report: String,
+    pub(crate) linkages: Option<String>,
+}
+
+impl DesignRecord {
+    /// The summary columns.
+    pub fn summary(&self) -> &DesignSummary {
+        &self.summary
+    }
+
+    /// The deployment report as stored (JSON).
+    pub fn report_json(&self) -> &str {
+        &self.report
+    }
+
+    /// The linkage analysis as stored (JSON), if any.
+    pub fn linkages_json(&self) -> Option<&str> {
+        self.linkages.as_deref()
+    }
+}
+
+/// A design read back with its full results as the library's types.
+#[derive(Debug, Clone)]
+pub struct StoredDesign {
+    /// Summary columns.
+    pub summary: DesignSummary,
+    /// The deployment report.
+    pub report: DeploymentReport,
+    /// The linkage analysis, if one was stored.
+    pub linkages: Option<LinkageAnalysis>,
+}
+
+/// Everything one work unit writes, in one transaction.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UnitRecords {
+    /// The unit.
+    pub unit: WorkUnitRecord,
+    /// Its stages in pipeline order.
+    pub stages: Vec<StageCount>,
+    /// Its kept designs (origin `explored`).
+    pub designs: Vec<DesignRecord>,
 }

@@ -1,51 +1,120 @@
-//! The schema, version 1.
+//! The schema, version 2: tables, indexes and the marks that identify an isogami file.
+//!
+//! - `meta`: schema version, tool version and the settings of the run, each row with a
+//!   checksum.
+//! - `work_units` and `stage_counts`: one row per finished work unit (checksum over the unit
+//!   and its stage rows) and its per-stage counts.
+//! - `designs`: one row per design with every column a catalogue filters, sorts, facets or
+//!   plots by, and a checksum over the row. Explored designs name their work unit; designs
+//!   saved by a user (live editing) have origin `user` and no work unit.
+//! - `design_data`: the full deployment report and linkage analysis as JSON, one row per
+//!   design, kept apart so that list queries scan a dense table; checksum over the spec and
+//!   both documents.
+//!
+//! The file is marked with SQLite's `application_id` so that other programs' databases are
+//! told apart before anything is read, and uses a rollback journal (not WAL) so that readers
+//! never create files beside it.
 
-/// Version written into `meta.schema_version`; bump on any incompatible change.
-pub const SCHEMA_VERSION: i64 = 1;
+/// Version written into `meta.schema_version`; bump on any incompatible change. Version 1
+/// (issue 2) had no checksums, no user designs and one table for summaries and JSON.
+pub const SCHEMA_VERSION: i64 = 2;
 
-/// Tables. Designs are keyed by their spec string (exact round trip), work units by a
-/// deterministic id such as `topology/IH28/2x1`.
+/// `PRAGMA application_id` of an isogami database: "ISOG".
+pub(crate) const APPLICATION_ID: i32 = 0x4953_4F47;
+
+/// Tables every isogami database has.
+pub(crate) const TABLES: [&str; 5] = [
+    "meta",
+    "work_units",
+    "stage_counts",
+    "designs",
+    "design_data",
+];
+
+/// Shape parameter columns p0…p5 (isohedral families have at most six parameters).
+pub(crate) const PARAM_SLOTS: usize = 6;
+
+/// Tables and indexes, created in one transaction in a new or empty file. Every facet and
+/// every sortable measure has an index; a column that may be missing has a second index on
+/// `(column IS NULL, column)`, whose order is ascending with missing values last.
 pub(crate) const CREATE: &str = "
-CREATE TABLE IF NOT EXISTS meta (
-    key   TEXT PRIMARY KEY,
-    value TEXT NOT NULL
+CREATE TABLE meta (
+    key      TEXT PRIMARY KEY,
+    value    TEXT NOT NULL,
+    checksum INTEGER NOT NULL
 );
-CREATE TABLE IF NOT EXISTS work_units (
+CREATE TABLE work_units (
     id          TEXT PRIMARY KEY,
     family      TEXT NOT NULL,
     cell        TEXT NOT NULL,
     kind        TEXT NOT NULL,
     seconds     REAL NOT NULL,
-    finished_at TEXT NOT NULL
+    finished_at TEXT NOT NULL,
+    checksum    INTEGER NOT NULL
 );
-CREATE TABLE IF NOT EXISTS stage_counts (
+CREATE TABLE stage_counts (
     work_unit TEXT NOT NULL REFERENCES work_units(id),
     position  INTEGER NOT NULL,
     stage     TEXT NOT NULL,
     count_in  INTEGER NOT NULL,
     count_out INTEGER NOT NULL,
     seconds   REAL NOT NULL,
-    PRIMARY KEY (work_unit, stage)
+    PRIMARY KEY (work_unit, position)
 );
-CREATE TABLE IF NOT EXISTS designs (
-    spec              TEXT PRIMARY KEY,
-    work_unit         TEXT NOT NULL REFERENCES work_units(id),
-    family            TEXT NOT NULL,
-    params            TEXT NOT NULL,
+CREATE TABLE designs (
+    id                INTEGER PRIMARY KEY,
+    spec              TEXT NOT NULL,
+    origin            TEXT NOT NULL CHECK (origin IN ('explored', 'user')),
+    work_unit         TEXT REFERENCES work_units(id),
+    family            INTEGER NOT NULL,
     cell              TEXT NOT NULL,
+    cell_a            INTEGER NOT NULL,
+    cell_b            INTEGER NOT NULL,
+    tile_count        INTEGER NOT NULL,
     joints            TEXT NOT NULL,
     topology          TEXT NOT NULL,
+    param_count       INTEGER NOT NULL,
+    p0 REAL, p1 REAL, p2 REAL, p3 REAL, p4 REAL, p5 REAL,
     behaviour         TEXT,
+    linkage_signature TEXT,
     end_reason        TEXT NOT NULL,
+    method            TEXT NOT NULL,
+    dof               INTEGER NOT NULL,
+    kerf              REAL NOT NULL,
     max_expansion     REAL NOT NULL,
     min_expansion     REAL NOT NULL,
     max_area_ratio    REAL NOT NULL,
     max_tile_rotation REAL NOT NULL,
+    poisson_min       REAL,
+    poisson_max       REAL,
     steps             INTEGER NOT NULL,
-    linkage_signature TEXT,
-    report            TEXT NOT NULL,
-    linkages          TEXT
+    checksum          INTEGER NOT NULL,
+    CHECK ((origin = 'explored') = (work_unit IS NOT NULL))
 );
-CREATE INDEX IF NOT EXISTS designs_family ON designs(family);
-CREATE INDEX IF NOT EXISTS designs_behaviour ON designs(behaviour);
+CREATE TABLE design_data (
+    design   INTEGER PRIMARY KEY REFERENCES designs(id),
+    report   TEXT NOT NULL,
+    linkages TEXT,
+    checksum INTEGER NOT NULL
+);
+CREATE UNIQUE INDEX designs_spec ON designs(spec);
+CREATE INDEX designs_work_unit ON designs(work_unit);
+CREATE INDEX designs_family ON designs(family);
+CREATE INDEX designs_cell ON designs(cell);
+CREATE INDEX designs_tile_count ON designs(tile_count);
+CREATE INDEX designs_behaviour ON designs(behaviour);
+CREATE INDEX designs_linkage ON designs(linkage_signature);
+CREATE INDEX designs_end_reason ON designs(end_reason);
+CREATE INDEX designs_origin ON designs(origin);
+CREATE INDEX designs_max_expansion ON designs(max_expansion);
+CREATE INDEX designs_min_expansion ON designs(min_expansion);
+CREATE INDEX designs_area_ratio ON designs(max_area_ratio);
+CREATE INDEX designs_tile_rotation ON designs(max_tile_rotation);
+CREATE INDEX designs_poisson_min ON designs(poisson_min);
+CREATE INDEX designs_poisson_max ON designs(poisson_max);
+CREATE INDEX designs_steps ON designs(steps);
+CREATE INDEX designs_behaviour_nulls_last ON designs(behaviour IS NULL, behaviour);
+CREATE INDEX designs_linkage_nulls_last ON designs(linkage_signature IS NULL, linkage_signature);
+CREATE INDEX designs_poisson_min_nulls_last ON designs(poisson_min IS NULL, poisson_min);
+CREATE INDEX designs_poisson_max_nulls_last ON designs(poisson_max IS NULL, poisson_max);
 ";

@@ -1,8 +1,8 @@
 //! Summaries of a database.
 
 use crate::error::StoreResult;
+use crate::open::Store;
 use crate::records::StageCount;
-use crate::store::Store;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -28,8 +28,10 @@ pub struct DbStats {
     pub settings: Option<String>,
     /// Finished work units.
     pub work_units: u64,
-    /// Kept designs.
+    /// Designs (explored and saved by users).
     pub designs: u64,
+    /// Of these, designs saved by users.
+    pub user_designs: u64,
     /// Designs per behaviour class ("none" when unclassified).
     pub by_behaviour: BTreeMap<String, u64>,
     /// Designs per linkage signature.
@@ -55,7 +57,7 @@ fn accumulate(into: &mut Vec<StageCount>, stages: &[StageCount]) {
 }
 
 impl Store {
-    /// Counts by family, behaviour, linkage and stage.
+    /// Counts by family, behaviour, linkage and stage (work units checksum-verified).
     pub fn stats(&self) -> StoreResult<DbStats> {
         let units = self.work_units()?;
         let mut stages = Vec::new();
@@ -68,34 +70,42 @@ impl Store {
         }
         let mut by_behaviour = BTreeMap::new();
         let mut by_linkage = BTreeMap::new();
-        let mut stmt = self
-            .conn
-            .prepare("SELECT family, behaviour, linkage_signature FROM designs")?;
+        let mut designs = 0;
+        let mut stmt = self.conn.prepare(
+            "SELECT family, behaviour, linkage_signature, count(*) FROM designs
+             GROUP BY family, behaviour, linkage_signature",
+        )?;
         let rows = stmt.query_map([], |r| {
             Ok((
-                r.get::<_, String>(0)?,
+                r.get::<_, i64>(0)?,
                 r.get::<_, Option<String>>(1)?,
                 r.get::<_, Option<String>>(2)?,
+                r.get::<_, i64>(3)? as u64,
             ))
         })?;
-        let mut designs = 0;
         for row in rows {
-            let (family, behaviour, linkage) = row?;
-            designs += 1;
-            families.entry(family).or_default().designs += 1;
+            let (family, behaviour, linkage, n) = row?;
+            designs += n;
+            families.entry(format!("IH{family}")).or_default().designs += n;
             *by_behaviour
                 .entry(behaviour.unwrap_or_else(|| "none".into()))
-                .or_insert(0) += 1;
+                .or_insert(0) += n;
             *by_linkage
                 .entry(linkage.unwrap_or_else(|| "unknown".into()))
-                .or_insert(0) += 1;
+                .or_insert(0) += n;
         }
+        let user_designs: i64 = self.conn.query_row(
+            "SELECT count(*) FROM designs WHERE origin = 'user'",
+            [],
+            |r| r.get(0),
+        )?;
         Ok(DbStats {
             schema_version: crate::SCHEMA_VERSION,
             tool_version: self.tool_version()?,
             settings: self.settings()?,
             work_units: units.len() as u64,
             designs,
+            user_designs: user_designs as u64,
             by_behaviour,
             by_linkage,
             stages,

@@ -1,14 +1,15 @@
 //! `isogami merge` and `isogami db stats`.
 
 use crate::output::{emit, print_json, CliResult};
-use isogami_store::{DbStats, Store};
+use isogami_store::{Check, DbStats, Store, StoreError, StoreWriter};
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `merge`.
 #[derive(Debug, clap::Args)]
 pub struct MergeArgs {
-    /// The database to merge into (created if missing).
+    /// The database to merge into (created if missing or empty; otherwise it must be an
+    /// isogami database made with the shards' settings).
     #[arg(long)]
     into: PathBuf,
     /// Shard databases to merge.
@@ -16,30 +17,43 @@ pub struct MergeArgs {
     shards: Vec<PathBuf>,
 }
 
-/// Merges shard databases; units already present are skipped.
+/// Merges shard databases; units already present are skipped. Every shard is opened and
+/// fully checked before the target is touched, so a damaged or foreign shard stops the merge
+/// with nothing written.
 pub fn merge(args: MergeArgs) -> CliResult {
-    for s in &args.shards {
-        if !s.is_file() {
-            return Err(format!("{}: no such database", s.display()));
-        }
-    }
+    let shards = args
+        .shards
+        .iter()
+        .map(|s| Store::open_read(s, Check::Full).map_err(|e| at(s, e)))
+        .collect::<Result<Vec<_>, _>>()?;
     let mut store =
-        Store::open_any(&args.into).map_err(|e| format!("{}: {e}", args.into.display()))?;
+        StoreWriter::open(&args.into, None, Check::Full).map_err(|e| at(&args.into, e))?;
     let mut o = String::new();
-    for s in &args.shards {
-        let r = store
-            .merge_from(s)
-            .map_err(|e| format!("{}: {e}", s.display()))?;
-        let _ = writeln!(
+    for (path, shard) in args.shards.iter().zip(&shards) {
+        let r = store.merge_from(shard).map_err(|e| at(path, e))?;
+        let _ = write!(
             o,
             "{}: {} work units added ({} already present), {} designs",
-            s.display(),
+            path.display(),
             r.units_added,
             r.units_skipped,
             r.designs_added
         );
+        if r.user_designs_added + r.user_designs_skipped > 0 {
+            let _ = write!(
+                o,
+                ", {} user designs ({} already present)",
+                r.user_designs_added, r.user_designs_skipped
+            );
+        }
+        o.push('\n');
     }
     emit(&o)
+}
+
+/// A store error as the one-line message `PATH: problem`.
+fn at(path: &Path, e: StoreError) -> String {
+    format!("{}: {e}", path.display())
 }
 
 /// Subcommands of `db`.
@@ -60,11 +74,9 @@ pub enum DbCommand {
 pub fn run(cmd: DbCommand) -> CliResult {
     match cmd {
         DbCommand::Stats { db, json } => {
-            if !db.is_file() {
-                return Err(format!("{}: no such database", db.display()));
-            }
-            let store = Store::open_any(&db).map_err(|e| format!("{}: {e}", db.display()))?;
-            let stats = store.stats().map_err(|e| e.to_string())?;
+            // Reading only: nothing is created or changed, even for a file that is refused.
+            let store = Store::open_read(&db, Check::Full).map_err(|e| at(&db, e))?;
+            let stats = store.stats().map_err(|e| at(&db, e))?;
             if json {
                 print_json(&stats)
             } else {
@@ -77,9 +89,14 @@ pub fn run(cmd: DbCommand) -> CliResult {
 /// The per-stage and per-family report.
 pub fn stats_table(s: &DbStats) -> String {
     let mut o = String::new();
+    let user = if s.user_designs > 0 {
+        format!(", {} of them saved by users", s.user_designs)
+    } else {
+        String::new()
+    };
     let _ = writeln!(
         o,
-        "{} work units, {} designs (schema {}, isogami {})",
+        "{} work units, {} designs{user} (schema {}, isogami {})",
         s.work_units,
         s.designs,
         s.schema_version,

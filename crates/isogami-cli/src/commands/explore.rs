@@ -3,11 +3,11 @@
 
 use crate::output::{emit, print_json, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
-use isogami::catalog::{run_unit, CatalogSettings, UnitOutcome};
+use isogami::catalog::{run_unit, CatalogSettings};
 use isogami::cell::CellDims;
 use isogami::explore::cells_to_explore;
 use isogami::tiling::Family;
-use isogami_store::{DesignRecord, StageCount, Store, WorkUnitRecord};
+use isogami_store::{Check, RunInfo, StoreWriter, UnitRecords};
 use rayon::prelude::*;
 use std::path::PathBuf;
 use std::sync::mpsc;
@@ -123,55 +123,6 @@ fn units_of(args: &Args, settings: &CatalogSettings) -> Result<Vec<Unit>, String
     Ok(units)
 }
 
-fn records(
-    outcome: &UnitOutcome,
-    seconds: f64,
-) -> Result<(WorkUnitRecord, Vec<StageCount>, Vec<DesignRecord>), String> {
-    let unit = WorkUnitRecord {
-        id: format!("{}/{}", outcome.family, outcome.dims),
-        family: outcome.family.name(),
-        cell: outcome.dims.to_string(),
-        kind: "topology+shapes".into(),
-        seconds,
-    };
-    let stages = outcome
-        .stages
-        .iter()
-        .map(|s| StageCount {
-            stage: s.stage.clone(),
-            count_in: s.count_in,
-            count_out: s.count_out,
-            seconds: s.seconds,
-        })
-        .collect();
-    let designs = outcome
-        .entries
-        .iter()
-        .map(|e| {
-            let r = &e.report;
-            Ok(DesignRecord {
-                spec: e.design.to_string(),
-                family: e.design.family.name(),
-                params: serde_json::to_string(&e.design.params).map_err(|x| x.to_string())?,
-                cell: e.design.dims.to_string(),
-                joints: e.design.joints.iter().map(|j| j.to_char()).collect(),
-                topology: e.topology.clone(),
-                behaviour: r.behaviour.map(|b| b.to_string()),
-                end_reason: r.end_reason.to_string(),
-                max_expansion: r.max_expansion,
-                min_expansion: r.min_expansion,
-                max_area_ratio: r.max_area_ratio,
-                max_tile_rotation: r.max_tile_rotation,
-                steps: r.steps as u64,
-                linkage_signature: Some(e.linkages.signature.clone()),
-                report: serde_json::to_string(r).map_err(|x| x.to_string())?,
-                linkages: Some(serde_json::to_string(&e.linkages).map_err(|x| x.to_string())?),
-            })
-        })
-        .collect::<Result<_, String>>()?;
-    Ok((unit, stages, designs))
-}
-
 /// Explores and prints the per-family, per-stage report.
 pub fn run(args: Args) -> CliResult {
     let settings = settings_of(&args)?;
@@ -191,9 +142,16 @@ pub fn run(args: Args) -> CliResult {
     if jobs == 0 || jobs > 1024 {
         return Err(format!("--jobs must lie in 1..=1024, got {jobs}"));
     }
-    let mut store = Store::open(&args.db, env!("CARGO_PKG_VERSION"), &settings.fingerprint())
+    let fingerprint = settings.fingerprint();
+    let run = RunInfo {
+        tool_version: env!("CARGO_PKG_VERSION"),
+        settings: &fingerprint,
+    };
+    let mut store = StoreWriter::open(&args.db, Some(run), Check::Full)
         .map_err(|e| format!("{}: {e}", args.db.display()))?;
-    let done = store.done_units().map_err(|e| e.to_string())?;
+    let done = store
+        .done_units()
+        .map_err(|e| format!("{}: {e}", args.db.display()))?;
     let total = units.len();
     let todo: Vec<Unit> = units
         .into_iter()
@@ -229,13 +187,15 @@ pub fn run(args: Args) -> CliResult {
         for (unit, outcome, seconds) in rx {
             bar.set_message(unit.id());
             match outcome {
-                Ok(o) => {
-                    let (u, stages, designs) = records(&o, seconds)?;
-                    store
-                        .commit_unit(&u, &stages, &designs)
-                        .map_err(|e| e.to_string())?;
-                    committed += 1;
-                }
+                Ok(o) => match UnitRecords::from_outcome(&o, seconds) {
+                    Ok(records) => {
+                        store
+                            .commit_unit(&records)
+                            .map_err(|e| format!("{}: {e}", args.db.display()))?;
+                        committed += 1;
+                    }
+                    Err(e) => failures.push(format!("{}: {e}", unit.id())),
+                },
                 Err(e) => failures.push(format!("{}: {e}", unit.id())),
             }
             bar.inc(1);
@@ -243,7 +203,9 @@ pub fn run(args: Args) -> CliResult {
         Ok(())
     })?;
     bar.finish_and_clear();
-    let stats = store.stats().map_err(|e| e.to_string())?;
+    let stats = store
+        .stats()
+        .map_err(|e| format!("{}: {e}", args.db.display()))?;
     if args.json {
         print_json(&stats)?;
     } else {

@@ -26,7 +26,7 @@ pub struct Tile {
 }
 
 /// Which end of an edge a joint sits on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
 pub enum End {
     /// The edge's first vertex on tile `tile_a` (counter-clockwise order).
     A,

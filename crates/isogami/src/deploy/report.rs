@@ -11,7 +11,7 @@ use crate::measure::{classify, BehaviourClass, FrameMeasures};
 use serde::Serialize;
 
 /// Pose of one tile in a frame.
-#[derive(Debug, Clone, Copy, Serialize)]
+#[derive(Debug, Clone, Copy, Serialize, serde::Deserialize)]
 pub struct TilePose {
     /// Centroid x (tiling units).
     pub x: Real,
@@ -22,7 +22,7 @@ pub struct TilePose {
 }
 
 /// One frame of the report.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct FrameReport {
     /// Raw step index.
     pub step: usize,
@@ -47,7 +47,7 @@ pub struct FrameReport {
 }
 
 /// Summary of the whole trajectory.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct DeploymentReport {
     /// Design spec string.
     pub design: String,

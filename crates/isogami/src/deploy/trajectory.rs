@@ -25,7 +25,7 @@ pub struct RawStep {
 }
 
 /// Why a deployment stopped.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case", tag = "kind")]
 pub enum EndReason {
     /// Contact blocks further motion: the physical limit of deployment.

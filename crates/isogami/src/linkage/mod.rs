@@ -47,7 +47,7 @@ pub use faces::Node;
 /// A pin joint of a linkage: the design's joint on `edge` at `end`, in the copy of the edge
 /// whose `tile_a` sits in `cell`. Its closed-state position is
 /// `cell.endpoint(edge, end) + cell.offset_vector(cell)`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 pub struct LinkageJoint {
     /// Unique edge index of the cell.
     pub edge: usize,
@@ -58,7 +58,7 @@ pub struct LinkageJoint {
 }
 
 /// One linkage: a chordless cycle of tiles around a hole.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, serde::Deserialize)]
 pub struct Linkage {
     /// Number of bars (tiles, equally joints) of the loop.
     pub bars: usize,
@@ -69,7 +69,7 @@ pub struct Linkage {
 }
 
 /// Why a face of the sheet is not a linkage.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FaceIssue {
     /// The boundary passes the same tile twice (a tile hanging into the hole, a cut tile).
@@ -84,7 +84,7 @@ pub enum FaceIssue {
 
 /// A face of the sheet that is not a linkage, with the tiles along its boundary (for an
 /// unbounded face, one period of it).
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, serde::Deserialize)]
 pub struct OtherFace {
     /// What disqualifies it.
     pub issue: FaceIssue,
@@ -93,7 +93,7 @@ pub struct OtherFace {
 }
 
 /// The linkages of a design.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, serde::Deserialize)]
 pub struct LinkageAnalysis {
     /// One linkage per translation class, sorted by bar count, then nodes.
     pub linkages: Vec<Linkage>,

@@ -1,0 +1,209 @@
+//! Records built from the library's results: a catalogue entry or any deployed design becomes
+//! a [`DesignRecord`], a work unit's outcome becomes [`UnitRecords`].
+
+use crate::error::{StoreError, StoreResult};
+use crate::records::{
+    DesignRecord, DesignSummary, Origin, StageCount, UnitRecords, WorkUnitRecord,
+};
+use crate::schema::PARAM_SLOTS;
+use isogami::catalog::{CatalogEntry, UnitOutcome};
+use isogami::deploy::DeploymentReport;
+use isogami::linkage::LinkageAnalysis;
+use isogami::measure::effective_poisson_ratio;
+use isogami::topology::Design;
+
+/// Frames count as open for the Poisson-like ratio when their largest principal expansion
+/// reaches this fraction of the largest one of the whole deployment: below it both
+/// expansions are so small that their ratio is dominated by solver noise.
+pub const POISSON_OPEN_FRACTION: f64 = 0.05;
+
+fn invalid(spec: &str, problem: impl Into<String>) -> StoreError {
+    StoreError::InvalidRecord {
+        spec: spec.to_string(),
+        problem: problem.into(),
+    }
+}
+
+/// Smallest and largest −ε_min/ε_max over the frames that have opened (see
+/// [`POISSON_OPEN_FRACTION`]); None when no frame has.
+fn poisson_range(report: &DeploymentReport) -> Option<(f64, f64)> {
+    let open = POISSON_OPEN_FRACTION * report.max_expansion;
+    if report.max_expansion.is_nan() || report.max_expansion <= 0.0 {
+        return None;
+    }
+    report
+        .frames
+        .iter()
+        .filter(|f| f.measures.max_expansion >= open)
+        .filter_map(|f| effective_poisson_ratio(f.measures.min_expansion, f.measures.max_expansion))
+        .fold(None, |acc, r| match acc {
+            None => Some((r, r)),
+            Some((lo, hi)) => Some((f64::min(lo, r), f64::max(hi, r))),
+        })
+}
+
+/// The `kind` tag of the report's end reason, e.g. `contact_limit`.
+fn end_reason_kind(spec: &str, report: &DeploymentReport) -> StoreResult<String> {
+    let value = serde_json::to_value(&report.end_reason)
+        .map_err(|e| invalid(spec, format!("end reason: {e}")))?;
+    value
+        .get("kind")
+        .and_then(|k| k.as_str())
+        .map(str::to_string)
+        .ok_or_else(|| invalid(spec, "end reason has no kind"))
+}
+
+impl DesignRecord {
+    /// Builds the record of `design` from its deployment `report` and, if computed, its
+    /// `linkages`. `topology` is the spec of the topology the design was sampled from (its own
+    /// spec for a user design).
+    ///
+    /// Refused (with the field named): more than six shape parameters, a non-finite summary
+    /// value, or a report whose JSON would not read back as a `DeploymentReport` (a NaN or
+    /// infinite number anywhere in it, which JSON writes as `null`).
+    ///
+    /// The Poisson-like ratio range is −ε_min/ε_max over the frames whose largest principal
+    /// expansion reaches [`POISSON_OPEN_FRACTION`] of the largest one reached: −1 for
+    /// isotropic opening, positive when one direction shrinks while the other grows.
+    pub fn from_parts(
+        design: &Design,
+        topology: &str,
+        origin: Origin,
+        report: &DeploymentReport,
+        linkages: Option<&LinkageAnalysis>,
+    ) -> StoreResult<DesignRecord> {
+        let spec = design.to_string();
+        if design.params.len() > PARAM_SLOTS {
+            return Err(invalid(
+                &spec,
+                format!(
+                    "{} shape parameters (at most {PARAM_SLOTS})",
+                    design.params.len()
+                ),
+            ));
+        }
+        let info = design.family.info();
+        let tile_count =
+            info.aspect_count * usize::from(design.dims.a()) * usize::from(design.dims.b());
+        let (poisson_min, poisson_max) = match poisson_range(report) {
+            Some((lo, hi)) => (Some(lo), Some(hi)),
+            None => (None, None),
+        };
+        let summary = DesignSummary {
+            spec: spec.clone(),
+            origin,
+            family: design.family,
+            cell: design.dims,
+            tile_count: u32::try_from(tile_count)
+                .map_err(|_| invalid(&spec, format!("{tile_count} tiles")))?,
+            joints: design.joints.iter().map(|j| j.to_char()).collect(),
+            topology: topology.to_string(),
+            params: design.params.clone(),
+            behaviour: report.behaviour,
+            linkage_signature: linkages.map(|l| l.signature.clone()),
+            end_reason: end_reason_kind(&spec, report)?,
+            method: report.method,
+            dof: u32::try_from(report.dof)
+                .map_err(|_| invalid(&spec, format!("{} degrees of freedom", report.dof)))?,
+            kerf: report.kerf,
+            max_expansion: report.max_expansion,
+            min_expansion: report.min_expansion,
+            max_area_ratio: report.max_area_ratio,
+            max_tile_rotation: report.max_tile_rotation,
+            poisson_min,
+            poisson_max,
+            steps: report.steps as u64,
+        };
+        check_finite(&summary)?;
+        report
+            .check_finite()
+            .map_err(|e| invalid(&spec, format!("deployment report: {e}")))?;
+        let report_json =
+            serde_json::to_string(report).map_err(|e| invalid(&spec, format!("report: {e}")))?;
+        if let Err(e) = serde_json::from_str::<DeploymentReport>(&report_json) {
+            return Err(invalid(
+                &spec,
+                format!(
+                    "the deployment report does not read back ({e}); a NaN or infinite number?"
+                ),
+            ));
+        }
+        let linkages_json = linkages
+            .map(serde_json::to_string)
+            .transpose()
+            .map_err(|e| invalid(&spec, format!("linkages: {e}")))?;
+        Ok(DesignRecord {
+            summary,
+            report: report_json,
+            linkages: linkages_json,
+        })
+    }
+
+    /// The record of a design the exploration kept.
+    pub fn from_entry(entry: &CatalogEntry) -> StoreResult<DesignRecord> {
+        DesignRecord::from_parts(
+            &entry.design,
+            &entry.topology,
+            Origin::Explored,
+            &entry.report,
+            Some(&entry.linkages),
+        )
+    }
+}
+
+/// Refuses a summary with a NaN or infinite number, naming the field.
+fn check_finite(s: &DesignSummary) -> StoreResult<()> {
+    let named = [
+        ("kerf", Some(s.kerf)),
+        ("max_expansion", Some(s.max_expansion)),
+        ("min_expansion", Some(s.min_expansion)),
+        ("max_area_ratio", Some(s.max_area_ratio)),
+        ("max_tile_rotation", Some(s.max_tile_rotation)),
+        ("poisson_min", s.poisson_min),
+        ("poisson_max", s.poisson_max),
+    ];
+    for (name, v) in named {
+        if let Some(x) = v {
+            if !x.is_finite() {
+                return Err(invalid(&s.spec, format!("{name} is {x}")));
+            }
+        }
+    }
+    if let Some((k, x)) = s.params.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+        return Err(invalid(&s.spec, format!("shape parameter v{k} is {x}")));
+    }
+    Ok(())
+}
+
+impl UnitRecords {
+    /// The records of one finished work unit that took `seconds`.
+    pub fn from_outcome(outcome: &UnitOutcome, seconds: f64) -> StoreResult<UnitRecords> {
+        let unit = WorkUnitRecord {
+            id: format!("{}/{}", outcome.family, outcome.dims),
+            family: outcome.family.name(),
+            cell: outcome.dims.to_string(),
+            kind: "topology+shapes".into(),
+            seconds,
+        };
+        let stages = outcome
+            .stages
+            .iter()
+            .map(|s| StageCount {
+                stage: s.stage.clone(),
+                count_in: s.count_in,
+                count_out: s.count_out,
+                seconds: s.seconds,
+            })
+            .collect();
+        let designs = outcome
+            .entries
+            .iter()
+            .map(DesignRecord::from_entry)
+            .collect::<StoreResult<_>>()?;
+        Ok(UnitRecords {
+            unit,
+            stages,
+            designs,
+        })
+    }
+}
