@@ -112,21 +112,26 @@ impl ContactModel {
 
     /// For every pair, the bound of how fast its two polygons can approach per unit step
     /// along `dq`.
-    pub(crate) fn approach_rates(&self, pairs: &[CandidatePair], dq: &DVec) -> Vec<Real> {
+    fn approach_rates(&self, pairs: &[CandidatePair], dq: &DVec) -> Vec<Real> {
+        let rate = self.approach_rate(dq);
+        pairs.iter().map(rate).collect()
+    }
+
+    /// The bound of how fast a pair's two polygons can approach per unit step along `dq`:
+    /// |Δp| + |Δθ|·r of each tile plus |k_u||Δu| + |k_w||Δw|.
+    pub(crate) fn approach_rate(&self, dq: &DVec) -> impl Fn(&CandidatePair) -> Real + '_ {
         let l = self.layout;
-        let tile = |i: usize| {
-            let k = l.tile(i);
-            Vec2::new(dq[k], dq[k + 1]).norm() + dq[k + 2].abs() * self.extents[i]
-        };
         let du = Vec2::new(dq[l.u()], dq[l.u() + 1]).norm();
         let dw = Vec2::new(dq[l.w()], dq[l.w() + 1]).norm();
-        pairs
-            .iter()
-            .map(|p| {
-                let lattice =
-                    Real::from(p.offset[0].abs()) * du + Real::from(p.offset[1].abs()) * dw;
-                tile(p.a) + tile(p.b) + lattice
+        let tiles: Vec<Real> = (0..l.tiles)
+            .map(|i| {
+                let k = l.tile(i);
+                Vec2::new(dq[k], dq[k + 1]).norm() + dq[k + 2].abs() * self.extents[i]
             })
-            .collect()
+            .collect();
+        move |p: &CandidatePair| {
+            let lattice = Real::from(p.offset[0].abs()) * du + Real::from(p.offset[1].abs()) * dw;
+            tiles[p.a] + tiles[p.b] + lattice
+        }
     }
 }

@@ -2,8 +2,8 @@
 
 use super::barrier::barrier_energy;
 use super::model::ContactModel;
-use super::pairs::for_each_near_pair;
 use super::narrow::{for_each_close, shifted_into, OVERLAP_TOL};
+use super::pairs::for_each_near_pair;
 use crate::geometry::interiors_overlap;
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};

@@ -18,6 +18,10 @@ pub(crate) struct Lattice {
     /// Cell offsets (k_u, k_w) of b1 and b2: b = k_u·u + k_w·w.
     c1: [i64; 2],
     c2: [i64; 2],
+    /// |b1|, |b1|² and b1 × b2, used by every query.
+    b1_len: Real,
+    b1_sq: Real,
+    area: Real,
     /// Smallest singular value of [u w]: |k_u·u + k_w·w| ≥ σ_min·|(k_u, k_w)|.
     pub(crate) sigma_min: Real,
 }
@@ -62,6 +66,9 @@ impl Lattice {
             b2,
             c1,
             c2,
+            b1_len: b1.norm(),
+            b1_sq: b1.norm_squared(),
+            area: cross(&b1, &b2),
             sigma_min,
         })
     }
@@ -82,14 +89,13 @@ impl Lattice {
         }
         let r = radius * (1.0 + 1e-12) + 1e-12;
         let (b1, b2) = (self.b1, self.b2);
-        let n1 = b1.norm();
-        let area = cross(&b1, &b2);
+        let (n1, area) = (self.b1_len, self.area);
         // The points d + j·b2 + i·b1 lie on lines parallel to b1, |area|/|b1| apart; a line
         // meets the disc only if its distance from the origin is at most r.
         let c = cross(&b1, &d);
         let (lo, hi) = ((-r * n1 - c) / area, (r * n1 - c) / area);
         let (j0, j1) = (lo.min(hi).ceil(), lo.max(hi).floor());
-        let b1sq = b1.norm_squared();
+        let b1sq = self.b1_sq;
         let mut visited = 0usize;
         let mut j = j0;
         while j <= j1 {

@@ -58,6 +58,35 @@ impl Placement {
         }
     }
 
+    /// The reference points and lattice of state q without any polygon (tiles have empty
+    /// vertex lists and empty boxes): enough for the broad phase and `reach` bounds, which
+    /// use only centres, extents and u, w.
+    pub(crate) fn centres_only(layout: StateLayout, q: &DVec) -> Placement {
+        let empty = Aabb {
+            lo: Vec2::repeat(Real::INFINITY),
+            hi: Vec2::repeat(Real::NEG_INFINITY),
+        };
+        let tiles = (0..layout.tiles)
+            .map(|i| {
+                let k = layout.tile(i);
+                PlacedTile {
+                    arms: Vec::new(),
+                    world: Vec::new(),
+                    aabb: empty,
+                    centre: Vec2::new(q[k], q[k + 1]),
+                }
+            })
+            .collect();
+        let (iu, iw) = (layout.u(), layout.w());
+        let (u, w) = (Vec2::new(q[iu], q[iu + 1]), Vec2::new(q[iw], q[iw + 1]));
+        Placement {
+            tiles,
+            u,
+            w,
+            lattice: Lattice::new(u, w),
+        }
+    }
+
     /// Translation of the cell at `offset`.
     pub(crate) fn shift(&self, offset: [i32; 2]) -> Vec2 {
         self.u * Real::from(offset[0]) + self.w * Real::from(offset[1])

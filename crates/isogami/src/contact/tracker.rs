@@ -4,6 +4,8 @@
 
 use super::clearance::CLEARANCE_REACH;
 use super::model::ContactModel;
+use super::pairs::for_each_near_pair;
+use super::placement::Placement;
 use super::reach::{clearance_drop_rate, Rates, Spread};
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
@@ -34,15 +36,19 @@ impl ClearanceTracker {
     }
 
     /// A fraction α ∈ [0, 1] of `d` that is safe from `q` (which must be intersection-free).
-    pub fn fraction(&mut self, mech: &Mechanism, contact: &ContactModel, q: &DVec, d: &DVec) -> Real {
+    pub fn fraction(
+        &mut self,
+        mech: &Mechanism,
+        contact: &ContactModel,
+        q: &DVec,
+        d: &DVec,
+    ) -> Real {
         self.pending = None;
         if contact.check(mech, q).is_err() || d.len() != q.len() || d.iter().any(|x| !x.is_finite())
         {
             return 0.0;
         }
-        let Some(placed) = contact.place(mech, q) else {
-            return 0.0;
-        };
+        let placed = Placement::centres_only(contact.layout, q);
         let Some(spread) = Spread::of(&placed, &contact.extents) else {
             return 0.0;
         };
@@ -51,13 +57,14 @@ impl ClearanceTracker {
             self.pending = Some((0.0, 0.0));
             return 1.0;
         }
-        let Some(pairs) = contact.near(&placed, CLEARANCE_REACH) else {
+        let rate = contact.approach_rate(d);
+        let mut near: Real = 0.0;
+        let listed = for_each_near_pair(&placed, &contact.extents, CLEARANCE_REACH, |p| {
+            near = near.max(rate(&p));
+        });
+        if listed.is_err() {
             return 0.0;
-        };
-        let near = contact
-            .approach_rates(&pairs, d)
-            .into_iter()
-            .fold(0.0, Real::max);
+        }
         let far = clearance_drop_rate(&spread, &rates, CLEARANCE_REACH);
         self.pending = far.map(|f| (near, f));
         let far_safe = far.is_some_and(|f| 0.9 * CLEARANCE_REACH >= f);
@@ -82,9 +89,11 @@ impl ClearanceTracker {
     /// [`ClearanceTracker::fraction`] call, α at most what it returned.
     pub fn moved(&mut self, alpha: Real) {
         self.clearance_lb = match (self.clearance_lb, self.pending) {
-            (Some(c), Some((near, far))) => {
-                Some((c - alpha * near).min(CLEARANCE_REACH - alpha * far).max(0.0))
-            }
+            (Some(c), Some((near, far))) => Some(
+                (c - alpha * near)
+                    .min(CLEARANCE_REACH - alpha * far)
+                    .max(0.0),
+            ),
             _ => None,
         };
     }
