@@ -162,7 +162,7 @@ pub(crate) fn design_from_values(
     let cell_text = r.text()?;
     let cell: CellDims = cell_text
         .parse()
-        .map_err(|e: isogami::Error| e.to_string())?;
+        .map_err(|e: isogami::cell::CellError| e.to_string())?;
     let (a, b) = (r.int()?, r.int()?);
     if (a, b) != (i64::from(cell.a()), i64::from(cell.b())) {
         return Err(format!("cell {cell_text} but dimensions {a}x{b}"));
@@ -198,7 +198,7 @@ pub(crate) fn design_from_values(
     let method_name = r.text()?;
     let method: Method = method_name
         .parse()
-        .map_err(|e: isogami::Error| e.to_string())?;
+        .map_err(|e: isogami::error::SettingsError| e.to_string())?;
     let dof = small(r.int()?, "dof")?;
     Ok((
         DesignSummary {

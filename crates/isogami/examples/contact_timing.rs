@@ -73,7 +73,7 @@ fn noise(seed: &mut u64) -> Real {
     (*seed >> 11) as Real / (1u64 << 53) as Real * 2.0 - 1.0
 }
 
-fn main() -> isogami::Result<()> {
+fn main() -> Result<(), Box<dyn std::error::Error>> {
     let settings = ContactSettings::default();
 
     let d = Design::resolve("rotating-squares")?;
@@ -87,7 +87,7 @@ fn main() -> isogami::Result<()> {
     );
     let v = analyze(&mech, &mech.rest, Default::default())?
         .motion
-        .ok_or_else(|| isogami::Error::Numerical("rotating squares has no motion".into()))?
+        .ok_or("rotating squares has no motion")?
         .vector;
     report(
         "rotating squares, closed",

@@ -27,7 +27,7 @@ use crate::deploy::{
     build_report, compare_design, frame_records, select_frames, DeploySettings, DeploymentReport,
     DesignComparison, FrameRecord, Progress, Trajectory,
 };
-use crate::error::{Error, Result};
+use crate::error::{Requirement, Result, SettingsError};
 use crate::kinematics::Mechanism;
 use crate::linkage::{analyze_linkages, LinkageAnalysis};
 use crate::math::Real;
@@ -75,10 +75,12 @@ fn assemble(design: &Design) -> Result<(UnitCell, Mechanism)> {
 /// Mobility of a design in its closed state (paper §3.2).
 pub fn analyze(design: &Design, settings: MobilitySettings) -> Result<Analysis> {
     if !(settings.rel_tol.is_finite() && settings.rel_tol > 0.0) {
-        return Err(Error::Settings(format!(
-            "mobility tolerance must be a positive number, got {}",
-            settings.rel_tol
-        )));
+        return Err(SettingsError::new(
+            "mobility tolerance",
+            settings.rel_tol,
+            Requirement::Positive,
+        )
+        .into());
     }
     let (cell, mech) = assemble(design)?;
     let mobility = crate::mobility::analyze(&mech, &mech.rest, settings)?;
@@ -123,13 +125,18 @@ impl Default for DeployRequest {
 
 impl DeployRequest {
     /// Checks the settings and the frame selection.
-    pub fn validate(&self) -> Result<()> {
+    pub fn validate(&self) -> std::result::Result<(), SettingsError> {
         self.settings.validate()?;
         if let FrameSelection::Evenly(n) = self.frames {
             if !(2..=MAX_FRAME_COUNT).contains(&n) {
-                return Err(Error::Settings(format!(
-                    "frame count must lie in 2..={MAX_FRAME_COUNT}, got {n}"
-                )));
+                return Err(SettingsError::new(
+                    "frame count",
+                    n,
+                    Requirement::CountIn {
+                        low: 2,
+                        high: MAX_FRAME_COUNT as u64,
+                    },
+                ));
             }
         }
         Ok(())
@@ -159,7 +166,9 @@ pub struct Deployment {
 /// collision polygons of the sheet overlapping, every number finite.
 ///
 /// `progress` is called after every accepted step with the number of states so far; when it
-/// returns `false` the run stops with [`Error::Cancelled`].
+/// returns `false` the run stops with
+/// [`DeployError::Cancelled`](crate::deploy::DeployError::Cancelled) (see
+/// [`Error::is_cancelled`](crate::Error::is_cancelled)).
 pub fn deploy(
     design: &Design,
     request: &DeployRequest,
@@ -195,7 +204,7 @@ pub fn deploy(
 /// The linkage analysis of a design (paper §5.1).
 pub fn linkages(design: &Design) -> Result<LinkageAnalysis> {
     let cell = design.cell()?;
-    analyze_linkages(&cell, &design.joints)
+    Ok(analyze_linkages(&cell, &design.joints)?)
 }
 
 /// Rigid modes, NCM and springs on the same design with otherwise equal settings (paper §5,

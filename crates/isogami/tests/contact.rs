@@ -2,7 +2,9 @@
 //! the exact overlap test and conservative advancement.
 
 use isogami::cell::{CellDims, UnitCell};
-use isogami::contact::{ContactModel, ContactSettings, HessianProjection, Overlap, KEEP_FRACTION};
+use isogami::contact::{
+    ContactError, ContactModel, ContactSettings, HessianProjection, Overlap, KEEP_FRACTION,
+};
 use isogami::geometry::{interiors_overlap, point_in_polygon_strict, point_segment_distance};
 use isogami::kinematics::{Mechanism, StateLayout};
 use isogami::math::{symmetric_eigen, vec2, DMat, DVec, Real, Vec2};
@@ -436,6 +438,10 @@ fn settings_and_insets_are_validated() {
     };
     let err = ContactModel::new(&thin, ContactSettings::with_kerf(0.1)).unwrap_err();
     assert!(err.to_string().contains("tile 1"), "{err}");
+    assert!(
+        matches!(err, ContactError::Inset { tile: 1, inset, .. } if inset == 0.05),
+        "{err:?}"
+    );
     assert!(ContactModel::new(&thin, ContactSettings::with_kerf(0.02)).is_ok());
 }
 

@@ -5,13 +5,13 @@ mod common;
 
 use common::rotating_squares;
 use isogami::contact::{ContactModel, ContactSettings};
+use isogami::deploy::DeployError;
 use isogami::deploy::{
     compare_methods, deploy, frame_records, DeploySettings, EndReason, Method, Trajectory,
 };
 use isogami::kinematics::Mechanism;
 use isogami::measure::FrameMeasures;
 use isogami::topology::{Design, JointChoice};
-use isogami::Error;
 
 use isogami::topology::SAMPLE_OPENING_DESIGNS as OPENING_DESIGNS;
 
@@ -155,7 +155,7 @@ fn rigid_design_is_refused() {
     let (d, cell, _) = rotating_squares();
     let welded = Mechanism::new(&cell, &vec![JointChoice::Both; d.joints.len()]).unwrap();
     match deploy(&welded, &DeploySettings::default(), &mut |_| true) {
-        Err(Error::Rigid(msg)) => assert!(msg.contains("rigid")),
+        Err(e @ DeployError::Rigid) => assert!(e.to_string().contains("rigid")),
         other => panic!("expected a rigid error, got {other:?}"),
     }
 }

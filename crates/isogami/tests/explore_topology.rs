@@ -6,7 +6,8 @@ use isogami::cell::{CellDims, UnitCell};
 use isogami::explore::dedup::{is_repeat, joint_string};
 use isogami::explore::{
     cells_to_explore, duplicates_across, enumerate_topologies, motion_invariant, sheet_symmetries,
-    Expander, MaskVerdict, ReducedGraph, SeparationRule, SymmetryGroup, TopologyOptions,
+    Expander, ExploreError, MaskVerdict, ReducedGraph, SeparationRule, SymmetryGroup,
+    TopologyOptions,
 };
 use isogami::kinematics::Mechanism;
 use isogami::mobility::{analyze, MobilitySettings};
@@ -505,6 +506,10 @@ fn cells_to_explore_and_edge_limit() {
     )
     .unwrap_err();
     assert!(e.to_string().contains("18 unique edges"), "{e}");
+    assert!(
+        matches!(e, ExploreError::TooManyEdges { edges: 18, .. }),
+        "{e:?}"
+    );
 }
 
 #[test]

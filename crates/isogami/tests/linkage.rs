@@ -6,7 +6,7 @@ mod common;
 
 use isogami::cell::{CellDims, UnitCell};
 use isogami::kinematics::Mechanism;
-use isogami::linkage::{analyze_linkages, FaceIssue, Node};
+use isogami::linkage::{analyze_linkages, FaceIssue, LinkageError, Node};
 use isogami::mobility::analyze;
 use isogami::render::linkage_svg;
 use isogami::tiling::{Family, Tiling};
@@ -129,7 +129,7 @@ fn bad_input_is_an_error() {
     let (c, d, _) = analysis("rotating-squares");
     assert!(matches!(
         analyze_linkages(&c, &d.joints[..7]),
-        Err(isogami::Error::BadSpec(_))
+        Err(LinkageError::JointCount { given: 7, edges: 8 })
     ));
     assert!(analyze_linkages(&c, &[]).is_err());
     // A hand-edited cell whose edge names a tile it does not have.
@@ -137,7 +137,7 @@ fn bad_input_is_an_error() {
     broken.edges[0].tile_b = 99;
     assert!(matches!(
         analyze_linkages(&broken, &d.joints),
-        Err(isogami::Error::CellGeometry(_))
+        Err(LinkageError::EdgeRecord { edge: 0 })
     ));
     broken.edges[0].tile_b = c.edges[0].tile_b;
     broken.edges[0].edge_a = 17;

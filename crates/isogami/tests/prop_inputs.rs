@@ -132,7 +132,10 @@ proptest! {
         // the cell builds), so that the whole spec is valid.
         let mut joints = joints;
         if let (true, Ok(f), Ok(dims)) = (fit, Family::from_number(n), CellDims::new(a, b)) {
-            if let Ok(cell) = Tiling::new(f, &params).and_then(|t| UnitCell::new(&t, dims)) {
+            if let Some(cell) = Tiling::new(f, &params)
+                .ok()
+                .and_then(|t| UnitCell::new(&t, dims).ok())
+            {
                 joints = joints.chars().cycle().chain(std::iter::repeat('-')).take(cell.edges.len()).collect();
             }
         }

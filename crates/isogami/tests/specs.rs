@@ -3,9 +3,11 @@
 mod common;
 
 use isogami::cell::CellDims;
+use isogami::cell::CellError;
 use isogami::tiling::Family;
+use isogami::tiling::TilingError;
+use isogami::topology::DesignError;
 use isogami::topology::{Design, JointChoice, NAMED_DESIGNS};
-use isogami::Error;
 use proptest::prelude::*;
 
 fn family_strategy() -> impl Strategy<Value = Family> {
@@ -114,51 +116,60 @@ fn malformed_specs_give_specific_errors() {
     let bad_family = rs.replace("IH76", "IH19");
     assert!(matches!(
         Design::resolve(&bad_family),
-        Err(Error::UnknownFamily(_))
+        Err(DesignError::Tiling(TilingError::UnknownFamily { input })) if input == "IH19"
     ));
     assert!(Design::resolve("IH28:0.1:1x1:-").is_ok());
     assert!(matches!(
         Design::resolve("IH28:0.1:1x1:-").unwrap().cell(),
-        Err(Error::ParamCount {
+        Err(DesignError::Tiling(TilingError::ParamCount {
             expected: 2,
             got: 1,
             ..
-        })
+        }))
     ));
     assert!(matches!(
         Design::resolve("IH28:0.1,nan:1x1:-"),
-        Err(Error::ParamNotFinite { index: 1, .. })
+        Err(DesignError::Tiling(TilingError::ParamNotFinite { index: 1, value })) if value.is_nan()
     ));
     assert!(matches!(
         Design::resolve("IH28:0.1,zz:1x1:-"),
-        Err(Error::BadSpec(_))
+        Err(DesignError::ParamNotNumber { index: 1, input }) if input == "zz"
     ));
     assert!(matches!(
         Design::resolve("IH28:default:5x1:-"),
-        Err(Error::BadCell(_))
+        Err(DesignError::Cell(CellError::BadCell { input })) if input == "5x1"
     ));
     assert!(matches!(
         Design::resolve("IH28:default:1x1:ab?"),
-        Err(Error::BadSpec(_))
+        Err(DesignError::JointChar {
+            index: 2,
+            found: '?'
+        })
     ));
     assert!(matches!(
         Design::resolve("IH28:default:1x1"),
-        Err(Error::BadSpec(_))
+        Err(DesignError::FieldCount { fields: 3, .. })
     ));
     assert!(matches!(
         Design::resolve("IH28:default:1x1:ab").unwrap().cell(),
-        Err(Error::BadSpec(_))
+        Err(DesignError::JointCount { given: 2, .. })
     ));
     let json = r#"{"family":"IH76","cell":[2,2],"joints":[{"edge":8,"at":"a"}]}"#;
     assert!(matches!(
         Design::resolve(json),
-        Err(Error::JointIndex { index: 8, edges: 8 })
+        Err(DesignError::JointIndex { index: 8, edges: 8 })
     ));
     let json =
         r#"{"family":"IH76","cell":[2,2],"joints":[{"edge":1,"at":"a"},{"edge":1,"at":"b"}]}"#;
-    assert!(matches!(Design::resolve(json), Err(Error::BadSpec(_))));
+    assert!(matches!(
+        Design::resolve(json),
+        Err(DesignError::DuplicateEdge { edge: 1 })
+    ));
     let json = r#"{"family":"IH76","cell":[0,2],"joints":[]}"#;
-    assert!(matches!(Design::resolve(json), Err(Error::BadSpec(_))));
+    assert!(matches!(
+        Design::resolve(json),
+        Err(DesignError::Json { .. })
+    ));
     for e in [
         Design::resolve("nonsense").unwrap_err(),
         Design::resolve("{").unwrap_err(),

@@ -61,7 +61,7 @@ pub fn run(args: Args) -> CliResult {
     let method: Method = args
         .method
         .parse()
-        .map_err(|e: isogami::Error| e.to_string())?;
+        .map_err(|e: isogami::error::SettingsError| e.to_string())?;
     let polar_t = parse_polar_t(&args.polar_t)?;
     let mut request = DeployRequest {
         settings: DeploySettings {

@@ -2,7 +2,7 @@
 
 use crate::api::{DeployRequest, FrameSelection};
 use crate::deploy::{DeploySettings, Method};
-use crate::error::{Error, Result};
+use crate::error::{Requirement, SettingValue, SettingsError};
 use crate::explore::TopologyOptions;
 use crate::math::Real;
 use serde::Serialize;
@@ -73,36 +73,51 @@ struct SettingsRecord {
 
 impl CatalogSettings {
     /// Checks every field.
-    pub fn validate(&self) -> Result<()> {
+    pub fn validate(&self) -> Result<(), SettingsError> {
         self.deploy.validate()?;
         if self.deploy.method != Method::RigidModes {
-            return Err(Error::Settings(
-                "exploration deploys with rigid modes".into(),
-            ));
+            return Err(SettingsError::new(
+                "method",
+                SettingValue::Text(self.deploy.method.to_string()),
+                Requirement::OneOf(&["rigid-modes"]),
+            )
+            .with_note("exploration deploys with rigid modes"));
         }
         if !(self.threshold.is_finite() && self.threshold >= 0.0) {
-            return Err(Error::Settings(format!(
-                "threshold must be >= 0, got {}",
-                self.threshold
-            )));
+            return Err(SettingsError::new(
+                "threshold",
+                self.threshold,
+                Requirement::AtLeast(0.0),
+            ));
         }
         if self.samples == 0 || self.samples > 10_000 {
-            return Err(Error::Settings(format!(
-                "samples must lie in 1..=10000, got {}",
-                self.samples
-            )));
+            return Err(SettingsError::new(
+                "samples",
+                self.samples,
+                Requirement::CountIn {
+                    low: 1,
+                    high: 10_000,
+                },
+            ));
         }
         if self.shape_levels < 2 || self.shape_levels > 16 {
-            return Err(Error::Settings(format!(
-                "shape levels must lie in 2..=16, got {}",
-                self.shape_levels
-            )));
+            return Err(SettingsError::new(
+                "shape levels",
+                self.shape_levels,
+                Requirement::CountIn { low: 2, high: 16 },
+            ));
         }
         if !(self.shape_span.is_finite() && self.shape_span > 0.0 && self.shape_span <= 2.0) {
-            return Err(Error::Settings(format!(
-                "shape span must lie in (0, 2], got {}",
-                self.shape_span
-            )));
+            return Err(SettingsError::new(
+                "shape span",
+                self.shape_span,
+                Requirement::Within {
+                    low: 0.0,
+                    high: 2.0,
+                    open_low: true,
+                    open_high: false,
+                },
+            ));
         }
         self.deploy_request().validate()
     }

@@ -163,10 +163,8 @@ pub fn run_unit(family: Family, dims: CellDims, settings: &CatalogSettings) -> R
             };
             // Parameters that the grid found valid build; a shape whose cell cannot be built
             // with this joint list is simply not kept.
-            if Tiling::new(family, params)
-                .and_then(|t| UnitCell::new(&t, dims))
-                .is_err()
-            {
+            let builds = Tiling::new(family, params).is_ok_and(|t| UnitCell::new(&t, dims).is_ok());
+            if !builds {
                 continue;
             }
             if let Some(entry) = characterise(&design, &topology, settings)? {

@@ -1,7 +1,7 @@
 //! Building a cell from a tiling: tile placement and geometric edge matching.
 
 use super::dims::CellDims;
-use crate::error::{Error, Result};
+use super::error::{CellError, GeometryProblem};
 use crate::geometry::{centroid, signed_area};
 use crate::math::{cross, rotation, Real, Vec2};
 use crate::tiling::{Family, Tiling};
@@ -73,7 +73,7 @@ pub struct UnitCell {
 
 impl UnitCell {
     /// Builds the a×b supercell of `tiling` and matches its edges.
-    pub fn new(tiling: &Tiling, dims: CellDims) -> Result<UnitCell> {
+    pub fn new(tiling: &Tiling, dims: CellDims) -> Result<UnitCell, CellError> {
         let (t1, t2) = (tiling.t1(), tiling.t2());
         let proto = tiling.prototile();
         let nv = proto.len();
@@ -201,7 +201,11 @@ impl UnitCell {
 
 /// Finds, for every tile edge, the single edge of another tile (possibly in a neighbouring
 /// cell) with the same endpoints in reverse order.
-fn match_edges(tiles: &[Tile], u: Vec2, w: Vec2) -> Result<(Vec<CellEdge>, Vec<Vec<usize>>)> {
+fn match_edges(
+    tiles: &[Tile],
+    u: Vec2,
+    w: Vec2,
+) -> Result<(Vec<CellEdge>, Vec<Vec<usize>>), CellError> {
     let det = cross(&u, &w);
     let mean_len = {
         let (s, c) = tiles.iter().fold((0.0, 0usize), |(s, c), t| {
@@ -244,10 +248,11 @@ fn match_edges(tiles: &[Tile], u: Vec2, w: Vec2) -> Result<(Vec<CellEdge>, Vec<V
                 }
             }
             if found.len() != 1 {
-                return Err(Error::CellGeometry(format!(
-                    "edge {k} of tile {i} has {} partner edges (expected exactly one)",
-                    found.len()
-                )));
+                return Err(CellError::Geometry(GeometryProblem::PartnerCount {
+                    tile: i,
+                    edge: k,
+                    partners: found.len(),
+                }));
             }
             let (j, l, offset) = found[0];
             match (
@@ -267,9 +272,10 @@ fn match_edges(tiles: &[Tile], u: Vec2, w: Vec2) -> Result<(Vec<CellEdge>, Vec<V
                 }
                 (false, false) if tile_edges[i][k] == tile_edges[j][l] => {}
                 _ => {
-                    return Err(Error::CellGeometry(format!(
-                        "edge {k} of tile {i} and edge {l} of tile {j} are matched inconsistently"
-                    )))
+                    return Err(CellError::Geometry(GeometryProblem::InconsistentMatch {
+                        a: (i, k),
+                        b: (j, l),
+                    }))
                 }
             }
         }

@@ -1,6 +1,6 @@
 //! Supercell dimensions a×b.
 
-use crate::error::{Error, Result};
+use super::error::CellError;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::str::FromStr;
@@ -21,11 +21,11 @@ impl CellDims {
     pub const MINIMAL: CellDims = CellDims { a: 1, b: 1 };
 
     /// Checked constructor: 1 ≤ a, b ≤ 4.
-    pub fn new(a: u8, b: u8) -> Result<CellDims> {
+    pub fn new(a: u8, b: u8) -> Result<CellDims, CellError> {
         if (1..=MAX_REPEAT).contains(&a) && (1..=MAX_REPEAT).contains(&b) {
             Ok(CellDims { a, b })
         } else {
-            Err(Error::BadCell(format!("{a}x{b}")))
+            Err(CellError::Size { a, b })
         }
     }
 
@@ -41,8 +41,8 @@ impl CellDims {
 }
 
 impl TryFrom<[u8; 2]> for CellDims {
-    type Error = Error;
-    fn try_from(v: [u8; 2]) -> Result<CellDims> {
+    type Error = CellError;
+    fn try_from(v: [u8; 2]) -> Result<CellDims, CellError> {
         CellDims::new(v[0], v[1])
     }
 }
@@ -60,9 +60,11 @@ impl fmt::Display for CellDims {
 }
 
 impl FromStr for CellDims {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<CellDims> {
-        let bad = || Error::BadCell(crate::topology::quote_input(s));
+    type Err = CellError;
+    fn from_str(s: &str) -> Result<CellDims, CellError> {
+        let bad = || CellError::BadCell {
+            input: crate::topology::quote_input(s),
+        };
         let (a, b) = s.trim().split_once(['x', 'X']).ok_or_else(bad)?;
         let digit = |t: &str| {
             if t.len() == 1 && t.as_bytes()[0].is_ascii_digit() {
@@ -89,5 +91,16 @@ mod tests {
         ] {
             assert!(bad.parse::<CellDims>().is_err(), "{bad}");
         }
+    }
+
+    #[test]
+    fn errors_carry_the_input() {
+        assert_eq!(CellDims::new(5, 1), Err(CellError::Size { a: 5, b: 1 }));
+        assert_eq!(
+            "9x\n1".parse::<CellDims>(),
+            Err(CellError::BadCell {
+                input: "9x\\n1".into()
+            })
+        );
     }
 }

@@ -7,7 +7,9 @@
 
 mod build;
 mod dims;
+mod error;
 mod validate;
 
 pub use build::{CellEdge, End, Tile, UnitCell};
 pub use dims::CellDims;
+pub use error::{CellError, GeometryProblem};

@@ -1,7 +1,7 @@
 //! Whole-cell geometric checks: the cell must tile the plane without gaps or overlaps.
 
 use super::build::UnitCell;
-use crate::error::{Error, Result};
+use super::error::{CellError, GeometryProblem};
 use crate::geometry::{interiors_overlap, signed_area};
 use crate::math::{cross, Real};
 
@@ -10,23 +10,22 @@ impl UnitCell {
     /// another tile of any cell it can reach (at least the 3×3 block; more for tiles longer
     /// than the cell). With every tile edge matched to exactly one partner (guaranteed by
     /// construction) this means the cell tiles the plane.
-    pub fn check_geometry(&self) -> Result<()> {
+    pub fn check_geometry(&self) -> Result<(), CellError> {
         let scale = self.mean_edge_length();
         let lattice = cross(&self.u, &self.w).abs();
         let area: Real = self.tiles.iter().map(|t| signed_area(&t.polygon)).sum();
         if (area - lattice).abs() > 1e-9 * lattice {
-            return Err(Error::CellGeometry(format!(
-                "tile areas sum to {area} but the cell has area {lattice}"
-            )));
+            return Err(CellError::Geometry(GeometryProblem::AreaMismatch {
+                tiles: area,
+                cell: lattice,
+            }));
         }
         if let Some(t) = self
             .tiles
             .iter()
             .position(|t| signed_area(&t.polygon) <= 0.0)
         {
-            return Err(Error::CellGeometry(format!(
-                "tile {t} is not counter-clockwise"
-            )));
+            return Err(CellError::Geometry(GeometryProblem::Clockwise { tile: t }));
         }
         let tol = 1e-7 * scale;
         let [ru, rw] = self.reach();
@@ -39,9 +38,11 @@ impl UnitCell {
                         }
                         let q = self.tile_polygon_at(j, [ku, kw]);
                         if interiors_overlap(&self.tiles[i].polygon, &q, tol) {
-                            return Err(Error::CellGeometry(format!(
-                                "tile {i} overlaps tile {j} of cell ({ku}, {kw})"
-                            )));
+                            return Err(CellError::Geometry(GeometryProblem::Overlap {
+                                a: i,
+                                b: j,
+                                offset: [ku, kw],
+                            }));
                         }
                     }
                 }

@@ -1,7 +1,7 @@
 //! Insetting a tile polygon by half the kerf: every edge line moves inward by `h` and
 //! consecutive offset lines are intersected (mitred corners).
 
-use crate::geometry::{is_simple_problem, signed_area};
+use crate::geometry::{is_simple_problem, signed_area, SimplicityProblem};
 use crate::math::{perp, Real, Vec2};
 
 /// Smallest accepted `1 + cos(turn)` at a vertex: below it the polygon folds back on itself
@@ -11,23 +11,44 @@ const SPIKE_TOL: Real = 1e-9;
 /// Why a polygon cannot be inset.
 #[derive(Debug, Clone, PartialEq)]
 pub enum InsetProblem {
-    /// The input is not a counter-clockwise polygon with non-zero edges.
-    BadInput(String),
+    /// The input has fewer than three vertices.
+    TooFewVertices(usize),
+    /// The input has a NaN or infinite coordinate at this vertex.
+    NonFiniteVertex(usize),
+    /// The input is not counter-clockwise.
+    Clockwise,
+    /// Edge `k` of the input has zero length.
+    ZeroEdge(usize),
     /// The polygon folds back by 180° at this vertex.
     Spike(usize),
     /// Inset edge `edge` runs backwards: the inset is wider than that edge allows.
     EdgeVanishes(usize),
-    /// The inset polygon is not simple or not counter-clockwise.
-    NotSimple(String),
+    /// The inset polygon is not simple.
+    NotSimple(SimplicityProblem),
+    /// The inset polygon runs clockwise.
+    Inverted,
 }
 
 impl std::fmt::Display for InsetProblem {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Self::BadInput(why) => write!(f, "the tile itself is unusable ({why})"),
+            Self::TooFewVertices(n) => {
+                write!(
+                    f,
+                    "the tile itself is unusable ({n} vertices, fewer than three)"
+                )
+            }
+            Self::NonFiniteVertex(v) => {
+                write!(f, "the tile itself is unusable (vertex {v} is not finite)")
+            }
+            Self::Clockwise => f.write_str("the tile itself is unusable (not counter-clockwise)"),
+            Self::ZeroEdge(e) => {
+                write!(f, "the tile itself is unusable (edge {e} has zero length)")
+            }
             Self::Spike(v) => write!(f, "the tile folds back at vertex {v}"),
             Self::EdgeVanishes(e) => write!(f, "edge {e} vanishes (it is too short)"),
-            Self::NotSimple(why) => write!(f, "the inset polygon is {why}"),
+            Self::NotSimple(p) => write!(f, "the inset polygon is not simple: {p}"),
+            Self::Inverted => f.write_str("the inset polygon is inverted"),
         }
     }
 }
@@ -41,13 +62,16 @@ impl std::error::Error for InsetProblem {}
 pub fn inset_polygon(poly: &[Vec2], h: Real) -> Result<Vec<Vec2>, InsetProblem> {
     let n = poly.len();
     if n < 3 {
-        return Err(InsetProblem::BadInput("fewer than three vertices".into()));
+        return Err(InsetProblem::TooFewVertices(n));
     }
-    if poly.iter().any(|v| !(v.x.is_finite() && v.y.is_finite())) {
-        return Err(InsetProblem::BadInput("non-finite vertex".into()));
+    if let Some(v) = poly
+        .iter()
+        .position(|v| !(v.x.is_finite() && v.y.is_finite()))
+    {
+        return Err(InsetProblem::NonFiniteVertex(v));
     }
     if signed_area(poly) <= 0.0 {
-        return Err(InsetProblem::BadInput("not counter-clockwise".into()));
+        return Err(InsetProblem::Clockwise);
     }
     // Inward unit normal of edge k (vertex k → k+1): the left side of a CCW traversal.
     let mut normals = Vec::with_capacity(n);
@@ -55,7 +79,7 @@ pub fn inset_polygon(poly: &[Vec2], h: Real) -> Result<Vec<Vec2>, InsetProblem> 
         let e = poly[(k + 1) % n] - poly[k];
         let len = e.norm();
         if len.is_nan() || len <= 0.0 {
-            return Err(InsetProblem::BadInput(format!("edge {k} has zero length")));
+            return Err(InsetProblem::ZeroEdge(k));
         }
         normals.push(perp(&e) / len);
     }
@@ -78,10 +102,10 @@ pub fn inset_polygon(poly: &[Vec2], h: Real) -> Result<Vec<Vec2>, InsetProblem> 
     }
     let tol = 1e-12 * (1.0 + h);
     if let Some(p) = is_simple_problem(&out, tol) {
-        return Err(InsetProblem::NotSimple(format!("not simple: {p}")));
+        return Err(InsetProblem::NotSimple(p));
     }
     if signed_area(&out) <= 0.0 {
-        return Err(InsetProblem::NotSimple("inverted".into()));
+        return Err(InsetProblem::Inverted);
     }
     Ok(out)
 }
@@ -153,10 +177,7 @@ mod tests {
         ];
         assert!(inset_polygon(&thin, 0.1).is_err());
         let cw = [vec2(0.0, 0.0), vec2(0.0, 1.0), vec2(1.0, 0.0)];
-        assert!(matches!(
-            inset_polygon(&cw, 0.01),
-            Err(InsetProblem::BadInput(_))
-        ));
+        assert_eq!(inset_polygon(&cw, 0.01), Err(InsetProblem::Clockwise));
         let spike = [
             vec2(0.0, 0.0),
             vec2(1.0, 0.0),

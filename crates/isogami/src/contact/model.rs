@@ -1,10 +1,10 @@
 //! The contact model of one mechanism: inset collision polygons and candidate pairs.
 
+use super::error::ContactError;
 use super::inset::inset_polygon;
 use super::pairs::{near_pairs, CandidatePair};
 use super::placement::Placement;
 use super::settings::ContactSettings;
-use crate::error::{Error, Result};
 use crate::kinematics::{Mechanism, StateLayout};
 use crate::math::{DVec, Real, Vec2};
 
@@ -31,21 +31,18 @@ impl ContactModel {
     ///
     /// Fails on invalid settings, or naming the tile whose inset polygon is not simple,
     /// flips orientation or loses an edge (the kerf is too wide for that tile).
-    pub fn new(mech: &Mechanism, settings: ContactSettings) -> Result<ContactModel> {
+    pub fn new(mech: &Mechanism, settings: ContactSettings) -> Result<ContactModel, ContactError> {
         settings.validate()?;
         let layout = mech.layout;
         if mech.tile_shapes.len() != layout.tiles || mech.rest.len() != layout.len() {
-            return Err(Error::CellGeometry(format!(
-                "mechanism has {} tile shapes and a closed state of length {} for {} tiles",
-                mech.tile_shapes.len(),
-                mech.rest.len(),
-                layout.tiles
-            )));
+            return Err(ContactError::MechanismShape {
+                shapes: mech.tile_shapes.len(),
+                rest: mech.rest.len(),
+                tiles: layout.tiles,
+            });
         }
         if mech.rest.iter().any(|x| !x.is_finite()) {
-            return Err(Error::Numerical(
-                "mechanism's closed state holds NaN or infinity".into(),
-            ));
+            return Err(ContactError::NonFiniteRest);
         }
         let shapes = inset_all(&mech.tile_shapes, 0.5 * settings.kerf)?;
         let extents = shapes
@@ -90,22 +87,21 @@ impl ContactModel {
 
     /// Checks that `mech` and `q` fit this model: same number of tiles, q of length 3n + 4,
     /// every entry finite.
-    pub fn check(&self, mech: &Mechanism, q: &DVec) -> Result<()> {
+    pub fn check(&self, mech: &Mechanism, q: &DVec) -> Result<(), ContactError> {
         if mech.layout != self.layout {
-            return Err(Error::Numerical(format!(
-                "contact model built for {} tiles used with a mechanism of {}",
-                self.layout.tiles, mech.layout.tiles
-            )));
+            return Err(ContactError::MechanismMismatch {
+                model: self.layout.tiles,
+                mechanism: mech.layout.tiles,
+            });
         }
         if q.len() != self.layout.len() {
-            return Err(Error::Numerical(format!(
-                "state of length {} for a mechanism with {} coordinates",
-                q.len(),
-                self.layout.len()
-            )));
+            return Err(ContactError::StateLength {
+                len: q.len(),
+                expected: self.layout.len(),
+            });
         }
         if q.iter().any(|x| !x.is_finite()) {
-            return Err(Error::Numerical("state holds NaN or infinity".into()));
+            return Err(ContactError::NonFiniteState);
         }
         Ok(())
     }
@@ -139,15 +135,15 @@ impl ContactModel {
 }
 
 /// Every tile inset by `h`, or an error naming the first tile that cannot be.
-fn inset_all(tiles: &[Vec<Vec2>], h: Real) -> Result<Vec<Vec<Vec2>>> {
+fn inset_all(tiles: &[Vec<Vec2>], h: Real) -> Result<Vec<Vec<Vec2>>, ContactError> {
     tiles
         .iter()
         .enumerate()
         .map(|(i, poly)| {
-            inset_polygon(poly, h).map_err(|p| {
-                Error::CellGeometry(format!(
-                    "tile {i}: collision polygon inset by kerf/2 = {h}: {p} (try a smaller kerf)"
-                ))
+            inset_polygon(poly, h).map_err(|problem| ContactError::Inset {
+                tile: i,
+                inset: h,
+                problem,
             })
         })
         .collect()

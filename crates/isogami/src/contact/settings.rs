@@ -1,6 +1,6 @@
 //! Contact settings: cut width (kerf), barrier activation distance and barrier stiffness.
 
-use crate::error::{Error, Result};
+use crate::error::{Requirement, SettingsError};
 use crate::math::Real;
 
 /// Largest accepted kerf (units of the mean edge length L).
@@ -64,25 +64,35 @@ impl ContactSettings {
     }
 
     /// Checks kerf ∈ [1e-4, 0.2], 0 < d̂ < kerf and κ > 0 (all finite).
-    pub fn validate(&self) -> Result<()> {
-        let bad = |what: String| Err(Error::Settings(format!("contact: {what}")));
+    pub fn validate(&self) -> Result<(), SettingsError> {
         if !(self.kerf.is_finite() && (MIN_KERF..=MAX_KERF).contains(&self.kerf)) {
-            return bad(format!(
-                "kerf {} must lie in [{MIN_KERF}, {MAX_KERF}] (units of the mean edge length; \
-                 below {MIN_KERF} no cut is that narrow and steps shrink with the gap)",
-                self.kerf
+            return Err(SettingsError::new(
+                "kerf",
+                self.kerf,
+                Requirement::closed(MIN_KERF, MAX_KERF),
+            )
+            .with_note(
+                "units of the mean edge length; no cut is narrower and steps shrink with the gap",
             ));
         }
         if !(self.dhat.is_finite() && self.dhat > 0.0 && self.dhat < self.kerf) {
-            return bad(format!(
-                "barrier distance dhat {} must lie in (0, kerf = {})",
-                self.dhat, self.kerf
-            ));
+            return Err(SettingsError::new(
+                "barrier distance dhat",
+                self.dhat,
+                Requirement::Within {
+                    low: 0.0,
+                    high: self.kerf,
+                    open_low: true,
+                    open_high: true,
+                },
+            )
+            .with_note("the upper end is the kerf"));
         }
         if !(self.stiffness.is_finite() && self.stiffness > 0.0) {
-            return bad(format!(
-                "barrier stiffness {} must be finite and positive",
-                self.stiffness
+            return Err(SettingsError::new(
+                "barrier stiffness",
+                self.stiffness,
+                Requirement::Positive,
             ));
         }
         Ok(())
@@ -113,5 +123,8 @@ mod tests {
         for k in [0.0, -1.0, Real::INFINITY] {
             assert!(d.with_stiffness(k).validate().is_err(), "{k}");
         }
+        let e = ContactSettings::with_kerf(0.5).validate().unwrap_err();
+        assert_eq!((e.name, e.value), ("kerf", 0.5.into()));
+        assert_eq!(e.requirement, Requirement::closed(MIN_KERF, MAX_KERF));
     }
 }

@@ -8,11 +8,12 @@
 //! states, and whether it reached the rigid-modes path's largest area. Every state measured
 //! is checked like a `deploy` frame (joints closed, no overlap, finite).
 
+use super::error::DeployError;
 use super::frames::{frame_records, FrameRecord};
 use super::settings::{DeploySettings, Method};
 use super::trajectory::{EndReason, Trajectory};
 use crate::contact::ContactModel;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
 use crate::mobility::analyze;
@@ -116,7 +117,10 @@ pub fn compare_design(design: &Design, settings: &DeploySettings) -> Result<Desi
 
 /// Runs rigid modes, NCM and springs on `mech` with otherwise equal settings (the method in
 /// `settings` is ignored), in the order of [`METHODS`].
-pub fn compare_methods(mech: &Mechanism, settings: &DeploySettings) -> Result<Vec<MethodResult>> {
+pub fn compare_methods(
+    mech: &Mechanism,
+    settings: &DeploySettings,
+) -> std::result::Result<Vec<MethodResult>, DeployError> {
     let contact = ContactModel::new(mech, settings.contact)?;
     let mut runs = Vec::with_capacity(METHODS.len());
     for method in METHODS {
@@ -141,22 +145,22 @@ pub fn compare_methods(mech: &Mechanism, settings: &DeploySettings) -> Result<Ve
         .collect()
 }
 
-/// Says which method a numerical failure of a checked state came from.
-fn name_method(method: Method, e: Error) -> Error {
-    match e {
-        Error::Numerical(what) => Error::Numerical(format!("{method}: {what}")),
-        other => other,
+/// Says which method a failed check of a state came from.
+fn name_method(method: Method, e: DeployError) -> DeployError {
+    DeployError::InMethod {
+        method,
+        error: Box::new(e),
     }
 }
 
 /// Index and value of the largest area ratio over `frames`.
-fn largest_area(frames: &[FrameRecord]) -> Result<(usize, Real)> {
+fn largest_area(frames: &[FrameRecord]) -> std::result::Result<(usize, Real), DeployError> {
     frames
         .iter()
         .map(|f| f.measures.area_ratio)
         .enumerate()
         .max_by(|a, b| a.1.total_cmp(&b.1))
-        .ok_or_else(|| Error::Numerical("comparison: a deployment without states".into()))
+        .ok_or(DeployError::EmptyTrajectory)
 }
 
 fn summarise(
@@ -166,7 +170,7 @@ fn summarise(
     traj: &Trajectory,
     frames: &[FrameRecord],
     millis: Real,
-) -> Result<MethodResult> {
+) -> std::result::Result<MethodResult, DeployError> {
     let (k_max, max_area_ratio) = largest_area(frames)?;
     let last = frames.last().expect("largest_area found a frame");
     let (final_t, path_distance) = along(reference, &last.q);
@@ -201,9 +205,7 @@ fn summarise(
         result.millis,
     ];
     if numbers.iter().any(|x| !x.is_finite()) {
-        return Err(Error::Numerical(format!(
-            "comparison: {method} gave a non-finite measure"
-        )));
+        return Err(DeployError::ComparisonNotFinite { method });
     }
     Ok(result)
 }

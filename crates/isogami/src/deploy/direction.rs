@@ -2,10 +2,10 @@
 //! continue the previous direction; at turning points, where the null space has dimension
 //! greater than one, the null-space direction closest to the previous one.
 
-use crate::error::{Error, Result};
+use super::error::DeployError;
 use crate::kinematics::Mechanism;
 use crate::math::{symmetric_eigen, DVec, Real};
-use crate::mobility::reduced_hessian;
+use crate::mobility::{reduced_hessian, MobilityError};
 
 /// Eigenvalues below this fraction of max(λ_max, 1) count as zero when choosing a direction.
 /// Looser than the mobility tolerance: near a turning point the second eigenvalue dips
@@ -19,7 +19,11 @@ pub const TURN_TOLERANCE: Real = 1e-7;
 /// solve: then Hv = v̂(1 − v̂ᵀv) forces v̂ᵀv = 1 and Hv = 0. It is used only when the
 /// factorisation is well conditioned and the result is a null vector to 1e-10; otherwise
 /// (turning points, several zero eigenvalues) the full eigen-decomposition decides.
-pub fn motion_direction(mech: &Mechanism, q: &DVec, previous: &DVec) -> Result<(DVec, usize)> {
+pub fn motion_direction(
+    mech: &Mechanism,
+    q: &DVec,
+    previous: &DVec,
+) -> Result<(DVec, usize), DeployError> {
     let n = q.len();
     let h = reduced_hessian(mech, q);
     let prev = previous.rows(3, n - 3).into_owned();
@@ -28,8 +32,7 @@ pub fn motion_direction(mech: &Mechanism, q: &DVec, previous: &DVec) -> Result<(
         full.rows_mut(3, n - 3).copy_from(&v);
         return Ok((full, 1));
     }
-    let spec = symmetric_eigen(h)
-        .ok_or_else(|| Error::Numerical("eigen-decomposition did not converge".into()))?;
+    let spec = symmetric_eigen(h).ok_or(MobilityError::Eigen)?;
     let lmax = spec.values.last().copied().unwrap_or(0.0).max(1.0);
     let nullity = spec
         .values

@@ -1,9 +1,9 @@
 //! Frames for output: accepted states picked evenly in t, each with its measures and its
 //! invariants (joint residual, clearance) recomputed independently of the solver.
 
+use super::error::{DeployError, FrameProblem};
 use super::trajectory::Trajectory;
 use crate::contact::ContactModel;
-use crate::error::{Error, Result};
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
 use crate::measure::FrameMeasures;
@@ -59,22 +59,24 @@ pub fn frame_records(
     traj: &Trajectory,
     indices: &[usize],
     joint_tolerance: Real,
-) -> Result<Vec<FrameRecord>> {
+) -> Result<Vec<FrameRecord>, DeployError> {
     indices
         .iter()
         .map(|&k| {
             let q = &traj.steps[k].q;
+            let fail = |problem| DeployError::Frame { step: k, problem };
             if q.iter().any(|x| !x.is_finite()) {
-                return Err(Error::Numerical(format!("step {k} holds NaN or infinity")));
+                return Err(fail(FrameProblem::NonFinite));
             }
             let joint_residual = mech.residual(q).amax();
             if joint_residual > joint_tolerance {
-                return Err(Error::Numerical(format!(
-                    "step {k}: joint residual {joint_residual:.3e} above {joint_tolerance:.1e}"
-                )));
+                return Err(fail(FrameProblem::JointResidual {
+                    residual: joint_residual,
+                    tolerance: joint_tolerance,
+                }));
             }
             if let Some(overlap) = contact.overlapping_pair(mech, q) {
-                return Err(Error::Numerical(format!("step {k}: {overlap}")));
+                return Err(fail(FrameProblem::Overlap(overlap)));
             }
             let t = traj.t(k);
             Ok(FrameRecord {

@@ -1,12 +1,12 @@
 //! The step loop shared by every method: try a step of target length β, accept it or halve
 //! β, grow β after successes, stop when a step fails at the smallest allowed β.
 
+use super::error::DeployError;
 use super::newton::SolveOutcome;
 use super::settings::DeploySettings;
 use super::trajectory::{EndReason, RawStep};
 use super::Progress;
 use crate::contact::ContactModel;
-use crate::error::{Error, Result};
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
 
@@ -55,7 +55,7 @@ pub(super) trait StepPolicy {
         contact: &ContactModel,
         settings: &DeploySettings,
         input: &StepInput,
-    ) -> Result<StepTry>;
+    ) -> Result<StepTry, DeployError>;
 }
 
 /// How a march ended.
@@ -94,7 +94,7 @@ pub(super) fn march(
     arc_limit: Option<Real>,
     attempts: &mut usize,
     progress: Progress<'_>,
-) -> Result<MarchEnd> {
+) -> Result<MarchEnd, DeployError> {
     let dhat = settings.contact.dhat;
     let mut prev = previous.clone();
     let mut beta = settings.initial_step;
@@ -159,7 +159,7 @@ pub(super) fn march(
                 nullity: tried.nullity,
             });
             if !progress(steps.len()) {
-                return Err(Error::Cancelled);
+                return Err(DeployError::Cancelled);
             }
             s += beta;
             prev = tried.direction;

@@ -19,6 +19,7 @@
 
 mod compare;
 mod direction;
+mod error;
 mod frames;
 mod march;
 mod ncm;
@@ -34,6 +35,7 @@ pub use compare::{
     compare_design, compare_methods, DesignComparison, MethodResult, COMPARISON_DESIGNS, METHODS,
     PEAK_FRACTION,
 };
+pub use error::{DeployError, FrameProblem, ReportField};
 pub use frames::{frame_records, select_frames, FrameRecord};
 pub use newton::{minimize, Objective, SolveOutcome};
 pub use report::{build_report, DeploymentReport, FrameReport, TilePose};
@@ -44,7 +46,6 @@ pub use trajectory::{EndReason, RawStep, Trajectory};
 pub type Progress<'a> = &'a mut dyn FnMut(usize) -> bool;
 
 use crate::contact::ContactModel;
-use crate::error::{Error, Result};
 use crate::kinematics::Mechanism;
 use crate::mobility::analyze;
 
@@ -52,30 +53,26 @@ use crate::mobility::analyze;
 /// opening is blocked by contact at once comes back with [`EndReason::Locked`].
 ///
 /// `progress` is called after every accepted step with the number of states so far; when it
-/// returns `false` the deployment stops with [`Error::Cancelled`].
+/// returns `false` the deployment stops with [`DeployError::Cancelled`].
 pub fn deploy(
     mech: &Mechanism,
     settings: &DeploySettings,
     progress: Progress<'_>,
-) -> Result<Trajectory> {
+) -> Result<Trajectory, DeployError> {
     settings.validate()?;
     let contact = ContactModel::new(mech, settings.contact)?;
     let mob = analyze(mech, &mech.rest, settings.mobility)?;
     if mob.dof == 0 {
-        return Err(Error::Rigid(
-            "the design is rigid (0 degrees of freedom): nothing to deploy".into(),
-        ));
+        return Err(DeployError::Rigid);
     }
     let opening = match settings.mode {
         None => mob.motion.as_ref(),
-        Some(k) => Some(mob.modes.get(k).ok_or_else(|| {
-            Error::Settings(format!(
-                "mode {k} does not exist: the design has {} degree(s) of freedom (modes 0..{})",
-                mob.dof, mob.dof
-            ))
+        Some(k) => Some(mob.modes.get(k).ok_or(DeployError::ModeOutOfRange {
+            mode: k,
+            dof: mob.dof,
         })?),
     }
-    .ok_or_else(|| Error::Rigid("the design is rigid: nothing to deploy".into()))?
+    .ok_or(DeployError::NoMotion { dof: mob.dof })?
     .vector
     .clone();
     let policy: &dyn march::StepPolicy = match settings.method {

@@ -3,12 +3,12 @@
 //! Where the path turns away from that eigenvector the projection stops growing and the
 //! method cannot go on.
 
+use super::error::DeployError;
 use super::march::{unit_displacement, StepInput, StepPolicy, StepTry};
 use super::newton::{minimize, Objective};
 use super::settings::DeploySettings;
 use crate::contact::ClearanceTracker;
 use crate::contact::ContactModel;
-use crate::error::Result;
 use crate::kinematics::Mechanism;
 
 /// The NCM step.
@@ -21,7 +21,7 @@ impl StepPolicy for Ncm {
         contact: &ContactModel,
         settings: &DeploySettings,
         input: &StepInput,
-    ) -> Result<StepTry> {
+    ) -> Result<StepTry, DeployError> {
         let StepInput {
             q,
             clearance,

@@ -6,12 +6,12 @@
 //! away from the closed state. The sign that increases the cell area is tried first. When
 //! neither sign gets that far because contact stops it, the design is locked.
 
+use super::error::DeployError;
 use super::march::{march, rest_step, MarchEnd, StepPolicy};
 use super::settings::DeploySettings;
 use super::trajectory::{EndReason, Trajectory};
 use super::Progress;
 use crate::contact::ContactModel;
-use crate::error::Result;
 use crate::kinematics::Mechanism;
 use crate::math::DVec;
 
@@ -27,7 +27,7 @@ pub(super) fn open_and_march(
     dof: usize,
     policy: &dyn StepPolicy,
     progress: Progress<'_>,
-) -> Result<Trajectory> {
+) -> Result<Trajectory, DeployError> {
     let v0 = v0.clone();
     let probe = PROBE_KERFS * settings.contact.kerf;
     let mut attempts = 0;

@@ -2,6 +2,7 @@
 //! design database will store. Physical lengths (tile positions, u, w) are in the tiling's
 //! units; F, U and expansions are dimensionless.
 
+use super::error::{DeployError, ReportField};
 use super::frames::FrameRecord;
 use super::settings::{DeploySettings, Method};
 use super::trajectory::{EndReason, Trajectory};
@@ -152,7 +153,7 @@ pub fn build_report(
 impl DeploymentReport {
     /// Checks that every number of the report is finite (a report with NaN or ∞ must never
     /// reach a front end); the error names the first offending field.
-    pub fn check_finite(&self) -> crate::Result<()> {
+    pub fn check_finite(&self) -> Result<(), DeployError> {
         let scalars = [
             ("kerf", self.kerf),
             ("length_scale", self.length_scale),
@@ -164,7 +165,11 @@ impl DeploymentReport {
             ("max_area_ratio", self.max_area_ratio),
             ("max_tile_rotation", self.max_tile_rotation),
         ];
-        first_non_finite(scalars.iter().map(|&(n, v)| (n.to_string(), v)))?;
+        first_non_finite(
+            scalars
+                .iter()
+                .map(|&(name, v)| (ReportField { frame: None, name }, v)),
+        )?;
         for (k, f) in self.frames.iter().enumerate() {
             let m = &f.measures;
             let mut values: Vec<(&str, Real)> = vec![
@@ -187,22 +192,22 @@ impl DeploymentReport {
                     .iter()
                     .flat_map(|p| [("tiles", p.x), ("tiles", p.y), ("tiles", p.theta)]),
             );
-            first_non_finite(
-                values
-                    .into_iter()
-                    .map(|(n, v)| (format!("frames[{k}].{n}"), v)),
-            )?;
+            first_non_finite(values.into_iter().map(|(name, v)| {
+                let field = ReportField {
+                    frame: Some(k),
+                    name,
+                };
+                (field, v)
+            }))?;
         }
         Ok(())
     }
 }
 
-fn first_non_finite(values: impl Iterator<Item = (String, Real)>) -> crate::Result<()> {
-    for (name, v) in values {
-        if !v.is_finite() {
-            return Err(crate::Error::Numerical(format!(
-                "deployment report field {name} is {v}"
-            )));
+fn first_non_finite(values: impl Iterator<Item = (ReportField, Real)>) -> Result<(), DeployError> {
+    for (field, value) in values {
+        if !value.is_finite() {
+            return Err(DeployError::ReportNotFinite { field, value });
         }
     }
     Ok(())

@@ -1,12 +1,12 @@
 //! Nonlinear rigid modes (paper §3.2): the eigenvector is recomputed at every step.
 
 use super::direction::motion_direction;
+use super::error::DeployError;
 use super::march::{StepInput, StepPolicy, StepTry};
 use super::newton::{minimize, Objective};
 use super::settings::DeploySettings;
 use crate::contact::ClearanceTracker;
 use crate::contact::ContactModel;
-use crate::error::Result;
 use crate::kinematics::Mechanism;
 
 /// The rigid-modes step: direction from the current null space, progress measured from the
@@ -20,7 +20,7 @@ impl StepPolicy for RigidModes {
         contact: &ContactModel,
         settings: &DeploySettings,
         input: &StepInput,
-    ) -> Result<StepTry> {
+    ) -> Result<StepTry, DeployError> {
         let StepInput {
             q,
             clearance,

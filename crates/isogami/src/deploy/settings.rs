@@ -1,7 +1,7 @@
 //! Deployment settings.
 
 use crate::contact::ContactSettings;
-use crate::error::{Error, Result};
+use crate::error::{Requirement, SettingValue, SettingsError};
 use crate::math::Real;
 use crate::mobility::MobilitySettings;
 
@@ -18,15 +18,17 @@ pub enum Method {
 }
 
 impl std::str::FromStr for Method {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Method> {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Method, SettingsError> {
         match s {
             "rigid-modes" => Ok(Method::RigidModes),
             "ncm" => Ok(Method::Ncm),
             "springs" => Ok(Method::Springs),
-            _ => Err(Error::Settings(format!(
-                "unknown method '{s}': use rigid-modes, ncm or springs"
-            ))),
+            _ => Err(SettingsError::new(
+                "method",
+                SettingValue::Text(crate::topology::quote_input(s)),
+                Requirement::OneOf(&["rigid-modes", "ncm", "springs"]),
+            )),
         }
     }
 }
@@ -109,15 +111,13 @@ impl Default for DeploySettings {
 
 impl DeploySettings {
     /// Checks every field.
-    pub fn validate(&self) -> Result<()> {
+    pub fn validate(&self) -> Result<(), SettingsError> {
         self.contact.validate()?;
-        let positive = |name: &str, v: Real| {
+        let positive = |name: &'static str, v: Real| {
             if v.is_finite() && v > 0.0 {
                 Ok(())
             } else {
-                Err(Error::Settings(format!(
-                    "deploy setting {name} must be positive, got {v}"
-                )))
+                Err(SettingsError::new(name, v, Requirement::Positive))
             }
         };
         positive("step_weight", self.step_weight)?;
@@ -128,33 +128,41 @@ impl DeploySettings {
         positive("frame_joint_tolerance", self.frame_joint_tolerance)?;
         positive("mobility tolerance", self.mobility.rel_tol)?;
         if !(self.max_stretch.is_finite() && self.max_stretch > 1.0) {
-            return Err(Error::Settings(format!(
-                "max_stretch must be a finite number above 1, got {}",
-                self.max_stretch
-            )));
-        }
-        if self.frame_joint_tolerance < self.joint_tolerance {
-            return Err(Error::Settings(format!(
-                "frame_joint_tolerance {} must be at least joint_tolerance {}",
-                self.frame_joint_tolerance, self.joint_tolerance
-            )));
-        }
-        if !(self.growth.is_finite() && self.growth >= 1.0) {
-            return Err(Error::Settings(format!(
-                "growth must be >= 1, got {}",
-                self.growth
-            )));
-        }
-        if self.max_steps == 0 || self.max_attempts == 0 {
-            return Err(Error::Settings(
-                "max_steps and max_attempts must be at least 1".into(),
+            return Err(SettingsError::new(
+                "max_stretch",
+                self.max_stretch,
+                Requirement::Above(1.0),
             ));
         }
+        if self.frame_joint_tolerance < self.joint_tolerance {
+            return Err(SettingsError::new(
+                "frame_joint_tolerance",
+                self.frame_joint_tolerance,
+                Requirement::AtLeast(self.joint_tolerance),
+            )
+            .with_note("at least joint_tolerance"));
+        }
+        if !(self.growth.is_finite() && self.growth >= 1.0) {
+            return Err(SettingsError::new(
+                "growth",
+                self.growth,
+                Requirement::AtLeast(1.0),
+            ));
+        }
+        for (name, n) in [
+            ("max_steps", self.max_steps),
+            ("max_attempts", self.max_attempts),
+        ] {
+            if n == 0 {
+                return Err(SettingsError::new(name, n, Requirement::AtLeast(1.0)));
+            }
+        }
         if self.max_halvings > 50 {
-            return Err(Error::Settings(format!(
-                "max_halvings must be at most 50, got {}",
-                self.max_halvings
-            )));
+            return Err(SettingsError::new(
+                "max_halvings",
+                self.max_halvings,
+                Requirement::AtMost(50.0),
+            ));
         }
         Ok(())
     }

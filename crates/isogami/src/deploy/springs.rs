@@ -5,11 +5,11 @@
 //! only say where to go). Where the mechanism's path no longer lets the cell grow the way the
 //! springs pull, the sheet stops moving: stalled.
 
+use super::error::DeployError;
 use super::march::{unit_displacement, StepInput, StepPolicy, StepTry};
 use super::newton::{minimize, Objective};
 use super::settings::DeploySettings;
 use crate::contact::ContactModel;
-use crate::error::Result;
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
 
@@ -32,7 +32,7 @@ impl StepPolicy for Springs {
         contact: &ContactModel,
         settings: &DeploySettings,
         input: &StepInput,
-    ) -> Result<StepTry> {
+    ) -> Result<StepTry, DeployError> {
         let StepInput {
             q, clearance, beta, ..
         } = *input;

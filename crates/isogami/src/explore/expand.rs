@@ -34,7 +34,7 @@
 //! reasoning, no I/O.
 
 use crate::cell::UnitCell;
-use crate::error::Result;
+use crate::kinematics::KinematicsError;
 use crate::kinematics::Mechanism;
 use crate::math::DVec;
 use crate::mobility::{analyze, area_rate, MobilitySettings};
@@ -133,7 +133,10 @@ struct Search<'s> {
 
 impl<'a> Expander<'a> {
     /// Precomputes the Jacobian rows of every possible joint of `cell` at the closed state.
-    pub fn new(cell: &'a UnitCell, settings: MobilitySettings) -> Result<Expander<'a>> {
+    pub fn new(
+        cell: &'a UnitCell,
+        settings: MobilitySettings,
+    ) -> Result<Expander<'a>, KinematicsError> {
         let m = cell.edges.len();
         let both = Mechanism::new(cell, &vec![JointChoice::Both; m])?;
         let reference = Mechanism::new(cell, &vec![JointChoice::None; m])?;

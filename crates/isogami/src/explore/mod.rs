@@ -20,6 +20,7 @@
 //! designs, the expansion threshold and shape sampling (§4.2) are later stages.
 
 pub mod dedup;
+mod error;
 pub mod expand;
 pub mod pipeline;
 pub mod reduced;
@@ -28,6 +29,7 @@ pub mod separate;
 pub use dedup::{
     motion_invariant, sheet_symmetries, MotionIndex, MotionInvariant, Symmetry, SymmetryGroup,
 };
+pub use error::ExploreError;
 pub use expand::{ExpandStats, Expander, Leaf};
 pub use pipeline::{
     cells_to_explore, duplicates_across, enumerate_topologies, DesignDetails, StageTimings,

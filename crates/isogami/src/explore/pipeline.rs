@@ -12,11 +12,11 @@
 //! threshold come after this stage and are not done here. No I/O.
 
 use super::dedup::{dedup_orbits, MotionIndex, MotionInvariant, SymmetryGroup, MOTION_TOL};
+use super::error::ExploreError;
 use super::expand::{ExpandStats, Expander};
 use super::reduced::{ReducedGraph, MAX_REDUCED_EDGES};
 use super::separate::{separation, Separation, SeparationRule};
 use crate::cell::{CellDims, UnitCell};
-use crate::error::{Error, Result};
 use crate::kinematics::Mechanism;
 use crate::mobility::MobilitySettings;
 use crate::tiling::{Family, Tiling};
@@ -147,16 +147,17 @@ pub fn enumerate_topologies(
     family: Family,
     dims: CellDims,
     options: &TopologyOptions,
-) -> Result<TopologyReport> {
+) -> Result<TopologyReport, ExploreError> {
     let start = Instant::now();
     let tiling = Tiling::default_for(family);
     let cell = UnitCell::new(&tiling, dims)?;
     let m = cell.edges.len();
     let limit = options.max_edges.min(MAX_REDUCED_EDGES);
-    let too_many = || {
-        Error::BadSpec(format!(
-            "{family} {dims} has {m} unique edges; topology enumeration takes at most {limit}"
-        ))
+    let too_many = || ExploreError::TooManyEdges {
+        family,
+        dims,
+        edges: m,
+        limit,
     };
     if m > limit {
         return Err(too_many());

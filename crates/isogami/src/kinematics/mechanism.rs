@@ -1,7 +1,7 @@
 //! Mechanism assembly, residuals and derivatives.
 
+use super::error::KinematicsError;
 use crate::cell::{End, UnitCell};
-use crate::error::{Error, Result};
 use crate::math::{perp, rotation, DMat, DVec, Real, Vec2};
 use crate::topology::JointChoice;
 
@@ -75,13 +75,12 @@ pub struct Mechanism {
 
 impl Mechanism {
     /// Assembles the mechanism of `cell` with one joint choice per unique edge.
-    pub fn new(cell: &UnitCell, joints: &[JointChoice]) -> Result<Mechanism> {
+    pub fn new(cell: &UnitCell, joints: &[JointChoice]) -> Result<Mechanism, KinematicsError> {
         if joints.len() != cell.edges.len() {
-            return Err(Error::BadSpec(format!(
-                "{} joint choices for a cell with {} edges",
-                joints.len(),
-                cell.edges.len()
-            )));
+            return Err(KinematicsError::JointCount {
+                given: joints.len(),
+                edges: cell.edges.len(),
+            });
         }
         let scale = cell.mean_edge_length();
         let layout = StateLayout {

@@ -7,6 +7,8 @@
 //! R(θ_i)s_a + p_i − (R(θ_j)s_b + p_j + k_u u + k_w w). Residuals, the exact Jacobian and the
 //! exact Hessian of E_joints = ½|c|² live here; no eigen-analysis, no contact.
 
+mod error;
 mod mechanism;
 
+pub use error::KinematicsError;
 pub use mechanism::{Joint, Mechanism, StateLayout};

@@ -30,11 +30,11 @@
 //! What it must not do: no I/O, no kinematics (it reads only the closed-state cell and the joint
 //! choices), no panics on bad input (a joint list of the wrong length is an error).
 
+mod error;
 mod faces;
 mod sheet;
 
 use crate::cell::{End, UnitCell};
-use crate::error::{Error, Result};
 use crate::math::Vec2;
 use crate::topology::JointChoice;
 use faces::{canonical_start, has_chord, is_simple, trace_faces, FaceWalk};
@@ -42,6 +42,7 @@ use serde::Serialize;
 use sheet::Sheet;
 use std::collections::BTreeMap;
 
+pub use error::LinkageError;
 pub use faces::Node;
 
 /// A pin joint of a linkage: the design's joint on `edge` at `end`, in the copy of the edge
@@ -107,13 +108,15 @@ pub struct LinkageAnalysis {
 }
 
 /// Finds the linkages of `cell` with one joint choice per unique edge.
-pub fn analyze_linkages(cell: &UnitCell, joints: &[JointChoice]) -> Result<LinkageAnalysis> {
+pub fn analyze_linkages(
+    cell: &UnitCell,
+    joints: &[JointChoice],
+) -> Result<LinkageAnalysis, LinkageError> {
     if joints.len() != cell.edges.len() {
-        return Err(Error::BadSpec(format!(
-            "linkage analysis: {} joint choices for a cell with {} unique edges",
-            joints.len(),
-            cell.edges.len()
-        )));
+        return Err(LinkageError::JointCount {
+            given: joints.len(),
+            edges: cell.edges.len(),
+        });
     }
     validate_cell(cell)?;
     let sheet = Sheet::new(cell, joints);
@@ -190,7 +193,7 @@ pub fn signature(linkages: &[Linkage]) -> String {
 
 /// Rejects cells whose edge records point at tiles or tile edges that do not exist, so that
 /// the graph code can index freely.
-fn validate_cell(cell: &UnitCell) -> Result<()> {
+fn validate_cell(cell: &UnitCell) -> Result<(), LinkageError> {
     let n = cell.tiles.len();
     for (k, e) in cell.edges.iter().enumerate() {
         let ok = e.tile_a < n
@@ -198,9 +201,7 @@ fn validate_cell(cell: &UnitCell) -> Result<()> {
             && e.edge_a < cell.tiles[e.tile_a].polygon.len()
             && e.edge_b < cell.tiles[e.tile_b].polygon.len();
         if !ok {
-            return Err(Error::CellGeometry(format!(
-                "edge {k} names a tile or tile edge the cell does not have"
-            )));
+            return Err(LinkageError::EdgeRecord { edge: k });
         }
     }
     Ok(())

@@ -1,10 +1,10 @@
 //! Measures of one deployment frame.
 
+use super::error::MeasureError;
 use super::strain::{
     area_ratio, deformation_gradient, effective_poisson_ratio, polar, principal_direction,
     principal_expansions,
 };
-use crate::error::{Error, Result};
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Mat2, Real, Vec2};
 use serde::{Deserialize, Serialize};
@@ -48,21 +48,18 @@ impl FrameMeasures {
         (u, w): (Vec2, Vec2),
         closed_angles: &[Real],
         angles: &[Real],
-    ) -> Result<FrameMeasures> {
+    ) -> Result<FrameMeasures, MeasureError> {
         if closed_angles.len() != angles.len() {
-            return Err(Error::Numerical(format!(
-                "frame measures: {} closed tile angles but {} current ones",
-                closed_angles.len(),
-                angles.len()
-            )));
+            return Err(MeasureError::AngleCount {
+                closed: closed_angles.len(),
+                current: angles.len(),
+            });
         }
         if !t.is_finite() {
-            return Err(Error::Numerical(format!("frame measures at t = {t}")));
+            return Err(MeasureError::NonFiniteT { t });
         }
         if let Some(i) = (0..angles.len()).find(|&i| !(angles[i] - closed_angles[i]).is_finite()) {
-            return Err(Error::Numerical(format!(
-                "frame measures: tile {i} has a non-finite angle"
-            )));
+            return Err(MeasureError::NonFiniteAngle { tile: i });
         }
         let f = deformation_gradient(&u0, &w0, &u, &w)?;
         let (r, stretch) = polar(&f)?;
@@ -90,14 +87,19 @@ impl FrameMeasures {
 
     /// Measures of state `q` of `mech` relative to the closed state `q0` (usually
     /// `mech.rest`), at deployment parameter `t`.
-    pub fn from_states(mech: &Mechanism, q0: &DVec, q: &DVec, t: Real) -> Result<FrameMeasures> {
+    pub fn from_states(
+        mech: &Mechanism,
+        q0: &DVec,
+        q: &DVec,
+        t: Real,
+    ) -> Result<FrameMeasures, MeasureError> {
         let n = mech.layout.len();
         if q0.len() != n || q.len() != n {
-            return Err(Error::Numerical(format!(
-                "frame measures: states of length {} and {} for a mechanism with {n} unknowns",
-                q0.len(),
-                q.len()
-            )));
+            return Err(MeasureError::StateLength {
+                closed: q0.len(),
+                current: q.len(),
+                unknowns: n,
+            });
         }
         let angles =
             |q: &DVec| -> Vec<Real> { (0..mech.tile_count()).map(|i| mech.pose(q, i).1).collect() };
@@ -167,5 +169,17 @@ mod tests {
         let (u0, w0) = (vec2(1.0, 0.0), vec2(0.0, 1.0));
         assert!(FrameMeasures::new(0.0, (u0, w0), (u0, w0), &[0.0], &[]).is_err());
         assert!(FrameMeasures::new(0.0, (u0, w0), (u0, w0), &[0.0], &[Real::NAN]).is_err());
+        assert_eq!(
+            FrameMeasures::new(0.0, (u0, w0), (u0, w0), &[0.0, 0.0], &[0.0]).unwrap_err(),
+            MeasureError::AngleCount {
+                closed: 2,
+                current: 1
+            }
+        );
+        assert_eq!(
+            FrameMeasures::new(0.0, (u0, w0), (u0, w0), &[0.0, 0.0], &[0.0, Real::NAN])
+                .unwrap_err(),
+            MeasureError::NonFiniteAngle { tile: 1 }
+        );
     }
 }

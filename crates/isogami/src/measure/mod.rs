@@ -9,14 +9,16 @@
 //!
 //! What it must not do: no I/O, no rendering, no solving. Every function is a pure function of
 //! the numbers it is given; invalid input (non-finite values, a degenerate closed lattice, an
-//! inverted lattice with det F ≤ 0) is an [`Error::Numerical`](crate::Error::Numerical), never
+//! inverted lattice with det F ≤ 0) is an [`MeasureError`], never
 //! a NaN in the output.
 
 mod classify;
+mod error;
 mod frame;
 mod strain;
 
 pub use classify::{classify, classify_with, BehaviourClass, ClassifyTolerances};
+pub use error::MeasureError;
 pub use frame::FrameMeasures;
 pub use strain::{
     area_ratio, deformation_gradient, directional_expansion, effective_poisson_ratio,

@@ -1,6 +1,6 @@
 //! Deformation gradient, polar decomposition and directional expansion of 2×2 maps.
 
-use crate::error::{Error, Result};
+use super::error::MeasureError;
 use crate::math::{cross, Mat2, Real, Vec2};
 use std::f64::consts::TAU;
 
@@ -22,18 +22,23 @@ fn mat_finite(m: &Mat2) -> bool {
 ///
 /// `u0`, `w0` are the closed-state tiling vectors, `u`, `w` the current ones. Errors when an
 /// input is not finite or when u0, w0 are (nearly) parallel, |u0 × w0| ≤ 1e-12 |u0||w0|.
-pub fn deformation_gradient(u0: &Vec2, w0: &Vec2, u: &Vec2, w: &Vec2) -> Result<Mat2> {
+pub fn deformation_gradient(
+    u0: &Vec2,
+    w0: &Vec2,
+    u: &Vec2,
+    w: &Vec2,
+) -> Result<Mat2, MeasureError> {
     if !finite(&[u0, w0, u, w]) {
-        return Err(Error::Numerical(format!(
-            "deformation gradient of non-finite tiling vectors (u0 {u0:?}, w0 {w0:?}, u {u:?}, w {w:?})"
-        )));
+        return Err(MeasureError::NonFiniteLattice {
+            u0: *u0,
+            w0: *w0,
+            u: *u,
+            w: *w,
+        });
     }
     let det0 = cross(u0, w0);
     if det0.abs() <= DEGENERATE_LATTICE * u0.norm() * w0.norm() {
-        return Err(Error::Numerical(format!(
-            "closed tiling vectors u0 = ({}, {}) and w0 = ({}, {}) are parallel: no deformation gradient",
-            u0.x, u0.y, w0.x, w0.y
-        )));
+        return Err(MeasureError::ParallelLattice { u0: *u0, w0: *w0 });
     }
     let closed = Mat2::from_columns(&[*u0, *w0]);
     let current = Mat2::from_columns(&[*u, *w]);
@@ -50,18 +55,15 @@ pub fn deformation_gradient(u0: &Vec2, w0: &Vec2, u: &Vec2, w: &Vec2) -> Result<
 /// for which RᵀF is symmetric with positive trace; U = RᵀF (symmetrised to remove rounding).
 /// Errors when F has a non-finite entry or det F ≤ 0 (an inverted or collapsed lattice has no
 /// such decomposition): the result is never NaN.
-pub fn polar(f: &Mat2) -> Result<(Mat2, Mat2)> {
+pub fn polar(f: &Mat2) -> Result<(Mat2, Mat2), MeasureError> {
     if !mat_finite(f) {
-        return Err(Error::Numerical(format!(
-            "polar decomposition of a non-finite deformation gradient {:?}",
-            f.as_slice()
-        )));
+        return Err(MeasureError::NonFiniteGradient {
+            f: [f[(0, 0)], f[(1, 0)], f[(0, 1)], f[(1, 1)]],
+        });
     }
     let det = f.determinant();
     if det <= 0.0 {
-        return Err(Error::Numerical(format!(
-            "deformation gradient has det F = {det:e} <= 0 (inverted or collapsed lattice): no polar decomposition"
-        )));
+        return Err(MeasureError::Inverted { det });
     }
     let (a, b, c, d) = (f[(0, 0)], f[(0, 1)], f[(1, 0)], f[(1, 1)]);
     // det F > 0 forbids a + d = c − b = 0 (a symmetric RᵀF with zero trace has det ≤ 0).
@@ -275,7 +277,15 @@ mod tests {
         // Inverted (reflected) lattice.
         let flip = Mat2::new(1.0, 0.0, 0.0, -1.0);
         let f = deformation_gradient(&u0, &w0, &(flip * u0), &(flip * w0)).unwrap();
-        assert!(polar(&f).is_err());
+        assert!(
+            matches!(polar(&f), Err(MeasureError::Inverted { det }) if (det - f.determinant()).abs() < 1e-12),
+            "{:?}",
+            polar(&f)
+        );
+        assert_eq!(
+            deformation_gradient(&u0, &(u0 * 2.0), &u0, &w0),
+            Err(MeasureError::ParallelLattice { u0, w0: u0 * 2.0 })
+        );
         assert!(polar(&Mat2::zeros()).is_err());
         assert!(polar(&Mat2::new(Real::INFINITY, 0.0, 0.0, 1.0)).is_err());
         assert_eq!(effective_poisson_ratio(0.0, 0.0), None);

@@ -51,7 +51,7 @@ fn check_finite(series: &'static str, values: &[Real]) -> RenderResult<()> {
     }
 }
 
-fn finish(svg: String, w: u32, h: u32) -> RenderResult<String> {
+fn finish(svg: String, w: u32, h: u32) -> Result<String, RenderError> {
     let svg = nominal_size(svg, w, h);
     if !svg.starts_with(&format!(r#"<svg width="{w}" height="{h}" "#)) {
         return Err(plot_err("unexpected SVG header from plotters"));
@@ -80,7 +80,7 @@ pub fn expansion_plot_svg(
     min: &[Real],
     max: &[Real],
     title: &str,
-) -> RenderResult<String> {
+) -> Result<String, RenderError> {
     if t.is_empty() || t.len() != min.len() || t.len() != max.len() {
         return Err(RenderError::SeriesLengths {
             t: t.len(),
@@ -167,7 +167,9 @@ pub fn expansion_plot_svg(
 /// at radius r(θ) = 1 + ε(θ) (closed), with the unit circle (the closed sheet) for
 /// reference, a polar grid, equal aspect ratio, 640×640 px. Every θ and ε must be finite,
 /// every profile non-empty and every radius 1 + ε non-negative.
-pub fn polar_plot_svg<S: AsRef<str>>(profiles: &[(S, Vec<(Real, Real)>)]) -> RenderResult<String> {
+pub fn polar_plot_svg<S: AsRef<str>>(
+    profiles: &[(S, Vec<(Real, Real)>)],
+) -> Result<String, RenderError> {
     let mut curves = Vec::with_capacity(profiles.len());
     let mut r_max: Real = 1.0;
     for (label, samples) in profiles {

@@ -1,6 +1,6 @@
 //! The 81 realizable isohedral families and their static facts.
 
-use crate::error::{Error, Result};
+use super::error::TilingError;
 use crate::math::Real;
 use serde::Serialize;
 use std::fmt;
@@ -61,10 +61,12 @@ impl Family {
     }
 
     /// The family with Kaplan number `n`, if it is one of the 81 realizable types.
-    pub fn from_number(n: u32) -> Result<Family> {
+    pub fn from_number(n: u32) -> Result<Family, TilingError> {
         Self::all()
             .find(|f| u32::from(f.0) == n)
-            .ok_or_else(|| Error::UnknownFamily(format!("IH{n}")))
+            .ok_or_else(|| TilingError::UnknownFamily {
+                input: format!("IH{n}"),
+            })
     }
 
     /// Kaplan's number.
@@ -133,10 +135,13 @@ impl fmt::Display for Family {
 }
 
 impl FromStr for Family {
-    type Err = Error;
+    type Err = TilingError;
 
     /// Accepts "IH28", "ih28", "IH028" or "28".
-    fn from_str(s: &str) -> Result<Family> {
+    fn from_str(s: &str) -> Result<Family, TilingError> {
+        let unknown = || TilingError::UnknownFamily {
+            input: crate::topology::quote_input(s),
+        };
         let t = s.trim();
         let digits = t
             .strip_prefix("IH")
@@ -144,12 +149,10 @@ impl FromStr for Family {
             .or_else(|| t.strip_prefix("Ih"))
             .unwrap_or(t);
         if digits.is_empty() || digits.len() > 3 || !digits.bytes().all(|b| b.is_ascii_digit()) {
-            return Err(Error::UnknownFamily(crate::topology::quote_input(s)));
+            return Err(unknown());
         }
-        let n: u32 = digits
-            .parse()
-            .map_err(|_| Error::UnknownFamily(crate::topology::quote_input(s)))?;
-        Family::from_number(n).map_err(|_| Error::UnknownFamily(crate::topology::quote_input(s)))
+        let n: u32 = digits.parse().map_err(|_| unknown())?;
+        Family::from_number(n).map_err(|_| unknown())
     }
 }
 

@@ -5,10 +5,12 @@
 //! crate's `fill_region` iterator (it can loop forever on degenerate boxes); cells are built
 //! from aspects and translation vectors in `cell`. No I/O.
 
+mod error;
 mod family;
 mod sampling;
 mod shape;
 
+pub use error::{Culprit, ShapeProblem, TilingError};
 pub use family::{EdgeShapeKind, Family, FamilyInfo, PrototileEdge};
 pub use sampling::{
     shape_grid, shape_quality_problem, MIN_ANGLE_DEG, MIN_EDGE_RATIO, MIN_ROUNDNESS,

@@ -1,7 +1,7 @@
 //! A family at concrete shape parameters, validated.
 
+use super::error::{Culprit, ShapeProblem, TilingError};
 use super::family::Family;
-use crate::error::{Error, Result};
 use crate::geometry::{is_simple_problem, signed_area};
 use crate::math::{cross, vec2, Mat2, Real, Vec2};
 
@@ -68,28 +68,26 @@ fn raw(family: Family, params: &[Real]) -> (Vec<Vec2>, Vec<Affine>, Vec2, Vec2) 
 }
 
 /// What is wrong with the tile at these parameters, if anything.
-fn shape_problem(family: Family, params: &[Real], default_sign: Real) -> Option<String> {
+fn shape_problem(family: Family, params: &[Real], default_sign: Real) -> Option<ShapeProblem> {
     let (proto, aspects, t1, t2) = raw(family, params);
     let diameter = proto
         .iter()
         .flat_map(|a| proto.iter().map(move |b| (a - b).norm()))
         .fold(0.0, Real::max);
     if !diameter.is_finite() || diameter == 0.0 {
-        return Some("degenerate tile (all vertices coincide)".into());
+        return Some(ShapeProblem::Degenerate);
     }
     if let Some(p) = is_simple_problem(&proto, SHAPE_REL_TOL * diameter) {
-        return Some(p.to_string());
+        return Some(ShapeProblem::NotSimple(p));
     }
     let area = signed_area(&proto);
     if area.signum() != default_sign {
-        return Some("inverted tile (its vertices run the other way round)".into());
+        return Some(ShapeProblem::Inverted);
     }
     let lattice = cross(&t1, &t2).abs();
     let covered = area.abs() * aspects.len() as Real;
     if (covered - lattice).abs() > 1e-9 * lattice.max(covered) {
-        return Some(format!(
-            "tiling whose tiles overlap (tiles cover {covered:.6} per lattice cell of area {lattice:.6})"
-        ));
+        return Some(ShapeProblem::Overlap { covered, lattice });
     }
     None
 }
@@ -102,25 +100,25 @@ impl Tiling {
 
     /// The family at `params`, refusing parameters that give a non-simple, degenerate,
     /// inverted or overlapping tile; the error names the responsible parameter(s).
-    pub fn new(family: Family, params: &[Real]) -> Result<Tiling> {
+    pub fn new(family: Family, params: &[Real]) -> Result<Tiling, TilingError> {
         let expected = family.param_count();
         if params.len() != expected {
-            return Err(Error::ParamCount {
-                family: family.name(),
+            return Err(TilingError::ParamCount {
+                family,
                 expected,
                 got: params.len(),
             });
         }
         if let Some((index, &value)) = params.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Err(Error::ParamNotFinite { index, value });
+            return Err(TilingError::ParamNotFinite { index, value });
         }
         let defaults = family.default_params();
         let (dproto, ..) = raw(family, &defaults);
         let default_sign = signed_area(&dproto).signum();
         if let Some(problem) = shape_problem(family, params, default_sign) {
-            return Err(Error::InvalidShape {
-                family: family.name(),
-                params: format_params(params),
+            return Err(TilingError::InvalidShape {
+                family,
+                params: params.to_vec(),
                 culprit: culprit(family, params, &defaults, default_sign),
                 problem,
             });
@@ -178,7 +176,7 @@ pub(crate) fn format_params(params: &[Real]) -> String {
 
 /// Names the parameter(s) whose change from the default alone breaks the tile; when none
 /// does alone, names all changed parameters "together".
-fn culprit(family: Family, params: &[Real], defaults: &[Real], sign: Real) -> String {
+fn culprit(family: Family, params: &[Real], defaults: &[Real], sign: Real) -> Culprit {
     let changed: Vec<usize> = (0..params.len())
         .filter(|&i| params[i] != defaults[i])
         .collect();
@@ -191,17 +189,11 @@ fn culprit(family: Family, params: &[Real], defaults: &[Real], sign: Real) -> St
             shape_problem(family, &p, sign).is_some()
         })
         .collect();
-    let names = |ix: &[usize]| {
-        ix.iter()
-            .map(|i| format!("v{i}={}", params[*i]))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
+    let pairs = |ix: &[usize]| ix.iter().map(|&i| (i, params[i])).collect();
     match (alone.len(), changed.len()) {
-        (0, 0) => "the default parameters".into(),
-        (0, _) => format!("parameters {} together", names(&changed)),
-        (1, _) => format!("parameter {}", names(&alone)),
-        _ => format!("parameters {} (each alone)", names(&alone)),
+        (0, 0) => Culprit::Defaults,
+        (0, _) => Culprit::Together(pairs(&changed)),
+        _ => Culprit::Alone(pairs(&alone)),
     }
 }
 
@@ -222,11 +214,14 @@ mod tests {
         let f: Family = "IH28".parse().unwrap();
         let mut p = f.default_params();
         let e = Tiling::new(f, &p[..p.len() - 1]).unwrap_err();
-        assert!(matches!(e, Error::ParamCount { .. }), "{e}");
+        assert!(
+            matches!(e, TilingError::ParamCount { expected, got, .. } if got + 1 == expected),
+            "{e}"
+        );
         p[0] = Real::NAN;
         let e = Tiling::new(f, &p).unwrap_err();
         assert!(
-            matches!(e, Error::ParamNotFinite { index: 0, value } if value.is_nan()),
+            matches!(e, TilingError::ParamNotFinite { index: 0, value } if value.is_nan()),
             "{e}"
         );
     }

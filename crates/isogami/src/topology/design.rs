@@ -1,9 +1,9 @@
 //! The design type and its validation against the cell it names.
 
+use super::error::DesignError;
 use crate::cell::{CellDims, End, UnitCell};
-use crate::error::{Error, Result};
 use crate::math::Real;
-use crate::tiling::{Family, Tiling};
+use crate::tiling::{Family, Tiling, TilingError};
 use serde::{Deserialize, Serialize};
 
 /// What sits on one unique edge of the cell.
@@ -69,7 +69,7 @@ pub struct Design {
 
 impl Design {
     /// Reads a design given as a name (`rotating-squares`), a JSON object, or a spec string.
-    pub fn resolve(text: &str) -> Result<Design> {
+    pub fn resolve(text: &str) -> Result<Design, DesignError> {
         let t = text.trim();
         if let Some(d) = super::named::named_design(t) {
             return Ok(d);
@@ -81,21 +81,20 @@ impl Design {
     }
 
     /// The validated tiling of this design.
-    pub fn tiling(&self) -> Result<Tiling> {
+    pub fn tiling(&self) -> Result<Tiling, TilingError> {
         Tiling::new(self.family, &self.params)
     }
 
     /// Builds the cell and checks that the joints fit it.
-    pub fn cell(&self) -> Result<UnitCell> {
+    pub fn cell(&self) -> Result<UnitCell, DesignError> {
         let cell = UnitCell::new(&self.tiling()?, self.dims)?;
         if self.joints.len() != cell.edges.len() {
-            return Err(Error::BadSpec(format!(
-                "{} joint choices given but a {} {} cell has {} unique edges",
-                self.joints.len(),
-                self.family,
-                self.dims,
-                cell.edges.len()
-            )));
+            return Err(DesignError::JointCount {
+                given: self.joints.len(),
+                family: self.family,
+                dims: self.dims,
+                edges: cell.edges.len(),
+            });
         }
         Ok(cell)
     }

@@ -3,8 +3,8 @@
 //! left out for the family's defaults.
 
 use super::design::{Design, JointChoice};
+use super::error::DesignError;
 use crate::cell::{CellDims, UnitCell};
-use crate::error::{Error, Result};
 use crate::math::Real;
 use crate::tiling::{Family, Tiling};
 use serde::{Deserialize, Serialize};
@@ -52,22 +52,23 @@ impl Design {
     }
 
     /// Reads the JSON form; builds the cell to know its edge count.
-    pub fn from_json(text: &str) -> Result<Design> {
-        let j: DesignJson =
-            serde_json::from_str(text).map_err(|e| Error::BadSpec(format!("design JSON: {e}")))?;
+    pub fn from_json(text: &str) -> Result<Design, DesignError> {
+        let j: DesignJson = serde_json::from_str(text).map_err(|e| DesignError::Json {
+            detail: e.to_string(),
+        })?;
         let params = j.params.unwrap_or_else(|| j.family.default_params());
         let cell = UnitCell::new(&Tiling::new(j.family, &params)?, j.cell)?;
         let m = cell.edges.len();
         let mut joints = vec![JointChoice::None; m];
         for jj in &j.joints {
             if jj.edge >= m {
-                return Err(Error::JointIndex {
+                return Err(DesignError::JointIndex {
                     index: jj.edge,
                     edges: m,
                 });
             }
             if joints[jj.edge] != JointChoice::None {
-                return Err(Error::BadSpec(format!("edge {} is listed twice", jj.edge)));
+                return Err(DesignError::DuplicateEdge { edge: jj.edge });
             }
             joints[jj.edge] = jj.at;
         }

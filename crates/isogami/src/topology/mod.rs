@@ -4,11 +4,13 @@
 //! cell a design names.
 
 mod design;
+mod error;
 mod json;
 mod named;
 mod spec;
 
 pub use design::{Design, JointChoice};
+pub use error::DesignError;
 pub use json::{DesignJson, JointJson};
 pub use named::{named_design, NAMED_DESIGNS, SAMPLE_OPENING_DESIGNS};
 pub(crate) use spec::truncate as quote_input;

@@ -6,9 +6,10 @@
 //! design bit for bit.
 
 use super::design::{Design, JointChoice};
+use super::error::DesignError;
 use crate::cell::CellDims;
-use crate::error::{Error, Result};
 use crate::tiling::Family;
+use crate::tiling::TilingError;
 use std::fmt;
 use std::str::FromStr;
 
@@ -28,16 +29,15 @@ impl fmt::Display for Design {
 }
 
 impl FromStr for Design {
-    type Err = Error;
+    type Err = DesignError;
 
-    fn from_str(s: &str) -> Result<Design> {
+    fn from_str(s: &str) -> Result<Design, DesignError> {
         let fields: Vec<&str> = s.trim().split(':').collect();
         if fields.len() != 4 {
-            return Err(Error::BadSpec(format!(
-                "expected FAMILY:PARAMS:CELL:JOINTS (4 fields separated by ':'), got {} field(s) in '{}'",
-                fields.len(),
-                truncate(s)
-            )));
+            return Err(DesignError::FieldCount {
+                fields: fields.len(),
+                input: truncate(s),
+            });
         }
         let family: Family = fields[0].parse()?;
         let params = parse_params(family, fields[1])?;
@@ -46,14 +46,9 @@ impl FromStr for Design {
             .chars()
             .enumerate()
             .map(|(i, c)| {
-                JointChoice::from_char(c).ok_or_else(|| {
-                    Error::BadSpec(format!(
-                        "joint character {i} is '{}'; use '-', 'a', 'b' or 'x'",
-                        c.escape_debug()
-                    ))
-                })
+                JointChoice::from_char(c).ok_or(DesignError::JointChar { index: i, found: c })
             })
-            .collect::<Result<Vec<_>>>()?;
+            .collect::<Result<Vec<_>, _>>()?;
         Ok(Design {
             family,
             params,
@@ -63,7 +58,7 @@ impl FromStr for Design {
     }
 }
 
-fn parse_params(family: Family, text: &str) -> Result<Vec<f64>> {
+fn parse_params(family: Family, text: &str) -> Result<Vec<f64>, DesignError> {
     let t = text.trim();
     if t == "default" {
         return Ok(family.default_params());
@@ -74,16 +69,14 @@ fn parse_params(family: Family, text: &str) -> Result<Vec<f64>> {
     t.split(',')
         .enumerate()
         .map(|(i, p)| {
-            let v: f64 = p.trim().parse().map_err(|_| {
-                Error::BadSpec(format!(
-                    "shape parameter v{i} '{}' is not a number",
-                    truncate(p)
-                ))
+            let v: f64 = p.trim().parse().map_err(|_| DesignError::ParamNotNumber {
+                index: i,
+                input: truncate(p),
             })?;
             if v.is_finite() {
                 Ok(v)
             } else {
-                Err(Error::ParamNotFinite { index: i, value: v })
+                Err(TilingError::ParamNotFinite { index: i, value: v }.into())
             }
         })
         .collect()

@@ -3,7 +3,10 @@
 //! non-dimensional model and the spectral gap is reported, so that a count is never decided
 //! by a hair. The zero-eigenvalue eigenvectors are the first-order motions. No deployment here.
 
-use crate::error::{Error, Result};
+mod error;
+
+pub use error::MobilityError;
+
 use crate::kinematics::Mechanism;
 use crate::math::{cross, symmetric_eigen, DMat, DVec, Real, Vec2};
 use serde::Serialize;
@@ -83,13 +86,16 @@ pub fn reduced_hessian(mech: &Mechanism, q: &DVec) -> DMat {
 }
 
 /// Mobility of `mech` at state q.
-pub fn analyze(mech: &Mechanism, q: &DVec, settings: MobilitySettings) -> Result<Mobility> {
+pub fn analyze(
+    mech: &Mechanism,
+    q: &DVec,
+    settings: MobilitySettings,
+) -> Result<Mobility, MobilityError> {
     if q.iter().any(|x| !x.is_finite()) {
-        return Err(Error::Numerical("state holds NaN or infinity".into()));
+        return Err(MobilityError::NonFiniteState);
     }
     let h = reduced_hessian(mech, q);
-    let spec = symmetric_eigen(h)
-        .ok_or_else(|| Error::Numerical("eigen-decomposition did not converge".into()))?;
+    let spec = symmetric_eigen(h).ok_or(MobilityError::Eigen)?;
     let lmax = spec.values.last().copied().unwrap_or(0.0);
     let threshold = settings.rel_tol * lmax.max(1.0);
     let dof = spec.values.iter().take_while(|&&l| l < threshold).count();

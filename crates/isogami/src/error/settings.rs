@@ -1,0 +1,180 @@
+//! The one error every settings struct (contact, deploy, mobility, exploration, frame
+//! selection) gives for a field outside its range: the setting's name, the value given and
+//! what it must be, as typed values.
+
+use crate::math::Real;
+use std::fmt;
+use thiserror::Error;
+
+/// A setting outside its allowed range.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[error("invalid setting: {name} {value} must {requirement}{}", note_suffix(.note))]
+#[non_exhaustive]
+pub struct SettingsError {
+    /// The setting's name, e.g. "kerf" or "max_halvings".
+    pub name: &'static str,
+    /// The value given.
+    pub value: SettingValue,
+    /// What the value must be.
+    pub requirement: Requirement,
+    /// Why the range is what it is, when that helps the user ("" when not).
+    pub note: &'static str,
+}
+
+impl SettingsError {
+    /// A setting `name` whose `value` does not meet `requirement`.
+    pub fn new(
+        name: &'static str,
+        value: impl Into<SettingValue>,
+        requirement: Requirement,
+    ) -> SettingsError {
+        SettingsError {
+            name,
+            value: value.into(),
+            requirement,
+            note: "",
+        }
+    }
+
+    /// The same error with an explanation appended in parentheses.
+    pub fn with_note(self, note: &'static str) -> SettingsError {
+        SettingsError { note, ..self }
+    }
+}
+
+fn note_suffix(note: &str) -> String {
+    if note.is_empty() {
+        String::new()
+    } else {
+        format!(" ({note})")
+    }
+}
+
+/// The value a setting was given.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SettingValue {
+    /// A real number.
+    Number(Real),
+    /// A count or index.
+    Count(u64),
+    /// A word (a method name); escaped for a one-line message.
+    Text(String),
+}
+
+impl From<Real> for SettingValue {
+    fn from(v: Real) -> Self {
+        SettingValue::Number(v)
+    }
+}
+
+impl From<usize> for SettingValue {
+    fn from(v: usize) -> Self {
+        SettingValue::Count(v as u64)
+    }
+}
+
+impl From<u32> for SettingValue {
+    fn from(v: u32) -> Self {
+        SettingValue::Count(u64::from(v))
+    }
+}
+
+impl fmt::Display for SettingValue {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SettingValue::Number(v) => write!(f, "{v}"),
+            SettingValue::Count(n) => write!(f, "{n}"),
+            SettingValue::Text(s) => write!(f, "'{s}'"),
+        }
+    }
+}
+
+/// What a setting must be.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Requirement {
+    /// A finite number above zero.
+    Positive,
+    /// A finite number strictly above this bound.
+    Above(Real),
+    /// A finite number at least this bound.
+    AtLeast(Real),
+    /// At most this bound.
+    AtMost(Real),
+    /// A finite number in an interval; the flags say whether each end is excluded.
+    Within {
+        /// Lower end.
+        low: Real,
+        /// Upper end.
+        high: Real,
+        /// The lower end itself is not allowed.
+        open_low: bool,
+        /// The upper end itself is not allowed.
+        open_high: bool,
+    },
+    /// An integer in `low..=high`.
+    CountIn {
+        /// Smallest allowed.
+        low: u64,
+        /// Largest allowed.
+        high: u64,
+    },
+    /// One of these words.
+    OneOf(&'static [&'static str]),
+}
+
+impl Requirement {
+    /// The closed interval [low, high].
+    pub fn closed(low: Real, high: Real) -> Requirement {
+        Requirement::Within {
+            low,
+            high,
+            open_low: false,
+            open_high: false,
+        }
+    }
+}
+
+impl fmt::Display for Requirement {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Requirement::Positive => f.write_str("be a finite number above 0"),
+            Requirement::Above(b) => write!(f, "be a finite number above {b}"),
+            Requirement::AtLeast(b) => write!(f, "be a finite number >= {b}"),
+            Requirement::AtMost(b) => write!(f, "be at most {b}"),
+            Requirement::Within {
+                low,
+                high,
+                open_low,
+                open_high,
+            } => write!(
+                f,
+                "lie in {}{low}, {high}{}",
+                if *open_low { '(' } else { '[' },
+                if *open_high { ')' } else { ']' }
+            ),
+            Requirement::CountIn { low, high } => write!(f, "lie in {low}..={high}"),
+            Requirement::OneOf(words) => write!(f, "be one of {}", words.join(", ")),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn carries_name_value_and_range() {
+        let e = SettingsError::new("kerf", 0.5, Requirement::closed(1e-4, 0.2)).with_note("why");
+        assert_eq!(e.name, "kerf");
+        assert_eq!(e.value, SettingValue::Number(0.5));
+        assert_eq!(
+            e.to_string(),
+            "invalid setting: kerf 0.5 must lie in [0.0001, 0.2] (why)"
+        );
+        let e = SettingsError::new("samples", 0usize, Requirement::CountIn { low: 1, high: 9 });
+        assert_eq!(
+            e.to_string(),
+            "invalid setting: samples 0 must lie in 1..=9"
+        );
+    }
+}
