@@ -48,14 +48,7 @@ impl Placement {
                 }
             })
             .collect();
-        let (iu, iw) = (layout.u(), layout.w());
-        let (u, w) = (Vec2::new(q[iu], q[iu + 1]), Vec2::new(q[iw], q[iw + 1]));
-        Placement {
-            tiles,
-            u,
-            w,
-            lattice: Lattice::new(u, w),
-        }
+        Placement::with_tiles(layout, tiles, q)
     }
 
     /// The reference points and lattice of state q without any polygon (tiles have empty
@@ -77,6 +70,11 @@ impl Placement {
                 }
             })
             .collect();
+        Placement::with_tiles(layout, tiles, q)
+    }
+
+    /// The placement of `tiles` with the lattice of state q.
+    fn with_tiles(layout: StateLayout, tiles: Vec<PlacedTile>, q: &DVec) -> Placement {
         let (iu, iw) = (layout.u(), layout.w());
         let (u, w) = (Vec2::new(q[iu], q[iu + 1]), Vec2::new(q[iw], q[iw + 1]));
         Placement {

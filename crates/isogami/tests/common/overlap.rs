@@ -7,7 +7,7 @@
 
 use geo::{Area, BooleanOps, Coord, LineString, Polygon};
 use isogami::contact::inset_polygon;
-use isogami::deploy::DeploymentReport;
+use isogami::deploy::{DeploymentReport, FrameReport};
 use isogami::math::{rotation, Real, Vec2};
 use isogami::topology::Design;
 
@@ -20,19 +20,36 @@ fn to_geo(poly: &[Vec2]) -> Polygon<Real> {
     Polygon::new(LineString::new(ring), vec![])
 }
 
-/// Every overlap found in the report's frames, as readable lines (empty when none).
-pub fn report_overlaps(design: &Design, report: &DeploymentReport) -> Vec<String> {
+/// Each tile's polygon about its centroid, inset by half the report's kerf (tiling units).
+fn collision_shapes(design: &Design, report: &DeploymentReport) -> Vec<Vec<Vec2>> {
     let cell = design.cell().expect("the design builds");
-    let l = report.length_scale;
-    let h = 0.5 * report.kerf * l;
-    let shapes: Vec<Vec<Vec2>> = cell
-        .tiles
+    let h = 0.5 * report.kerf * report.length_scale;
+    cell.tiles
         .iter()
         .map(|t| {
             let local: Vec<Vec2> = t.polygon.iter().map(|v| v - t.centroid).collect();
             inset_polygon(&local, h).expect("the kerf fits every tile")
         })
-        .collect();
+        .collect()
+}
+
+/// The centre cell's polygons at a frame's poses: vertex v ↦ R(θ)v + (x, y).
+fn place(frame: &FrameReport, shapes: &[Vec<Vec2>]) -> Vec<Vec<Vec2>> {
+    frame
+        .tiles
+        .iter()
+        .zip(shapes)
+        .map(|(t, s)| {
+            let r = rotation(t.theta);
+            s.iter().map(|v| r * v + Vec2::new(t.x, t.y)).collect()
+        })
+        .collect()
+}
+
+/// Every overlap found in the report's frames, as readable lines (empty when none).
+pub fn report_overlaps(design: &Design, report: &DeploymentReport) -> Vec<String> {
+    let l = report.length_scale;
+    let shapes = collision_shapes(design, report);
     let radii: Vec<Real> = shapes
         .iter()
         .map(|s| s.iter().map(|v| v.norm()).fold(0.0, Real::max))
@@ -42,15 +59,7 @@ pub fn report_overlaps(design: &Design, report: &DeploymentReport) -> Vec<String
     for (f, frame) in report.frames.iter().enumerate() {
         let (u, w) = (Vec2::from(frame.u), Vec2::from(frame.w));
         let centres: Vec<Vec2> = frame.tiles.iter().map(|t| Vec2::new(t.x, t.y)).collect();
-        let placed: Vec<Vec<Vec2>> = frame
-            .tiles
-            .iter()
-            .zip(&shapes)
-            .map(|(t, s)| {
-                let r = rotation(t.theta);
-                s.iter().map(|v| r * v + Vec2::new(t.x, t.y)).collect()
-            })
-            .collect();
+        let placed = place(frame, &shapes);
         let sigma = nalgebra::Matrix2::from_columns(&[u, w])
             .singular_values()
             .min();
@@ -96,29 +105,12 @@ pub fn report_overlaps(design: &Design, report: &DeploymentReport) -> Vec<String
 /// the deployment met tiles that a fixed 3×3 contact search would not see.
 pub fn far_copy_min_distance(design: &Design, report: &DeploymentReport) -> Real {
     use geo::{Distance, Euclidean};
-    let cell = design.cell().expect("the design builds");
     let l = report.length_scale;
-    let h = 0.5 * report.kerf * l;
-    let shapes: Vec<Vec<Vec2>> = cell
-        .tiles
-        .iter()
-        .map(|t| {
-            let local: Vec<Vec2> = t.polygon.iter().map(|v| v - t.centroid).collect();
-            inset_polygon(&local, h).expect("the kerf fits every tile")
-        })
-        .collect();
+    let shapes = collision_shapes(design, report);
     let mut best = Real::INFINITY;
     for frame in &report.frames {
         let (u, w) = (Vec2::from(frame.u), Vec2::from(frame.w));
-        let placed: Vec<Vec<Vec2>> = frame
-            .tiles
-            .iter()
-            .zip(&shapes)
-            .map(|(t, s)| {
-                let r = rotation(t.theta);
-                s.iter().map(|v| r * v + Vec2::new(t.x, t.y)).collect()
-            })
-            .collect();
+        let placed = place(frame, &shapes);
         for a in &placed {
             let pa = to_geo(a);
             for b in &placed {
