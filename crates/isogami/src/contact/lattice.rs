@@ -53,10 +53,13 @@ impl Lattice {
                 std::mem::swap(&mut b1, &mut b2);
                 std::mem::swap(&mut c1, &mut c2);
             }
-            let mu = (b1.dot(&b2) / b1.norm_squared()).round();
-            if mu == 0.0 || !mu.is_finite() || mu.abs() > 1e12 {
+            let ratio = b1.dot(&b2) / b1.norm_squared();
+            // Reduced once |b1·b2| ≤ |b1|²/2; testing the rounded ratio instead would cycle
+            // between ±1 on an exact tie (a hexagonal lattice).
+            if !ratio.is_finite() || ratio.abs() <= 0.5 * (1.0 + 1e-12) || ratio.abs() > 1e12 {
                 break;
             }
+            let mu = ratio.round();
             b2 -= b1 * mu;
             let m = mu as i64;
             c2 = [c2[0] - m * c1[0], c2[1] - m * c1[1]];
@@ -189,6 +192,26 @@ mod tests {
                 let r = 2.5 * (rnd() + 1.0);
                 assert_eq!(listed(&l, d, r), brute(u, w, d, r), "{u:?} {w:?} {d:?} {r}");
             }
+        }
+    }
+
+    #[test]
+    fn reduction_stops_on_a_hexagonal_tie() {
+        // b1·b2 = |b1|²/2 exactly: a tie that must not ping-pong between ±1.
+        for w in [
+            vec2(1.0, 3.0f64.sqrt()),
+            vec2(5.0, 3.0f64.sqrt()),
+            vec2(-3.0, 3.0f64.sqrt()),
+        ] {
+            let l = Lattice::new(vec2(2.0, 0.0), w).unwrap();
+            assert!(
+                l.b1.norm() <= 2.0 + 1e-12 && l.b2.norm() <= 2.0 + 1e-12,
+                "{w:?}"
+            );
+            assert!(l.b1.dot(&l.b2).abs() <= 0.5 * l.b1.norm_squared() * (1.0 + 1e-9));
+            // The basis still spans the same lattice: its offsets are unimodular.
+            let det = l.c1[0] * l.c2[1] - l.c1[1] * l.c2[0];
+            assert_eq!(det.abs(), 1, "{w:?}");
         }
     }
 
