@@ -24,8 +24,8 @@
 use crate::cell::UnitCell;
 use crate::contact::ContactModel;
 use crate::deploy::{
-    build_report, compare_design, frame_records, select_frames, DeploySettings, DeploymentReport,
-    DesignComparison, FrameRecord, Progress, Trajectory,
+    build_report, compare_design, deploy_with, frame_records, select_frames, DeploySettings,
+    DeploymentReport, DesignComparison, FrameRecord, Progress, Trajectory,
 };
 use crate::error::{Requirement, Result, SettingsError};
 use crate::kinematics::Mechanism;
@@ -178,7 +178,7 @@ pub fn deploy(
     let settings = &request.settings;
     let (_, mech) = assemble(design)?;
     let contact = ContactModel::new(&mech, settings.contact)?;
-    let trajectory = crate::deploy::deploy(&mech, settings, progress)?;
+    let trajectory = deploy_with(&mech, &contact, settings, progress)?;
     let indices = match request.frames {
         FrameSelection::AllSteps => (0..trajectory.steps.len()).collect(),
         FrameSelection::Evenly(n) => select_frames(&trajectory, n),

@@ -207,3 +207,19 @@ fn baselines_stop_early_on_turning_designs() {
         assert_eq!(springs.end_reason, EndReason::Stalled);
     }
 }
+
+#[test]
+fn a_contact_model_built_for_another_kerf_is_refused() {
+    use isogami::contact::{ContactModel, ContactSettings};
+    use isogami::deploy::deploy_with;
+    let (_, _, mech) = common::rotating_squares();
+    let contact = ContactModel::new(&mech, ContactSettings::with_kerf(0.02)).unwrap();
+    let settings = DeploySettings::default();
+    let err = deploy_with(&mech, &contact, &settings, &mut |_| true).unwrap_err();
+    assert!(err.to_string().contains("other contact settings"), "{err}");
+    let same = ContactModel::new(&mech, settings.contact).unwrap();
+    let a = deploy_with(&mech, &same, &settings, &mut |_| true).unwrap();
+    let b = deploy(&mech, &settings, &mut |_| true).unwrap();
+    assert_eq!(a.steps.len(), b.steps.len());
+    assert_eq!(a.steps.last().unwrap().q, b.steps.last().unwrap().q);
+}

@@ -25,6 +25,11 @@ pub enum ContactError {
     /// A mechanism whose closed state has a NaN or infinite entry.
     #[error("numerical failure: mechanism's closed state holds NaN or infinity")]
     NonFiniteRest,
+    /// A contact model used with other contact settings than it was built with.
+    #[error(
+        "invalid setting: contact model built with other contact settings than the deployment's"
+    )]
+    SettingsMismatch,
     /// A tile whose collision polygon cannot be made: the kerf is too wide for it.
     #[error("cell geometry check failed: tile {tile}: collision polygon inset by kerf/2 = {inset}: {problem} (try a smaller kerf)")]
     Inset {

@@ -129,7 +129,7 @@ pub fn compare_methods(
             ..*settings
         };
         let start = std::time::Instant::now();
-        let traj = super::deploy(mech, &s, &mut |_| true)?;
+        let traj = super::deploy_with(mech, &contact, &s, &mut |_| true)?;
         let millis = start.elapsed().as_secs_f64() * 1e3;
         let all: Vec<usize> = (0..traj.steps.len()).collect();
         let frames = frame_records(mech, &contact, &traj, &all, settings.frame_joint_tolerance)

@@ -61,6 +61,24 @@ pub fn deploy(
 ) -> Result<Trajectory, DeployError> {
     settings.validate()?;
     let contact = ContactModel::new(mech, settings.contact)?;
+    deploy_with(mech, &contact, settings, progress)
+}
+
+/// [`deploy`] with a contact model the caller already built for `mech` with
+/// `settings.contact` (the entry point and the comparison check frames against the same
+/// model, so it is built once).
+pub fn deploy_with(
+    mech: &Mechanism,
+    contact: &ContactModel,
+    settings: &DeploySettings,
+    progress: Progress<'_>,
+) -> Result<Trajectory, DeployError> {
+    settings.validate()?;
+    if contact.settings() != &settings.contact {
+        return Err(DeployError::Contact(
+            crate::contact::ContactError::SettingsMismatch,
+        ));
+    }
     let mob = analyze(mech, &mech.rest, settings.mobility)?;
     if mob.dof == 0 {
         return Err(DeployError::Rigid);
@@ -80,9 +98,8 @@ pub fn deploy(
         Method::Ncm => &ncm::Ncm,
         Method::Springs => &springs::Springs,
     };
-    let mut traj = opening::open_and_march(
-        mech, &contact, settings, &opening, mob.dof, policy, progress,
-    )?;
+    let mut traj =
+        opening::open_and_march(mech, contact, settings, &opening, mob.dof, policy, progress)?;
     // The springs do not fail a step: they stop moving the sheet.
     if settings.method == Method::Springs && traj.end_reason == EndReason::StepSizeExhausted {
         traj.end_reason = EndReason::Stalled;
