@@ -35,6 +35,11 @@ enum Command {
     Linkages(commands::linkages::Args),
     /// Explore the design space into the design database (resumable, shardable).
     Explore(commands::explore::Args),
+    /// Serve the material browser over the design database (runs the quick exploration
+    /// first when the database does not exist).
+    Serve(commands::serve::ServeArgs),
+    /// Write the catalogue as a static site.
+    Site(commands::serve::SiteArgs),
     /// Merge shard databases into one.
     Merge(commands::db::MergeArgs),
     /// Inspect a design database.
@@ -58,6 +63,8 @@ fn main() -> ExitCode {
         Command::Compare(a) => commands::compare::run(a),
         Command::Explore(a) => commands::explore::run(a),
         Command::Linkages(a) => commands::linkages::run(a),
+        Command::Serve(a) => commands::serve::serve(a),
+        Command::Site(a) => commands::serve::site(a),
         Command::Merge(a) => commands::db::merge(a),
         Command::Db { command } => commands::db::run(command),
     };

@@ -31,6 +31,7 @@
 //! `DeploymentReport`, `LinkageAnalysis`).
 
 mod checksum;
+mod dictionary;
 mod error;
 mod file;
 mod from_catalog;
@@ -46,6 +47,7 @@ mod stats;
 mod verify;
 mod write;
 
+pub use dictionary::{FieldDoc, DICTIONARY};
 pub use error::{StoreError, StoreResult};
 pub use file::sidecar_paths;
 pub use from_catalog::POISSON_OPEN_FRACTION;

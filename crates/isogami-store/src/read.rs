@@ -170,10 +170,11 @@ impl Store {
         Ok(out)
     }
 
-    /// Every design summary, ordered by spec (checksums verified).
+    /// Every design summary in insertion order, the order queries break ties in (checksums
+    /// verified).
     pub fn summaries(&self) -> StoreResult<Vec<DesignSummary>> {
         let mut stmt = self.conn.prepare(&format!(
-            "SELECT {DESIGN_COLUMNS}, checksum FROM designs ORDER BY spec"
+            "SELECT {DESIGN_COLUMNS}, checksum FROM designs ORDER BY id"
         ))?;
         let mut rows = stmt.query([])?;
         let mut out = Vec::new();

@@ -8,7 +8,7 @@ use isogami::deploy::{DeploySettings, Method};
 use isogami::kinematics::Mechanism;
 use isogami::measure::expansion_profile;
 use isogami::render::{
-    expansion_plot_svg, frame_svg, gif_from_svgs, polar_plot_svg, view_box_for, Fonts, FrameStyle,
+    deployment_frame_svgs, expansion_plot_svg, gif_from_svgs, polar_plot_svg, Fonts,
 };
 use std::path::{Path, PathBuf};
 
@@ -96,7 +96,7 @@ pub fn run(args: Args) -> CliResult {
         write_frames(dir, mech, contact, frames)?;
     }
     if let Some(path) = &args.gif {
-        let svgs = frame_svgs(mech, contact, frames, 480.0);
+        let svgs = deployment_frame_svgs(mech, contact, frames, 480.0);
         let bytes = gif_from_svgs(&svgs, 480, 6, &Fonts::system()).map_err(|e| e.to_string())?;
         write_atomic(path, &bytes)?;
     }
@@ -180,34 +180,6 @@ pub fn run(args: Args) -> CliResult {
     emit(&o)
 }
 
-fn frame_svgs(
-    mech: &Mechanism,
-    contact: &ContactModel,
-    frames: &[isogami::deploy::FrameRecord],
-    width: f64,
-) -> Vec<String> {
-    let states: Vec<_> = frames.iter().map(|f| f.q.clone()).collect();
-    let view = view_box_for(mech, &states);
-    frames
-        .iter()
-        .map(|f| {
-            let style = FrameStyle {
-                width_px: width,
-                view_box: Some(view),
-                extra_polygons: contact
-                    .collision_polygons(mech, &f.q)
-                    .into_iter()
-                    .filter(|(_, o, _)| *o == [0, 0])
-                    .map(|(_, _, p)| p)
-                    .collect(),
-                label: Some(format!("t = {:.2}", f.t)),
-                ..FrameStyle::default()
-            };
-            frame_svg(mech, &f.q, &style)
-        })
-        .collect()
-}
-
 fn write_frames(
     dir: &Path,
     mech: &Mechanism,
@@ -215,7 +187,10 @@ fn write_frames(
     frames: &[isogami::deploy::FrameRecord],
 ) -> CliResult {
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-    for (k, svg) in frame_svgs(mech, contact, frames, 600.0).iter().enumerate() {
+    for (k, svg) in deployment_frame_svgs(mech, contact, frames, 600.0)
+        .iter()
+        .enumerate()
+    {
         write_atomic(&dir.join(format!("frame-{k:04}.svg")), svg.as_bytes())?;
     }
     Ok(())

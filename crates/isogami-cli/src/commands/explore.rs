@@ -47,6 +47,25 @@ pub struct Args {
     json: bool,
 }
 
+impl Args {
+    /// The quick exploration (`explore --quick --db DB`) with every other flag at its
+    /// default: what `isogami serve` runs when its database does not exist yet.
+    pub fn quick(db: PathBuf) -> Args {
+        let defaults = CatalogSettings::default();
+        Args {
+            families: "all".into(),
+            cells: None,
+            threshold: defaults.threshold,
+            samples: defaults.samples,
+            db,
+            jobs: None,
+            shard: None,
+            quick: true,
+            json: false,
+        }
+    }
+}
+
 /// One unit of work.
 #[derive(Debug, Clone, Copy)]
 struct Unit {

@@ -8,3 +8,4 @@ pub mod deploy;
 pub mod explore;
 pub mod families;
 pub mod linkages;
+pub mod serve;

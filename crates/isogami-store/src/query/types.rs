@@ -160,6 +160,24 @@ pub enum SortKey {
     Measure(Measure),
 }
 
+impl FromStr for SortKey {
+    type Err = QueryError;
+    /// `spec`, `family`, `cell`, `behaviour`, `linkage_signature`, `end_reason`, `origin`, or
+    /// any measure name.
+    fn from_str(s: &str) -> Result<SortKey, QueryError> {
+        Ok(match s {
+            "spec" => SortKey::Spec,
+            "family" => SortKey::Family,
+            "cell" => SortKey::Cell,
+            "behaviour" => SortKey::Behaviour,
+            "linkage_signature" => SortKey::LinkageSignature,
+            "end_reason" => SortKey::EndReason,
+            "origin" => SortKey::Origin,
+            m => SortKey::Measure(m.parse()?),
+        })
+    }
+}
+
 /// A sort key and a direction; ties are broken by insertion order in the same direction.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Sort {

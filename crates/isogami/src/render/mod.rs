@@ -10,6 +10,7 @@
 #[cfg(feature = "render")]
 mod animation;
 mod cell_svg;
+mod deployment_svg;
 #[cfg(feature = "render")]
 mod error;
 #[cfg(feature = "render")]
@@ -25,6 +26,7 @@ mod svg;
 #[cfg(feature = "render")]
 pub use animation::gif_from_svgs;
 pub use cell_svg::cell_svg;
+pub use deployment_svg::deployment_frame_svgs;
 #[cfg(feature = "render")]
 pub use error::{RenderError, RenderResult};
 #[cfg(feature = "render")]

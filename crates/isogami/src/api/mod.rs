@@ -10,6 +10,7 @@
 //! | deployment | [`deploy`] | [`Deployment`] (the serialisable report and the states) |
 //! | linkages | [`linkages`] | [`LinkageAnalysis`] |
 //! | baseline comparison | [`compare`] | [`DesignComparison`]: one result per method |
+//! | drawing and joint editing | [`sheet_geometry`], [`tile_linkages`] | [`SheetGeometry`] |
 //!
 //! ```
 //! use isogami::api::{deploy, resolve_design, DeployRequest};
@@ -34,6 +35,9 @@ use crate::math::Real;
 use crate::mobility::{Mobility, MobilitySettings};
 pub use crate::topology::Design;
 use serde::Serialize;
+
+mod sheet;
+pub use sheet::{sheet_geometry, tile_linkages, EdgeGeometry, SheetGeometry};
 
 /// Most frames a deployment report may hold when frames are picked evenly in t.
 pub const MAX_FRAME_COUNT: usize = 10_000;

@@ -1,0 +1,101 @@
+//! `isogami serve`: the material browser over a design database, and `isogami site`: the
+//! same catalogue as a static site. Both are thin calls into `isogami-web`.
+
+use super::explore;
+use crate::output::CliResult;
+use indicatif::{ProgressBar, ProgressStyle};
+use isogami_web::{serve_blocking, write_site, AppState, ServerSettings};
+use std::io::Write;
+use std::net::SocketAddr;
+use std::path::PathBuf;
+use std::time::Duration;
+
+/// Arguments of `serve`.
+#[derive(Debug, clap::Args)]
+pub struct ServeArgs {
+    /// The design database; when it does not exist, the quick exploration creates it first.
+    #[arg(long, default_value = "isogami.db")]
+    db: PathBuf,
+    /// Address to listen on (port 0 picks a free port). Localhost unless you mean otherwise.
+    #[arg(long, default_value = "127.0.0.1:8080")]
+    addr: SocketAddr,
+    /// Open the browser at the served address.
+    #[arg(long)]
+    open: bool,
+    /// Longest a live re-simulation may run, in seconds.
+    #[arg(long, default_value_t = 2.0)]
+    sim_timeout: f64,
+    /// Refuse to save user designs to the database.
+    #[arg(long)]
+    read_only: bool,
+}
+
+/// Serves until Ctrl-C.
+pub fn serve(args: ServeArgs) -> CliResult {
+    if !(args.sim_timeout.is_finite() && args.sim_timeout > 0.0 && args.sim_timeout <= 600.0) {
+        return Err(format!(
+            "--sim-timeout must lie in (0, 600] seconds, got {}",
+            args.sim_timeout
+        ));
+    }
+    if !args.db.exists() {
+        eprintln!(
+            "{} does not exist: running the quick exploration to create it",
+            args.db.display()
+        );
+        explore::run(explore::Args::quick(args.db.clone()))?;
+    }
+    let settings = ServerSettings {
+        sim_timeout: Duration::from_secs_f64(args.sim_timeout),
+        allow_save: !args.read_only,
+        ..ServerSettings::default()
+    };
+    let state =
+        AppState::open(&args.db, settings).map_err(|e| format!("{}: {e}", args.db.display()))?;
+    let open = args.open;
+    serve_blocking(state, args.addr, |addr| {
+        let url = format!("http://{addr}/");
+        println!("listening on {url}");
+        let _ = std::io::stdout().flush();
+        if open {
+            if let Err(e) = webbrowser::open(&url) {
+                eprintln!("could not open a browser ({e}); open {url} yourself");
+            }
+        }
+    })
+    .map_err(|e| format!("cannot serve on {}: {e}", args.addr))
+}
+
+/// Arguments of `site`.
+#[derive(Debug, clap::Args)]
+pub struct SiteArgs {
+    /// The design database.
+    #[arg(long, default_value = "isogami.db")]
+    db: PathBuf,
+    /// Output folder (created; replaced only if it holds an earlier isogami site).
+    #[arg(long)]
+    out: PathBuf,
+}
+
+/// Writes the static site.
+pub fn site(args: SiteArgs) -> CliResult {
+    let bar = ProgressBar::new(0);
+    bar.set_style(
+        ProgressStyle::with_template("{bar:30} {pos}/{len} designs, {elapsed}")
+            .expect("valid template"),
+    );
+    let report = write_site(&args.db, &args.out, &mut |done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    })
+    .map_err(|e| e.to_string())?;
+    bar.finish_and_clear();
+    println!(
+        "wrote {} designs, {} files ({:.1} MB) to {}",
+        report.designs,
+        report.files,
+        report.bytes as f64 / 1e6,
+        args.out.display()
+    );
+    Ok(())
+}

@@ -1,0 +1,140 @@
+//! Deployments of posted designs: one library call (`isogami::api::deploy`), bounded in
+//! time and cancelled when the client goes away, its failures explained in the user's terms.
+
+use crate::error::{ApiError, ApiResult};
+use axum::http::StatusCode;
+use isogami::api::{deploy, resolve_design, DeployRequest, Deployment, Design, FrameSelection};
+use isogami::contact::{ContactError, ContactSettings};
+use isogami::deploy::{DeployError, DeploySettings};
+use isogami::Error;
+use serde::Deserialize;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// Frames of a live deployment unless asked otherwise.
+pub const DEFAULT_FRAMES: usize = 60;
+/// Most frames a live deployment returns.
+pub const MAX_FRAMES: usize = 400;
+
+/// The body of `POST /api/deploy` and `POST /api/designs`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LiveRequest {
+    /// A design name, spec string or design JSON.
+    pub design: String,
+    /// Kerf relative to the mean edge length (default: the library's).
+    pub kerf: Option<f64>,
+    /// Frames to return, 2..=[`MAX_FRAMES`].
+    pub frames: Option<usize>,
+}
+
+impl LiveRequest {
+    /// The design and deploy request, checked.
+    pub fn resolve(&self) -> ApiResult<(Design, DeployRequest)> {
+        if self.design.len() > 16 * 1024 {
+            return Err(ApiError::bad_parameter("design text longer than 16 KiB"));
+        }
+        let design = resolve_design(&self.design).map_err(|e| explain(&e))?;
+        let mut settings = DeploySettings::default();
+        if let Some(kerf) = self.kerf {
+            if !kerf.is_finite() {
+                return Err(ApiError::bad_parameter("kerf must be a finite number"));
+            }
+            settings.contact = ContactSettings::with_kerf(kerf);
+        }
+        let frames = self.frames.unwrap_or(DEFAULT_FRAMES);
+        if !(2..=MAX_FRAMES).contains(&frames) {
+            return Err(ApiError::bad_parameter(format!(
+                "frames {frames} outside 2..={MAX_FRAMES}"
+            )));
+        }
+        let request = DeployRequest {
+            settings,
+            frames: FrameSelection::Evenly(frames),
+        };
+        request
+            .validate()
+            .map_err(|e| ApiError::bad_parameter(e.to_string()))?;
+        Ok((design, request))
+    }
+}
+
+/// Sets its flag when dropped: the handler's future is dropped when the client disconnects,
+/// and the simulation thread sees the flag at its next step.
+struct CancelOnDrop(Arc<AtomicBool>);
+
+impl Drop for CancelOnDrop {
+    fn drop(&mut self) {
+        self.0.store(true, Ordering::Relaxed);
+    }
+}
+
+/// Deploys on the blocking pool, stopping after `timeout` or when the caller's future is
+/// dropped.
+pub async fn deploy_bounded(
+    design: Design,
+    request: DeployRequest,
+    timeout: Duration,
+) -> ApiResult<Deployment> {
+    let cancelled = Arc::new(AtomicBool::new(false));
+    let _guard = CancelOnDrop(cancelled.clone());
+    let started = Instant::now();
+    let run = tokio::task::spawn_blocking(move || {
+        deploy(&design, &request, &mut |_| {
+            !cancelled.load(Ordering::Relaxed) && started.elapsed() < timeout
+        })
+    })
+    .await
+    .map_err(|e| ApiError::internal(format!("simulation task failed: {e}")))?;
+    run.map_err(|e| {
+        if e.is_cancelled() {
+            ApiError::new(
+                StatusCode::UNPROCESSABLE_ENTITY,
+                "timeout",
+                format!(
+                    "the deployment did not finish within {:.1} s",
+                    timeout.as_secs_f64()
+                ),
+                "try a smaller cell or a wider kerf, or run `isogami deploy` from the command line",
+            )
+        } else {
+            explain(&e)
+        }
+    })
+}
+
+/// A library error in the words of someone tuning a design: 422 with a kind and what to do.
+pub fn explain(e: &Error) -> ApiError {
+    let unprocessable = |kind, hint: &str| {
+        ApiError::new(StatusCode::UNPROCESSABLE_ENTITY, kind, e.to_string(), hint)
+    };
+    match e {
+        Error::Deploy(DeployError::Rigid | DeployError::NoMotion { .. }) => unprocessable(
+            "rigid",
+            "cut more edges: set some joints to none (–) so the tiles can turn",
+        ),
+        Error::Deploy(DeployError::Contact(ContactError::Inset { .. }))
+        | Error::Contact(ContactError::Inset { .. }) => unprocessable(
+            "ill_shaped",
+            "make the kerf narrower, or move the shape sliders back towards the defaults",
+        ),
+        Error::Tiling(_) | Error::Cell(_) => unprocessable(
+            "ill_shaped",
+            "these shape parameters give no valid tile: move the sliders back towards the defaults",
+        ),
+        Error::Design(_) | Error::Kinematics(_) => ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "bad_design",
+            e.to_string(),
+            "a spec is FAMILY:PARAMS:CELL:JOINTS, e.g. IH1:0.12,0.5,0.14,0.62:2x1:--bbb-",
+        ),
+        Error::Settings(_) | Error::Deploy(DeployError::Settings(_)) => {
+            ApiError::bad_parameter(e.to_string())
+        }
+        _ => unprocessable(
+            "simulation_failed",
+            "the simulation could not follow this design; try nearby parameters or another kerf",
+        ),
+    }
+}

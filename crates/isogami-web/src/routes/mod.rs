@@ -1,0 +1,55 @@
+//! The HTTP surface: the JSON API under `/api/` and the embedded front end everywhere else.
+//!
+//! | method, path | answer |
+//! |---|---|
+//! | `GET /api/stats` | database summary, tool version and settings |
+//! | `GET /api/families` | the 81 families with parameter counts and defaults |
+//! | `GET /api/dictionary` | the meaning of every catalogue field |
+//! | `GET /api/designs?filters` | a filtered, sorted page of catalogue rows |
+//! | `GET /api/facets?filters` | counts per value of every facet |
+//! | `GET /api/scatter?x=&y=&filters` | two measures of every matching design |
+//! | `GET /api/design?spec=` | the design view of a stored design |
+//! | `GET /api/thumbnail?spec=` | its thumbnail (SVG) |
+//! | `GET /api/gif?spec=[&kerf=]` | its deployment as an animated GIF |
+//! | `POST /api/deploy` | a live deployment of a posted design |
+//! | `POST /api/designs` | save a posted design as a user design |
+
+mod assets;
+mod catalogue;
+mod design;
+
+use crate::error::ApiError;
+use crate::state::AppState;
+use axum::extract::DefaultBodyLimit;
+use axum::http::StatusCode;
+use axum::routing::{get, post};
+use axum::Router;
+
+/// The whole application over `state`.
+pub fn router(state: AppState) -> Router {
+    let limit = state.settings().max_body;
+    let api = Router::new()
+        .route("/stats", get(catalogue::stats))
+        .route("/families", get(catalogue::families))
+        .route("/dictionary", get(catalogue::dictionary))
+        .route("/designs", get(catalogue::designs).post(design::save))
+        .route("/facets", get(catalogue::facets))
+        .route("/scatter", get(catalogue::scatter))
+        .route("/design", get(design::stored))
+        .route("/thumbnail", get(design::thumbnail))
+        .route("/gif", get(design::gif))
+        .route("/deploy", post(design::deploy_live))
+        .fallback(|| async {
+            ApiError::new(
+                StatusCode::NOT_FOUND,
+                "not_found",
+                "no such API endpoint",
+                "see the API section of the README",
+            )
+        });
+    Router::new()
+        .nest("/api", api)
+        .fallback(get(assets::asset))
+        .layer(DefaultBodyLimit::max(limit))
+        .with_state(state)
+}
