@@ -6,7 +6,7 @@
 // In static mode the controls are shown disabled with the reason.
 
 import * as d3 from 'd3';
-import { h } from './dom.js';
+import { fmt, h } from './dom.js';
 
 const CYCLE = { '-': 'a', a: 'b', b: 'x', x: '-' };
 const JOINT_NAMES = { '-': 'no joint', a: 'joint at end A', b: 'joint at end B', x: 'joints at both ends (welded)' };
@@ -61,7 +61,7 @@ export function createEditor(container, { live, onChange, reason }) {
         const min = Math.min(lo, value);
         const max = Math.max(hi, value);
         const id = `param-v${k}`;
-        const out = h('output', { for: id, testid: `param-v${k}-value` }, String(value));
+        const out = h('output', { for: id, testid: `param-v${k}-value`, title: String(value) }, fmt(value));
         const input = h('input', {
           type: 'range',
           id,
@@ -73,7 +73,8 @@ export function createEditor(container, { live, onChange, reason }) {
           testid: `param-v${k}`,
           oninput: (e) => {
             design.params[k] = Number(Number(e.target.value).toFixed(4));
-            out.textContent = String(design.params[k]);
+            out.textContent = fmt(design.params[k]);
+            out.title = String(design.params[k]);
             fire();
           },
         });

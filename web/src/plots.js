@@ -204,9 +204,9 @@ export function createLinePlot(container, { xLabel, yLabel, height = 220 }) {
       svg
         .append('text')
         .attr('class', `legend ${s.className}`)
-        .attr('x', width - MARGIN.right - 4)
+        .attr('x', MARGIN.left + 8)
         .attr('y', MARGIN.top + 12 + 14 * i)
-        .attr('text-anchor', 'end')
+        .attr('text-anchor', 'start')
         .text(s.name);
     });
     svg

@@ -25,17 +25,18 @@ export function drawSheet(canvas, view, frame, opts) {
   ctx.fillStyle = '#ffffff';
   ctx.fillRect(0, 0, canvas.width, canvas.height);
   if (!frame) return;
+  // The scale fits the whole motion (so the sheet visibly opens); the current frame is centred.
   const [x0, y0, x1, y1] = opts.bounds;
   const pad = 12;
   const s = Math.min((width - 2 * pad) / Math.max(1e-9, x1 - x0), (height - 2 * pad) / Math.max(1e-9, y1 - y0));
-  const ox = (width - s * (x1 - x0)) / 2;
-  const oy = (height - s * (y1 - y0)) / 2;
+  const polygons = patchPolygons(view, frame, opts.rows, opts.cols);
+  const [cx, cy] = centre(polygons);
   // World y points up; the canvas's down.
-  ctx.setTransform(ratio * s, 0, 0, -ratio * s, ratio * (ox - s * x0), ratio * (oy + s * y1));
+  ctx.setTransform(ratio * s, 0, 0, -ratio * s, ratio * (width / 2 - s * cx), ratio * (height / 2 + s * cy));
   const px = 1 / s;
   const fill = tileColours(view, frame, opts.colour);
   ctx.lineJoin = 'round';
-  for (const poly of patchPolygons(view, frame, opts.rows, opts.cols)) {
+  for (const poly of polygons) {
     ctx.beginPath();
     poly.points.forEach(([x, y], i) => (i ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
     ctx.closePath();
@@ -52,13 +53,25 @@ export function drawSheet(canvas, view, frame, opts) {
     ctx.fill();
   }
   if (opts.links) {
-    ctx.lineWidth = 2.5 * px;
+    ctx.lineWidth = 3 * px;
     for (const loop of patchLinkages(view, frame, opts.rows, opts.cols)) {
       ctx.beginPath();
       loop.points.forEach(([x, y], i) => (i ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
       ctx.closePath();
+      ctx.globalAlpha = 0.45;
+      ctx.fillStyle = linkageColour(loop.index);
+      ctx.fill();
+      ctx.globalAlpha = 1;
       ctx.strokeStyle = darker(linkageColour(loop.index));
       ctx.stroke();
+    }
+    ctx.fillStyle = '#222222';
+    for (const loop of patchLinkages(view, frame, opts.rows, opts.cols)) {
+      for (const [x, y] of loop.points) {
+        ctx.beginPath();
+        ctx.arc(x, y, 3.5 * px, 0, 2 * Math.PI);
+        ctx.fill();
+      }
     }
   }
   if (opts.cell) {
@@ -74,6 +87,15 @@ export function drawSheet(canvas, view, frame, opts) {
     arrow(ctx, c.origin, c.u, '#c0392b', px);
     arrow(ctx, c.origin, c.w, '#1f5fa8', px);
   }
+}
+
+/** Centre of the bounding box of some polygons. */
+function centre(polygons) {
+  let b = [Infinity, Infinity, -Infinity, -Infinity];
+  for (const p of polygons) {
+    for (const [x, y] of p.points) b = [Math.min(b[0], x), Math.min(b[1], y), Math.max(b[2], x), Math.max(b[3], y)];
+  }
+  return [(b[0] + b[2]) / 2, (b[1] + b[3]) / 2];
 }
 
 function arrow(ctx, o, v, colour, px) {
