@@ -8,7 +8,7 @@ import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
   allApiRows, byTestId, canvasColours, canvasPixels, copyDb, downloadText, getJson, launchBrowser,
-  newPage, parseCsv, pixelsChanged, screenshot, startServer,
+  newPage, parseCsv, pixelsChanged, problems, screenshot, startServer,
 } from './harness.mjs';
 
 let db;
@@ -58,7 +58,7 @@ test('scrubbing t changes the canvas, the marker and the polar profile', async (
   const decorated = await canvasPixels(page, '[data-testid="sheet"]');
   assert.ok(pixelsChanged(open, decorated) > 0, 'cell, loops and rotation colours are drawn');
   assert.ok((await screenshot(browser, page, 'design')) > 50, 'the design page screenshot is not blank');
-  assert.deepEqual(page.errors, []);
+  assert.deepEqual(problems(page), []);
 });
 
 test('moving a shape slider brings a new trajectory and the plot changes', async () => {
@@ -100,9 +100,9 @@ test('moving a shape slider brings a new trajectory and the plot changes', async
   const shared = await newPage(browser);
   await openDesign(shared, spec, `&kerf=${stored.report.kerf}`);
   assert.match(await byTestId(shared, 'origin').textContent(), /user/);
-  // A slider move the server refuses (422) is logged by the browser as a failed load; page
-  // errors are never expected.
-  assert.deepEqual([...page.errors, ...shared.errors].filter((e) => !/status of 422/.test(e)), []);
+  // A slider move the server refuses (an invalid tile) is a 422; nothing else may fail.
+  assert.deepEqual(problems(page, [/^422 POST \S+\/api\/deploy$/]), []);
+  assert.deepEqual(problems(shared), []);
 });
 
 test('making the design rigid with the joint editor explains it in place', async () => {
@@ -127,8 +127,8 @@ test('making the design rigid with the joint editor explains it in place', async
   assert.ok((await notice.locator('.hint').textContent()).length > 5, `a hint on what to do: ${text}`);
   assert.ok(canvasColours(await canvasPixels(page, '[data-testid="sheet"]')) > 3, 'never a blank page');
   assert.ok((await screenshot(browser, page, 'design-rigid')) > 50);
-  // Network errors of the refused deployments are expected; page errors are not.
-  assert.deepEqual(page.errors.filter((e) => e.startsWith('pageerror')), []);
+  // The refused deployments are 422s; nothing else may fail.
+  assert.deepEqual(problems(page, [/^422 POST \S+\/api\/deploy$/]), []);
 });
 
 test('downloads hold the trajectory: CSV one row per frame per tile, SVG of the patch', async () => {
@@ -149,5 +149,5 @@ test('downloads hold the trajectory: CSV one row per frame per tile, SVG of the 
   assert.ok(!/NaN|undefined/.test(svg));
   const gif = await page.request.get(`${server.base}/api/gif?spec=${encodeURIComponent(spec)}`);
   assert.equal(gif.headers()['content-type'], 'image/gif');
-  assert.deepEqual(page.errors, []);
+  assert.deepEqual(problems(page), []);
 });

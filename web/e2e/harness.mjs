@@ -130,16 +130,32 @@ export async function launchBrowser() {
   });
 }
 
-/** A page that records console errors and failed requests (tests assert on them). */
+/** A page that records script errors, console errors and HTTP error responses (tests assert
+ * on them with `problems`). The browser's own "Failed to load resource" console lines are left
+ * to the response records, which name the URL. */
 export async function newPage(browser) {
   const context = await browser.newContext({ viewport: { width: 1280, height: 1000 }, acceptDownloads: true });
   const page = await context.newPage();
   page.errors = [];
   page.on('pageerror', (e) => page.errors.push(`pageerror: ${e.message}`));
   page.on('console', (m) => {
-    if (m.type() === 'error') page.errors.push(`console: ${m.text()}`);
+    if (m.type() === 'error' && !m.text().startsWith('Failed to load resource')) page.errors.push(`console: ${m.text()}`);
+  });
+  page.on('response', (r) => {
+    if (r.status() >= 400) page.errors.push(`${r.status()} ${r.request().method()} ${r.url()}`);
+  });
+  page.on('requestfailed', (r) => {
+    const why = r.failure()?.errorText ?? '';
+    if (!/ERR_ABORTED/.test(why)) page.errors.push(`failed ${r.url()}: ${why}`);
   });
   return page;
+}
+
+/** The errors of `page` that no pattern of `expected` matches. Every page over the server
+ * probes ./data/site.json (absent there: that is how it knows it is not a static site). */
+export function problems(page, expected = []) {
+  const allowed = [/^404 GET \S+\/data\/site\.json$/, ...expected];
+  return page.errors.filter((e) => !allowed.some((re) => re.test(e)));
 }
 
 /** JSON of a URL (for comparing the page against the API). */

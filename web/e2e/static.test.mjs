@@ -9,7 +9,7 @@ import { readFile } from 'node:fs/promises';
 import { join } from 'node:path';
 import {
   buildSite, byTestId, canvasColours, canvasPixels, catalogueTotal, getJson, launchBrowser, newPage,
-  screenshot, serveFolder, startServer,
+  problems, screenshot, serveFolder, startServer,
 } from './harness.mjs';
 import { facetCounts, page as queryPage, scatter } from '../src/query.js';
 import { pageParams, parseCatalogueState, filterParams } from '../src/url.js';
@@ -66,7 +66,7 @@ test('the static site shows the same catalogue and opens a design', async () => 
   assert.ok(await byTestId(page, 'kerf').isDisabled());
   assert.ok(await byTestId(page, 'download-gif').isHidden());
   assert.ok((await screenshot(browser, page, 'static-design')) > 50);
-  assert.deepEqual(page.errors, []);
+  assert.deepEqual(problems(page), []);
 });
 
 test('a design not in the static site is explained, not blank', async () => {
