@@ -43,7 +43,7 @@ export function createEditor(container, { live, onChange, reason }) {
   const cellBox = h('div', { class: 'joint-editor', testid: 'joint-editor' });
   const jointsText = h('code', { class: 'joints', testid: 'joints' });
   container.replaceChildren(
-    live ? null : h('p', { class: 'notice notice-static', testid: 'live-unavailable' }, reason),
+    ...(live ? [] : [h('p', { class: 'notice notice-static', testid: 'live-unavailable' }, reason)]),
     h('h3', {}, 'Shape parameters'),
     sliders,
     h('h3', {}, 'Kerf'),

@@ -80,9 +80,10 @@ export function facetMatches(name, value, text) {
   return facetText(name, value) === text;
 }
 
-/** slug(spec): the file name of a design in a static site (the Rust side does the same). */
+/** slug(spec): the file name stem of a design in a static site, `:` as `_`, `,` as `~` and any
+ * other character outside [A-Za-z0-9.-] as `_` (crates/isogami-web's `slug` does the same). */
 export function slug(spec) {
-  return spec.replace(/:/g, '_').replace(/,/g, '~');
+  return spec.replace(/[^A-Za-z0-9.-]/g, (c) => (c === ',' ? '~' : '_'));
 }
 
 /** The cell of a spec string or summary, as "AxB". */

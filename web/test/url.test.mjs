@@ -41,7 +41,8 @@ test('design view round-trips and clamps', () => {
   assert.deepEqual([bad.rows, bad.cols, bad.kerf, bad.t], [4, 4, null, 0]);
 });
 
-test('slug replaces colons and commas only', () => {
+test('slug: colons to _, commas to ~, anything else unsafe to _', () => {
   assert.equal(slug('IH28:0.1,-0.2:2x1:ab-ba-'), 'IH28_0.1~-0.2_2x1_ab-ba-');
   assert.equal(slug('IH76::2x2:bbbbaaaa'), 'IH76__2x2_bbbbaaaa');
+  assert.equal(slug('../x y/~'), '.._x_y__');
 });
