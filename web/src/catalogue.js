@@ -261,25 +261,20 @@ function renderFacets(facets) {
     }
     const items = counts.map((c) => {
       const text = c.missing ? c.value : facetText(f.name, c.value);
-      const id = `facet-${f.param}-${text}`;
-      const checked = selected.includes(text);
-      return h(
-        'li',
-        {},
-        h('input', {
-          type: 'checkbox',
-          id,
-          checked,
-          testid: `facet-${f.name}-${text}`,
-          onchange: (e) =>
-            change(() => {
-              const list = state.filters[f.name];
-              state.filters[f.name] = e.target.checked ? [...list, text] : list.filter((v) => v !== text);
-              state.offset = 0;
-            }),
-        }),
-        h('label', { for: id }, c.missing ? text : facetLabel(f.name, c.value), ' ', h('span', { class: 'count' }, String(c.count))),
-      );
+      const toggle = (e) =>
+        change(() => {
+          const list = state.filters[f.name];
+          state.filters[f.name] = e.target.checked ? [...list, text] : list.filter((v) => v !== text);
+          state.offset = 0;
+        });
+      const box = h('input', {
+        type: 'checkbox',
+        checked: selected.includes(text),
+        testid: `facet-${f.name}-${text}`,
+        onchange: toggle,
+      });
+      const label = c.missing ? text : facetLabel(f.name, c.value);
+      return h('li', {}, h('label', {}, box, ` ${label} `, h('span', { class: 'count' }, String(c.count))));
     });
     return h(
       'fieldset',
