@@ -37,6 +37,12 @@ test('the catalogue opens with every design, thumbnails and a scatter', async ()
     const img = document.querySelector('[data-testid="design-card"] img');
     return img && img.complete && img.naturalWidth > 0;
   });
+  // Thumbnails load lazily: scroll through the grid, then every one must have loaded.
+  await page.evaluate(() => window.scrollTo(0, document.body.scrollHeight));
+  await page.waitForFunction(() =>
+    [...document.querySelectorAll('[data-testid="design-card"] img')].every((img) => img.complete && img.naturalWidth > 0),
+  );
+  await page.evaluate(() => window.scrollTo(0, 0));
   const pixels = await canvasPixels(page, '[data-testid="scatter-canvas"]');
   assert.ok(canvasColours(pixels) > 2, 'the scatter shows points');
   assert.ok((await screenshot(browser, page, 'catalogue')) > 50, 'the catalogue screenshot is not blank');
