@@ -1,0 +1,177 @@
+// Catalogue page over `isogami serve` in real headless Chromium: it opens and is not blank;
+// filtering by family and by a range changes the count to the API's total; the view state
+// survives a reload; a scatter point opens its design page; sorting by a column either way
+// agrees with the API; the CSV and JSON downloads hold every filtered row.
+
+import { after, before, test } from 'node:test';
+import assert from 'node:assert/strict';
+import {
+  allApiRows, byTestId, canvasColours, canvasPixels, catalogueTotal, downloadText, getJson,
+  launchBrowser, newPage, parseCsv, problems, screenshot, startServer,
+} from './harness.mjs';
+
+let server;
+let browser;
+
+before(async () => {
+  server = await startServer();
+  browser = await launchBrowser();
+});
+
+after(async () => {
+  await browser?.close();
+  await server?.stop();
+});
+
+test('the catalogue opens with every design, thumbnails and a scatter', async () => {
+  const page = await newPage(browser);
+  await page.goto(`${server.base}/`);
+  const total = await catalogueTotal(page);
+  const api = await getJson(`${server.base}/api/designs?limit=1`);
+  assert.ok(api.total > 0, 'the test database has designs');
+  assert.equal(total, api.total);
+  const stats = await getJson(`${server.base}/api/stats`);
+  assert.match(await byTestId(page, 'stats').textContent(), new RegExp(`^${stats.designs} designs`));
+  assert.equal(await byTestId(page, 'design-card').count(), Math.min(50, total));
+  await page.waitForFunction(() => {
+    const img = document.querySelector('[data-testid="design-card"] img');
+    return img && img.complete && img.naturalWidth > 0;
+  });
+  // Thumbnails load lazily: scroll through the grid, then every one must have loaded.
+  await page.evaluate(() => window.scrollTo(0, document.body.scrollHeight));
+  await page.waitForFunction(() =>
+    [...document.querySelectorAll('[data-testid="design-card"] img')].every((img) => img.complete && img.naturalWidth > 0),
+  );
+  await page.evaluate(() => window.scrollTo(0, 0));
+  const pixels = await canvasPixels(page, '[data-testid="scatter-canvas"]');
+  assert.ok(canvasColours(pixels) > 2, 'the scatter shows points');
+  assert.ok((await screenshot(browser, page, 'catalogue')) > 50, 'the catalogue screenshot is not blank');
+  await byTestId(page, 'view-table').click();
+  await page.waitForSelector('[data-testid="design-row"]');
+  assert.ok((await screenshot(browser, page, 'catalogue-table')) > 30);
+  assert.deepEqual(problems(page), []);
+});
+
+test('filtering by a range and by a family changes the count to the API total, and survives a reload', async () => {
+  const page = await newPage(browser);
+  await page.goto(`${server.base}/`);
+  const total = await catalogueTotal(page);
+
+  // A range: max expansion at least the median of every design's.
+  const values = (await getJson(`${server.base}/api/scatter?x=max_expansion&y=max_area_ratio`)).map((p) => p.x).sort((a, b) => a - b);
+  const median = values[Math.floor(values.length / 2)];
+  await byTestId(page, 'range-min-max_expansion').fill(String(median));
+  await byTestId(page, 'range-min-max_expansion').press('Enter');
+  const ranged = (await getJson(`${server.base}/api/designs?range=max_expansion:${median}:&limit=1`)).total;
+  assert.ok(ranged > 0 && ranged < total, `the range keeps some designs (${ranged} of ${total})`);
+  await page.waitForFunction((n) => document.querySelector('[data-testid="total"]').textContent === String(n), ranged);
+
+  // A family: the most frequent one under the range, ticked in the facet list.
+  const facets = await getJson(`${server.base}/api/facets?range=max_expansion:${median}:`);
+  const family = facets.family[0];
+  await byTestId(page, `facet-family-${family.value}`).check();
+  const both = (await getJson(`${server.base}/api/designs?family=${family.value}&range=max_expansion:${median}:&limit=1`)).total;
+  assert.equal(both, family.count, 'the facet count is what ticking it gives');
+  await page.waitForFunction((n) => document.querySelector('[data-testid="total"]').textContent === String(n), both);
+
+  const url = new URL(page.url());
+  assert.deepEqual(url.searchParams.getAll('family'), [family.value]);
+  assert.deepEqual(url.searchParams.getAll('range'), [`max_expansion:${median}:`]);
+  await page.reload();
+  assert.equal(await catalogueTotal(page), both);
+  assert.ok(await byTestId(page, `facet-family-${family.value}`).isChecked());
+  assert.equal(await byTestId(page, 'range-min-max_expansion').inputValue(), String(median));
+  assert.deepEqual(problems(page), []);
+});
+
+test('hovering a scatter point shows the design; clicking opens its design page', async () => {
+  const page = await newPage(browser);
+  await page.goto(`${server.base}/`);
+  await catalogueTotal(page);
+  const canvas = byTestId(page, 'scatter-canvas');
+  await canvas.waitFor();
+  // Find a drawn point: an opaque pixel of the (otherwise transparent) canvas.
+  const spot = await canvas.evaluate((c) => {
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    const ratio = c.width / c.clientWidth;
+    for (let i = 0; i < d.length; i += 4) {
+      if (d[i + 3] > 100) return { x: (i / 4) % c.width / ratio, y: Math.floor(i / 4 / c.width) / ratio };
+    }
+    return null;
+  });
+  assert.ok(spot, 'the scatter has a point');
+  const box = await canvas.boundingBox();
+  await page.mouse.move(box.x + spot.x + 1, box.y + spot.y + 1);
+  const tip = byTestId(page, 'scatter-tooltip');
+  await tip.waitFor({ state: 'visible' });
+  const spec = (await tip.locator('code').textContent()).trim();
+  assert.match(spec, /^IH\d+:/);
+  await page.mouse.click(box.x + spot.x + 1, box.y + spot.y + 1);
+  await page.waitForURL(/design\.html\?spec=/);
+  await page.waitForFunction((s) => document.querySelector('[data-testid="spec"]').textContent === s, spec);
+  assert.equal(new URL(page.url()).searchParams.get('spec'), spec);
+  assert.deepEqual(problems(page), []);
+});
+
+test('sorting by a column either way agrees with the API', async () => {
+  const page = await newPage(browser);
+  await page.goto(`${server.base}/?view=table&limit=10`);
+  await catalogueTotal(page);
+  const firstSpecs = () => page.$$eval('[data-testid="design-row"]', (rows) => rows.map((r) => r.dataset.spec));
+  // The first click sorts ascending, the second flips to descending.
+  for (const sort of ['max_area_ratio', '-max_area_ratio']) {
+    const before = page.url();
+    await byTestId(page, 'sort-max_area_ratio').click();
+    await page.waitForFunction((u) => location.href !== u, before);
+    const api = await getJson(`${server.base}/api/designs?sort=${sort}&limit=10`);
+    const want = api.rows.map((r) => r.spec);
+    await page.waitForFunction((w) => {
+      const got = [...document.querySelectorAll('[data-testid="design-row"]')].map((r) => r.dataset.spec);
+      return JSON.stringify(got) === JSON.stringify(w);
+    }, want);
+    assert.deepEqual(await firstSpecs(), want);
+    assert.equal(new URL(page.url()).searchParams.get('sort'), sort);
+  }
+  assert.deepEqual(problems(page), []);
+});
+
+test('CSV and JSON downloads hold every filtered row with the dictionary and provenance', async () => {
+  const facets = await getJson(`${server.base}/api/facets`);
+  const family = facets.family[0].value;
+  const page = await newPage(browser);
+  await page.goto(`${server.base}/?family=${family}&limit=10`);
+  const total = await catalogueTotal(page);
+  const want = await allApiRows(server.base, `family=${family}`);
+  assert.equal(want.length, total);
+
+  const csv = await downloadText(page, () => byTestId(page, 'download-csv').click());
+  const table = parseCsv(csv.text);
+  const [header, ...rows] = table;
+  assert.equal(rows.length, total, 'one CSV row per filtered design, not one page');
+  for (const col of ['spec', 'family', 'cell', 'tile_count', 'behaviour', 'max_expansion', 'max_area_ratio', 'v0']) {
+    assert.ok(header.includes(col), `CSV column ${col}`);
+  }
+  assert.ok(rows.every((r) => r.length === header.length), 'every row has every column');
+  const specCol = header.indexOf('spec');
+  assert.deepEqual(new Set(rows.map((r) => r[specCol])), new Set(want.map((r) => r.spec)));
+  const famCol = header.indexOf('family');
+  assert.ok(rows.every((r) => r[famCol] === family));
+  const maxCol = header.indexOf('max_expansion');
+  const bySpec = new Map(want.map((r) => [r.spec, r]));
+  assert.ok(rows.every((r) => Number(r[maxCol]) === bySpec.get(r[specCol]).max_expansion), 'numbers round-trip');
+
+  const json = JSON.parse((await downloadText(page, () => byTestId(page, 'download-json').click())).text);
+  const stats = await getJson(`${server.base}/api/stats`);
+  const dictionary = await getJson(`${server.base}/api/dictionary`);
+  assert.equal(json.designs.length, total);
+  assert.equal(json.total, total);
+  assert.equal(json.tool_version, stats.tool_version);
+  assert.deepEqual(json.settings, stats.settings);
+  assert.deepEqual(json.dictionary, dictionary);
+  assert.deepEqual(json.query.family, [family]);
+
+  const dict = parseCsv((await downloadText(page, () => byTestId(page, 'download-dictionary').click())).text);
+  assert.deepEqual(dict[0], ['field', 'type', 'unit', 'meaning']);
+  assert.deepEqual(dict.slice(1).map((r) => r[0]), header, 'the dictionary lists every CSV column in order');
+  assert.deepEqual(problems(page), []);
+});

@@ -1,0 +1,197 @@
+// The data layer: one interface over the two ways the pages get data. It fetches
+// ./data/site.json first; when that exists the page is a STATIC site (written by
+// `isogami site`) and every catalogue query is answered in JS over data/designs.json;
+// otherwise it is SERVER mode and every call goes to ./api/... (relative URLs, so both work
+// under a sub-path). Errors come back as ApiError with the server's kind and hint.
+
+import * as q from './query.js';
+import { filterParams, pageParams } from './url.js';
+import { slug } from './schema.js';
+
+/** An error with the API's `{error, kind, hint}` shape (or a network/format failure). */
+export class ApiError extends Error {
+  constructor(message, kind = 'network', hint = '', status = 0) {
+    super(message);
+    this.kind = kind;
+    this.hint = hint;
+    this.status = status;
+  }
+}
+
+async function asJson(res) {
+  if (res.ok) return res.json();
+  let body = null;
+  try {
+    body = await res.json();
+  } catch {
+    body = null;
+  }
+  if (body && typeof body.error === 'string') {
+    throw new ApiError(body.error, body.kind || 'error', body.hint || '', res.status);
+  }
+  throw new ApiError(`${res.status} ${res.statusText} for ${res.url}`, 'http', '', res.status);
+}
+
+async function getJson(url, options) {
+  let res;
+  try {
+    res = await fetch(url, options);
+  } catch (e) {
+    if (e.name === 'AbortError') throw e;
+    throw new ApiError(`cannot reach ${url}: ${e.message}`, 'network', 'is `isogami serve` still running?');
+  }
+  return asJson(res);
+}
+
+/** SERVER mode: the JSON API of `isogami serve`. */
+class ServerData {
+  constructor() {
+    this.mode = 'server';
+    this.live = true;
+  }
+
+  stats() {
+    return (this._stats ??= getJson('./api/stats'));
+  }
+
+  families() {
+    return (this._families ??= getJson('./api/families'));
+  }
+
+  dictionary() {
+    return (this._dictionary ??= getJson('./api/dictionary'));
+  }
+
+  designs(state) {
+    return getJson(`./api/designs?${pageParams(state)}`);
+  }
+
+  facets(state) {
+    return getJson(`./api/facets?${filterParams(state)}`);
+  }
+
+  scatter(state, x, y) {
+    const p = filterParams(state);
+    p.set('x', x);
+    p.set('y', y);
+    return getJson(`./api/scatter?${p}`);
+  }
+
+  design(spec) {
+    return getJson(`./api/design?spec=${encodeURIComponent(spec)}`);
+  }
+
+  deploy(body, signal) {
+    return getJson('./api/deploy', {
+      method: 'POST',
+      headers: { 'content-type': 'application/json' },
+      body: JSON.stringify(body),
+      signal,
+    });
+  }
+
+  save(body) {
+    return getJson('./api/designs', {
+      method: 'POST',
+      headers: { 'content-type': 'application/json' },
+      body: JSON.stringify(body),
+    });
+  }
+
+  thumbnailUrl(spec) {
+    return `./api/thumbnail?spec=${encodeURIComponent(spec)}`;
+  }
+
+  gifUrl(spec) {
+    return `./api/gif?spec=${encodeURIComponent(spec)}`;
+  }
+}
+
+/** STATIC mode: files written by `isogami site`, queries answered by query.js. */
+class StaticData {
+  constructor(site) {
+    this.mode = 'static';
+    this.live = false;
+    this.site = site;
+  }
+
+  async stats() {
+    return this.site.stats;
+  }
+
+  async families() {
+    return this.site.families;
+  }
+
+  async dictionary() {
+    return this.site.dictionary;
+  }
+
+  rows() {
+    return (this._rows ??= getJson('./data/designs.json'));
+  }
+
+  async designs(state) {
+    return q.page(await this.rows(), state);
+  }
+
+  async facets(state) {
+    return q.facetCounts(await this.rows(), state);
+  }
+
+  async scatter(state, x, y) {
+    return q.scatter(await this.rows(), state, x, y);
+  }
+
+  async design(spec) {
+    try {
+      return await getJson(`./data/design/${encodeURIComponent(slug(spec))}.json`);
+    } catch (e) {
+      if (e.status === 404) {
+        throw new ApiError(
+          `design ${spec} is not in this static catalogue`,
+          'not_found',
+          'live design needs `isogami serve`',
+          404,
+        );
+      }
+      throw e;
+    }
+  }
+
+  async deploy() {
+    throw new ApiError('live design needs `isogami serve`', 'static', 'run `isogami serve --db FILE` and open it there');
+  }
+
+  async save() {
+    return this.deploy();
+  }
+
+  thumbnailUrl(spec) {
+    return `./thumbs/${encodeURIComponent(slug(spec))}.svg`;
+  }
+
+  gifUrl() {
+    return null;
+  }
+}
+
+/** Detects the mode once per page. */
+export async function openData() {
+  let res = null;
+  try {
+    res = await fetch('./data/site.json');
+  } catch {
+    res = null;
+  }
+  if (res && res.ok) {
+    let site = null;
+    try {
+      site = await res.json();
+    } catch {
+      site = null;
+    }
+    if (site && site.mode === 'static') return new StaticData(site);
+  }
+  return new ServerData();
+}

@@ -1,0 +1,372 @@
+// The design page (design.html?spec=…&R=4&C=4&kerf=…&colour=linkage|rotation&t=…): the
+// deployment of an R×C patch on a canvas with a t slider, play/pause and speed; colouring by
+// linkage or rotation; the unit cell and lattice vectors and the linkage loops on demand;
+// min/max principal expansion versus t and the polar stretch profile following t; every
+// measure; the spec with a copy button; downloads; and, over `isogami serve`, live design
+// (editor.js): each change is deployed on the server (debounced, the previous request
+// aborted) and explained in place when it fails. A design not in the database is deployed
+// live; the view state is kept in the URL.
+
+import { openData, ApiError } from './data.js';
+import { h, fmt, showNotice, clearNotice, debounce } from './dom.js';
+import { createLinePlot, createPolarPlot } from './plots.js';
+import { frameAt, motionBounds, linkageColour, NO_LINKAGE_COLOUR } from './patch.js';
+import { drawSheet } from './sheet.js';
+import { createEditor } from './editor.js';
+import { designSearch, parseDesignState } from './url.js';
+import { download, fileStem, frameSvg, trajectoryCsv } from './export.js';
+import { facetLabel } from './schema.js';
+
+const $ = (id) => document.getElementById(id);
+const PLAY_SECONDS = 4; // t from 0 to 1 at speed 1
+
+let data;
+let state;
+let view = null;
+let families = [];
+let bounds = null;
+let editor = null;
+let playing = false;
+let inflight = null;
+
+async function main() {
+  data = await openData();
+  document.body.dataset.mode = data.mode;
+  state = parseDesignState(location.search);
+  setupControls();
+  const expansion = createLinePlot($('expansion-plot'), { xLabel: 't', yLabel: 'principal expansion' });
+  const polar = createPolarPlot($('polar-plot'));
+  plots = { expansion, polar };
+  if (!state.spec) {
+    showNotice($('notice'), {
+      message: 'No design given.',
+      hint: 'open a design from the catalogue, or add ?spec=FAMILY:PARAMS:CELL:JOINTS to the address',
+      kind: 'bad_design',
+    });
+    return;
+  }
+  try {
+    families = await data.families();
+  } catch (e) {
+    families = [];
+  }
+  editor = createEditor($('editor'), {
+    live: data.live,
+    reason: 'Live design needs `isogami serve`: this is a static copy of the catalogue. Run `isogami serve --db FILE` to tune designs.',
+    onChange: (spec, kerf) => requestDeploy(spec, kerf),
+  });
+  await load();
+}
+
+let plots;
+
+/** The stored design, or a live deployment when it is not stored or another kerf is asked. */
+async function load() {
+  setStatus('loading…');
+  let v = null;
+  try {
+    v = await data.design(state.spec);
+    if (state.kerf !== null && data.live && Math.abs(state.kerf - v.report.kerf) > 1e-12) v = null;
+  } catch (e) {
+    if (!(e instanceof ApiError && e.kind === 'not_found' && data.live)) {
+      fail(e);
+      return;
+    }
+  }
+  if (!v) {
+    try {
+      v = await data.deploy(deployBody(state.spec, state.kerf));
+    } catch (e) {
+      fail(e);
+      return;
+    }
+  }
+  showView(v, { fromEditor: false });
+}
+
+function deployBody(spec, kerf) {
+  const body = { design: spec };
+  if (kerf !== null && kerf !== undefined) body.kerf = kerf;
+  return body;
+}
+
+function fail(e) {
+  setStatus('');
+  showNotice($('notice'), {
+    message: e.message,
+    hint: e.hint || (e.kind === 'network' ? 'check that the server is running' : ''),
+    kind: e.kind,
+  });
+}
+
+function setStatus(text) {
+  $('status').textContent = text;
+}
+
+const deploySoon = debounce((spec, kerf) => deployNow(spec, kerf), 100);
+
+function requestDeploy(spec, kerf) {
+  setStatus('re-simulating…');
+  deploySoon(spec, kerf);
+}
+
+async function deployNow(spec, kerf) {
+  if (inflight) inflight.abort();
+  const controller = new AbortController();
+  inflight = controller;
+  document.body.classList.add('simulating');
+  try {
+    const v = await data.deploy(deployBody(spec, kerf), controller.signal);
+    if (inflight !== controller) return;
+    showView(v, { fromEditor: true });
+  } catch (e) {
+    if (e.name === 'AbortError' || inflight !== controller) return;
+    setStatus('');
+    showNotice($('notice'), { message: e.message, hint: e.hint, kind: e.kind });
+  } finally {
+    if (inflight === controller) {
+      inflight = null;
+      document.body.classList.remove('simulating');
+    }
+  }
+}
+
+/** Shows a DesignView: canvas, plots, measures, editor; its notice (multi-DOF, locked) if any. */
+function showView(v, { fromEditor }) {
+  view = v;
+  state.spec = v.spec;
+  state.kerf = fromEditor ? v.report.kerf : state.kerf;
+  if (v.notice) showNotice($('notice'), { message: v.notice.message, hint: v.notice.hint, kind: v.notice.kind });
+  else clearNotice($('notice'));
+  $('spec').textContent = v.spec;
+  const origin = v.origin ?? 'live';
+  $('origin').textContent = origin === 'live' ? 'live (not in the database)' : `${origin} design`;
+  $('origin').dataset.origin = origin;
+  $('save').disabled = !data.live || v.origin !== null;
+  $('download-gif').hidden = !data.live || v.origin === null;
+  bounds = motionBounds(v, state.rows, state.cols);
+  const frames = v.report.frames;
+  plots.expansion.update([
+    { name: 'max expansion', className: 'max', points: frames.map((f) => [f.t, f.measures.max_expansion]) },
+    { name: 'min expansion', className: 'min', points: frames.map((f) => [f.t, f.measures.min_expansion]) },
+  ]);
+  let rMax = 1;
+  for (const f of frames) rMax = Math.max(rMax, 1 + f.measures.max_expansion, 1 + f.measures.min_expansion);
+  plots.polar.setMaxRadius(rMax);
+  renderSummary();
+  renderLegend();
+  if (fromEditor) editor.showGeometry(v);
+  else editor.sync(v, families);
+  document.title = `${v.spec} · isogami`;
+  setStatus(fromEditor ? `re-simulated: ${frames.length} frames, ${v.report.steps} steps` : '');
+  document.body.dataset.deployments = String(Number(document.body.dataset.deployments || 0) + 1);
+  renderFrame();
+}
+
+function renderFrame() {
+  if (!view) return;
+  const frame = frameAt(view.report, state.t);
+  drawSheet($('sheet'), view, frame, { rows: state.rows, cols: state.cols, colour: state.colour, cell: state.cell, links: state.links, bounds });
+  plots.expansion.setMarker(state.t);
+  plots.polar.update(frame.F);
+  $('t').value = String(state.t);
+  $('t-value').textContent = state.t.toFixed(3);
+  renderFrameMeasures(frame);
+  saveUrl();
+}
+
+const saveUrl = debounce(() => {
+  history.replaceState(null, '', `${location.pathname}${designSearch(state)}`);
+}, 150);
+
+function setupControls() {
+  $('t').addEventListener('input', () => {
+    state.t = Number($('t').value);
+    renderFrame();
+  });
+  $('play').addEventListener('click', () => (playing ? stop() : play()));
+  for (let n = 1; n <= 8; n += 1) {
+    $('rows').append(h('option', { value: n }, String(n)));
+    $('cols').append(h('option', { value: n }, String(n)));
+  }
+  $('rows').value = String(state.rows);
+  $('cols').value = String(state.cols);
+  $('colour').value = state.colour;
+  $('show-cell').checked = state.cell;
+  $('show-links').checked = state.links;
+  const patch = () => {
+    state.rows = Number($('rows').value);
+    state.cols = Number($('cols').value);
+    if (view) bounds = motionBounds(view, state.rows, state.cols);
+    renderFrame();
+  };
+  $('rows').addEventListener('change', patch);
+  $('cols').addEventListener('change', patch);
+  $('colour').addEventListener('change', () => {
+    state.colour = $('colour').value;
+    renderLegend();
+    renderFrame();
+  });
+  $('show-cell').addEventListener('change', () => {
+    state.cell = $('show-cell').checked;
+    renderFrame();
+  });
+  $('show-links').addEventListener('change', () => {
+    state.links = $('show-links').checked;
+    renderFrame();
+  });
+  $('copy').addEventListener('click', async () => {
+    try {
+      await navigator.clipboard.writeText($('spec').textContent);
+      $('copy-status').textContent = 'copied';
+    } catch {
+      const range = document.createRange();
+      range.selectNodeContents($('spec'));
+      getSelection().removeAllRanges();
+      getSelection().addRange(range);
+      $('copy-status').textContent = 'selected: press Ctrl+C';
+    }
+  });
+  $('save').addEventListener('click', save);
+  $('download-json').addEventListener('click', () => view && download(`${fileStem(view.spec)}.trajectory.json`, JSON.stringify(view.report, null, 1), 'application/json'));
+  $('download-csv').addEventListener('click', () => view && download(`${fileStem(view.spec)}.trajectory.csv`, trajectoryCsv(view.report), 'text/csv'));
+  $('download-svg').addEventListener('click', () => {
+    if (!view) return;
+    const frame = frameAt(view.report, state.t);
+    const svg = frameSvg(view, frame, { rows: state.rows, cols: state.cols, colour: state.colour, bounds });
+    download(`${fileStem(view.spec)}.t${state.t.toFixed(3)}.svg`, svg, 'image/svg+xml');
+  });
+  $('download-gif').addEventListener('click', () => {
+    if (view && data.gifUrl(view.spec)) {
+      const a = h('a', { href: data.gifUrl(view.spec), download: `${fileStem(view.spec)}.gif` });
+      document.body.append(a);
+      a.click();
+      a.remove();
+    }
+  });
+  if (!data.live) {
+    $('save').disabled = true;
+    $('download-gif').hidden = true;
+    $('gif-note').textContent = 'GIF: needs `isogami serve`.';
+  }
+  new ResizeObserver(() => renderFrame()).observe($('sheet'));
+}
+
+function play() {
+  playing = true;
+  $('play').textContent = 'Pause';
+  $('play').setAttribute('aria-pressed', 'true');
+  let last = performance.now();
+  const tick = (now) => {
+    if (!playing) return;
+    const speed = Number($('speed').value) || 1;
+    state.t += ((now - last) / 1000 / PLAY_SECONDS) * speed;
+    last = now;
+    if (state.t > 1) state.t = 0;
+    renderFrame();
+    requestAnimationFrame(tick);
+  };
+  requestAnimationFrame(tick);
+}
+
+function stop() {
+  playing = false;
+  $('play').textContent = 'Play';
+  $('play').setAttribute('aria-pressed', 'false');
+}
+
+async function save() {
+  const current = editor.current();
+  if (!current) return;
+  $('save').disabled = true;
+  try {
+    const res = await data.save({ design: view.spec, kerf: view.report.kerf });
+    $('save-status').textContent = `saved as a user design: ${res.spec}`;
+    view.origin = 'user';
+    $('origin').textContent = 'user design';
+    $('origin').dataset.origin = 'user';
+    $('download-gif').hidden = false;
+  } catch (e) {
+    $('save').disabled = e.status === 409;
+    $('save-status').textContent = e.status === 409 ? 'already in the database' : '';
+    if (e.status !== 409) showNotice($('notice'), { message: e.message, hint: e.hint, kind: e.kind });
+  }
+}
+
+function row(label, value, unit = '') {
+  return h('tr', {}, h('th', { scope: 'row' }, label), h('td', { class: 'num' }, value), h('td', { class: 'unit' }, unit));
+}
+
+function renderSummary() {
+  const r = view.report;
+  const l = view.linkages;
+  const hist = l ? Object.entries(l.degree_histogram).map(([d, n]) => `${n}×deg ${d}`).join(', ') : '–';
+  const s = view.summary;
+  $('summary').replaceChildren(
+    h('caption', {}, 'Whole deployment'),
+    h(
+      'tbody',
+      {},
+      row('family / cell', `${view.geometry.family} · ${view.geometry.cell.join('×')}`),
+      row('tiles in cell', String(view.geometry.tiles.length)),
+      row('behaviour', facetLabel('behaviour', r.behaviour ?? null)),
+      row('linkages', l ? l.signature : '–'),
+      row('tile degrees', hist),
+      row('degrees of freedom', String(r.dof)),
+      row('method', r.method),
+      row('end reason', typeof r.end_reason === 'object' ? r.end_reason.kind.replace(/_/g, ' ') : String(r.end_reason)),
+      row('max expansion', fmt(r.max_expansion)),
+      row('min expansion', fmt(r.min_expansion)),
+      row('max area ratio', fmt(r.max_area_ratio)),
+      row('max tile rotation', fmt(r.max_tile_rotation), 'rad'),
+      row('Poisson-like ratio', s && s.poisson_min !== null ? `${fmt(s.poisson_min)} … ${fmt(s.poisson_max)}` : '–'),
+      row('kerf', fmt(r.kerf), '× L'),
+      row('mean edge length L', fmt(r.length_scale), 'tiling units'),
+      row('steps / attempts', `${r.steps} / ${r.attempts}`),
+      row('arc length', fmt(r.arc_length)),
+      row('max joint residual', fmt(r.max_joint_residual), '× L'),
+      row('min clearance', fmt(r.min_clearance), '× L'),
+    ),
+  );
+}
+
+function renderFrameMeasures(frame) {
+  const f = view.report.frames[frame.index];
+  const m = f.measures;
+  const F = frame.F;
+  $('at-t').replaceChildren(
+    h('caption', {}, `At t = ${state.t.toFixed(3)} (nearest frame ${frame.index}, t = ${f.t.toFixed(3)})`),
+    h(
+      'tbody',
+      {},
+      row('F', `[${fmt(F[0][0])} ${fmt(F[0][1])}; ${fmt(F[1][0])} ${fmt(F[1][1])}]`),
+      row('area ratio det F', fmt(F[0][0] * F[1][1] - F[0][1] * F[1][0])),
+      row('min / max expansion', `${fmt(m.min_expansion)} / ${fmt(m.max_expansion)}`),
+      row('principal angle', fmt(m.principal_angle), 'rad'),
+      row('lattice rotation', fmt(m.lattice_rotation), 'rad'),
+      row('max tile rotation', fmt(m.max_tile_rotation), 'rad'),
+      row('joint residual', fmt(f.joint_residual), '× L'),
+      row('min clearance', fmt(f.min_clearance), '× L'),
+    ),
+  );
+}
+
+function renderLegend() {
+  if (!view) return;
+  if (state.colour === 'rotation') {
+    const m = view.report.max_tile_rotation;
+    $('legend').replaceChildren(
+      h('span', { class: 'ramp' }),
+      ` tile rotation: −${fmt(m)} rad (clockwise, blue) through 0 (white) to +${fmt(m)} rad (counter-clockwise, red)`,
+    );
+    return;
+  }
+  const l = view.linkages;
+  const items = (l ? l.linkages : []).map((k, i) =>
+    h('li', {}, h('span', { class: 'swatch', style: `background:${linkageColour(i)}` }), `linkage ${i + 1}: ${k.bars}-bar`),
+  );
+  items.push(h('li', {}, h('span', { class: 'swatch', style: `background:${NO_LINKAGE_COLOUR}` }), 'in no linkage'));
+  $('legend').replaceChildren(h('ul', {}, items));
+}
+
+main().catch((e) => fail(e));

@@ -1,0 +1,308 @@
+// Plots drawn with d3: the catalogue's scatter of two measures (points on a <canvas> so that
+// 10^4 designs stay smooth, hover found with a d3 quadtree in pixel space, axes in SVG), the
+// line plot of min/max principal expansion versus t with a marker at the current t, and the
+// polar profile of the stretch U at the current t. Each returns a small object with update
+// methods; none fetches data.
+
+import * as d3 from 'd3';
+
+const MARGIN = { top: 12, right: 16, bottom: 40, left: 56 };
+
+function size(container, height) {
+  const width = Math.max(240, Math.floor(container.clientWidth || 480));
+  return { width, height };
+}
+
+function padDomain([lo, hi]) {
+  if (lo === undefined || hi === undefined) return [0, 1];
+  if (lo === hi) return [lo - 0.5, hi + 0.5];
+  const pad = (hi - lo) * 0.04;
+  return [lo - pad, hi + pad];
+}
+
+/**
+ * Scatter plot of `{spec, x, y}` points. `onClick(point)` opens a design; `describe(point)`
+ * fills the hover tooltip element.
+ */
+export function createScatter(container, { onClick, describe, height = 340 }) {
+  container.classList.add('plot', 'scatter');
+  const svg = d3.select(container).append('svg').attr('aria-hidden', 'true');
+  const canvas = document.createElement('canvas');
+  canvas.setAttribute('role', 'img');
+  canvas.dataset.testid = 'scatter-canvas';
+  container.append(canvas);
+  const tip = document.createElement('div');
+  tip.className = 'tooltip';
+  tip.hidden = true;
+  tip.dataset.testid = 'scatter-tooltip';
+  container.append(tip);
+  let tree = null;
+  let state = { points: [], sx: null, sy: null, hovered: null, xLabel: '', yLabel: '' };
+
+  function draw() {
+    const { width, height: h } = size(container, height);
+    const { points, xLabel, yLabel } = state;
+    const sx = d3
+      .scaleLinear()
+      .domain(padDomain(d3.extent(points, (p) => p.x)))
+      .range([MARGIN.left, width - MARGIN.right])
+      .nice();
+    const sy = d3
+      .scaleLinear()
+      .domain(padDomain(d3.extent(points, (p) => p.y)))
+      .range([h - MARGIN.bottom, MARGIN.top])
+      .nice();
+    state.sx = sx;
+    state.sy = sy;
+    svg.attr('width', width).attr('height', h).attr('viewBox', `0 0 ${width} ${h}`);
+    svg.selectAll('*').remove();
+    svg
+      .append('g')
+      .attr('transform', `translate(0,${h - MARGIN.bottom})`)
+      .call(d3.axisBottom(sx).ticks(Math.max(2, Math.floor(width / 90))));
+    svg.append('g').attr('transform', `translate(${MARGIN.left},0)`).call(d3.axisLeft(sy).ticks(6));
+    svg
+      .append('text')
+      .attr('class', 'axis-label')
+      .attr('x', (MARGIN.left + width - MARGIN.right) / 2)
+      .attr('y', h - 6)
+      .attr('text-anchor', 'middle')
+      .text(xLabel);
+    svg
+      .append('text')
+      .attr('class', 'axis-label')
+      .attr('transform', `translate(14,${(MARGIN.top + h - MARGIN.bottom) / 2}) rotate(-90)`)
+      .attr('text-anchor', 'middle')
+      .text(yLabel);
+    const ratio = window.devicePixelRatio || 1;
+    canvas.width = Math.round(width * ratio);
+    canvas.height = Math.round(h * ratio);
+    canvas.style.width = `${width}px`;
+    canvas.style.height = `${h}px`;
+    canvas.setAttribute('aria-label', `scatter of ${points.length} designs: ${yLabel} against ${xLabel}`);
+    const ctx = canvas.getContext('2d');
+    ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
+    ctx.clearRect(0, 0, width, h);
+    const r = points.length > 3000 ? 2 : 3;
+    ctx.fillStyle = 'rgba(31, 95, 168, 0.6)';
+    for (const p of points) {
+      ctx.beginPath();
+      ctx.arc(sx(p.x), sy(p.y), r, 0, 2 * Math.PI);
+      ctx.fill();
+    }
+    if (state.hovered) {
+      ctx.strokeStyle = '#c0392b';
+      ctx.lineWidth = 2;
+      ctx.beginPath();
+      ctx.arc(sx(state.hovered.x), sy(state.hovered.y), r + 4, 0, 2 * Math.PI);
+      ctx.stroke();
+    }
+    tree = d3
+      .quadtree()
+      .x((p) => sx(p.x))
+      .y((p) => sy(p.y))
+      .addAll(points);
+  }
+
+  function pick(event) {
+    if (!tree) return null;
+    const rect = canvas.getBoundingClientRect();
+    return tree.find(event.clientX - rect.left, event.clientY - rect.top, 10) || null;
+  }
+
+  canvas.addEventListener('mousemove', (event) => {
+    const p = pick(event);
+    if (p !== state.hovered) {
+      state.hovered = p;
+      draw();
+    }
+    if (p) {
+      const rect = container.getBoundingClientRect();
+      describe(p, tip);
+      tip.hidden = false;
+      const left = event.clientX - rect.left + 14;
+      tip.style.left = `${Math.min(left, rect.width - 220)}px`;
+      tip.style.top = `${event.clientY - rect.top + 14}px`;
+      canvas.style.cursor = 'pointer';
+    } else {
+      tip.hidden = true;
+      canvas.style.cursor = 'default';
+    }
+  });
+  canvas.addEventListener('mouseleave', () => {
+    tip.hidden = true;
+    if (state.hovered) {
+      state.hovered = null;
+      draw();
+    }
+  });
+  canvas.addEventListener('click', (event) => {
+    const p = pick(event);
+    if (p) onClick(p);
+  });
+  new ResizeObserver(() => draw()).observe(container);
+
+  return {
+    update(points, xLabel, yLabel) {
+      state = { ...state, points, xLabel, yLabel, hovered: null };
+      tip.hidden = true;
+      draw();
+    },
+  };
+}
+
+/**
+ * Line plot of several series over t ∈ [0, 1] with a vertical marker. `series`:
+ * `[{name, className, points: [[t, y], …]}]`.
+ */
+export function createLinePlot(container, { xLabel, yLabel, height = 220 }) {
+  container.classList.add('plot');
+  const svg = d3.select(container).append('svg').attr('role', 'img');
+  let series = [];
+  let marker = 0;
+
+  function draw() {
+    const { width, height: h } = size(container, height);
+    const all = series.flatMap((s) => s.points.map((p) => p[1]));
+    const sx = d3.scaleLinear().domain([0, 1]).range([MARGIN.left, width - MARGIN.right]);
+    const sy = d3
+      .scaleLinear()
+      .domain(padDomain(d3.extent(all.length ? all : [0, 1])))
+      .range([h - MARGIN.bottom, MARGIN.top])
+      .nice();
+    svg.attr('width', width).attr('height', h).attr('viewBox', `0 0 ${width} ${h}`);
+    svg.attr('aria-label', `${yLabel} against ${xLabel}`);
+    svg.selectAll('*').remove();
+    svg
+      .append('g')
+      .attr('transform', `translate(0,${h - MARGIN.bottom})`)
+      .call(d3.axisBottom(sx).ticks(5));
+    svg.append('g').attr('transform', `translate(${MARGIN.left},0)`).call(d3.axisLeft(sy).ticks(5));
+    svg
+      .append('text')
+      .attr('class', 'axis-label')
+      .attr('x', (MARGIN.left + width - MARGIN.right) / 2)
+      .attr('y', h - 6)
+      .attr('text-anchor', 'middle')
+      .text(xLabel);
+    svg
+      .append('text')
+      .attr('class', 'axis-label')
+      .attr('transform', `translate(14,${(MARGIN.top + h - MARGIN.bottom) / 2}) rotate(-90)`)
+      .attr('text-anchor', 'middle')
+      .text(yLabel);
+    const line = d3
+      .line()
+      .x((p) => sx(p[0]))
+      .y((p) => sy(p[1]));
+    series.forEach((s, i) => {
+      svg
+        .append('path')
+        .attr('class', `series ${s.className}`)
+        .attr('data-testid', `series-${s.className}`)
+        .attr('d', line(s.points));
+      svg
+        .append('text')
+        .attr('class', `legend ${s.className}`)
+        .attr('x', MARGIN.left + 8)
+        .attr('y', MARGIN.top + 12 + 14 * i)
+        .attr('text-anchor', 'start')
+        .text(s.name);
+    });
+    svg
+      .append('line')
+      .attr('class', 'marker')
+      .attr('data-testid', 'plot-marker')
+      .attr('x1', sx(marker))
+      .attr('x2', sx(marker))
+      .attr('y1', MARGIN.top)
+      .attr('y2', h - MARGIN.bottom);
+  }
+
+  new ResizeObserver(() => draw()).observe(container);
+  return {
+    update(next) {
+      series = next;
+      draw();
+    },
+    setMarker(t) {
+      marker = t;
+      const m = svg.select('line.marker');
+      if (m.empty()) return;
+      const { width } = size(container, height);
+      const x = MARGIN.left + t * (width - MARGIN.left - MARGIN.right);
+      m.attr('x1', x).attr('x2', x);
+    },
+  };
+}
+
+/** |F·(cos φ, sin φ)|, the stretch of the sheet in direction φ of the closed state. */
+export function stretchAt(F, phi) {
+  const c = Math.cos(phi);
+  const s = Math.sin(phi);
+  return Math.hypot(F[0][0] * c + F[0][1] * s, F[1][0] * c + F[1][1] * s);
+}
+
+/** Polar plot of the stretch profile r(φ) = |F d(φ)| against the closed state's unit circle. */
+export function createPolarPlot(container, { size: side = 240 } = {}) {
+  container.classList.add('plot', 'polar');
+  const svg = d3
+    .select(container)
+    .append('svg')
+    .attr('role', 'img')
+    .attr('width', side)
+    .attr('height', side)
+    .attr('viewBox', `${-side / 2} ${-side / 2} ${side} ${side}`);
+  let rMax = 1.5;
+  const radius = side / 2 - 22;
+
+  function frame() {
+    svg.selectAll('*').remove();
+    const r = d3.scaleLinear().domain([0, rMax]).range([0, radius]);
+    const ticks = r.ticks(4).filter((v) => v > 0);
+    for (const v of ticks) {
+      svg.append('circle').attr('class', 'grid').attr('r', r(v));
+      svg
+        .append('text')
+        .attr('class', 'tick')
+        .attr('x', 2)
+        .attr('y', -r(v) - 2)
+        .text(d3.format('~g')(v));
+    }
+    for (let k = 0; k < 4; k += 1) {
+      const a = (k * Math.PI) / 4;
+      svg
+        .append('line')
+        .attr('class', 'grid')
+        .attr('x1', -radius * Math.cos(a))
+        .attr('y1', radius * Math.sin(a))
+        .attr('x2', radius * Math.cos(a))
+        .attr('y2', -radius * Math.sin(a));
+    }
+    svg.append('circle').attr('class', 'closed').attr('r', r(1));
+    svg.append('path').attr('class', 'profile').attr('data-testid', 'polar-profile');
+    return r;
+  }
+  let scale = frame();
+
+  return {
+    setMaxRadius(value) {
+      rMax = Math.max(1.05, value * 1.05);
+      scale = frame();
+    },
+    update(F) {
+      const pts = d3.range(0, 181).map((k) => {
+        const phi = (k / 180) * 2 * Math.PI;
+        return [phi, stretchAt(F, phi)];
+      });
+      const line = d3
+        .lineRadial()
+        .angle((p) => Math.PI / 2 - p[0])
+        .radius((p) => scale(p[1]));
+      svg.select('path.profile').attr('d', line(pts));
+      const lo = d3.min(pts, (p) => p[1]);
+      const hi = d3.max(pts, (p) => p[1]);
+      svg.attr('aria-label', `stretch in every direction: from ${lo.toFixed(3)} to ${hi.toFixed(3)}`);
+    },
+  };
+}
