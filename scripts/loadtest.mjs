@@ -2,7 +2,12 @@
 // Loopback load test of `isogami serve` (node ≥ 18, no dependencies):
 //
 //   node scripts/loadtest.mjs --base http://127.0.0.1:8080 [--seconds 60] [--browsers 50]
-//        [--sliders 10] [--max-requests 200000] [--timeout 10]
+//        [--sliders 10] [--max-requests 200000] [--timeout 10] [--think 1] [--slider-interval 0.1]
+//
+// Clients behave like people: a browsing client reads each page for --think seconds (random
+// 0.5–1.5×) before the next, a slider client moves again --slider-interval seconds after the
+// answer (the live panel's debounce). `--think 0 --slider-interval 0` is a stress test instead:
+// every client fires back to back, so latencies then measure queueing at saturation.
 //
 // `--browsers` clients browse the catalogue: a page of designs under random filters, sorts
 // and pages, its facets, sometimes a scatter, thumbnails of a few rows and one design view.
@@ -24,7 +29,7 @@ function opt(name, fallback) {
   return v;
 }
 function usage(message) {
-  console.error(`error: ${message}\nusage: node scripts/loadtest.mjs --base URL [--seconds 60] [--browsers 50] [--sliders 10] [--max-requests N] [--timeout S]`);
+  console.error(`error: ${message}\nusage: node scripts/loadtest.mjs --base URL [--seconds 60] [--browsers 50] [--sliders 10] [--max-requests N] [--timeout S] [--think S] [--slider-interval S]`);
   process.exit(2);
 }
 function positive(name, fallback) {
@@ -40,6 +45,9 @@ const browsers = Math.floor(positive('browsers', 50));
 const sliders = Math.floor(positive('sliders', 10));
 const maxRequests = Math.floor(positive('max-requests', 200000));
 const timeoutMs = positive('timeout', 10) * 1000;
+const thinkMs = positive('think', 1) * 1000;
+const sliderMs = positive('slider-interval', 0.1) * 1000;
+const sleep = (ms) => new Promise((ok) => setTimeout(ok, ms));
 
 const MEASURES = ['max_expansion', 'min_expansion', 'max_area_ratio', 'max_tile_rotation', 'poisson_min', 'poisson_max', 'steps'];
 const REFUSED = new Set(['bad_design', 'rigid', 'ill_shaped']);
@@ -118,6 +126,8 @@ function randomQuery({ facets, rows }) {
 }
 
 async function browser(ctx) {
+  // People arrive spread over one think time, not all in the same millisecond.
+  await sleep(thinkMs * Math.random());
   while (live()) {
     const q = randomQuery(ctx);
     const [page] = await Promise.all([
@@ -131,6 +141,7 @@ async function browser(ctx) {
       const r = pick(shown.length ? shown : ctx.rows);
       await timed('design', `${base}/api/design?spec=${encodeURIComponent(r.spec)}`);
     }
+    if (thinkMs > 0 && live()) await sleep(thinkMs * (0.5 + Math.random()));
   }
 }
 
@@ -151,6 +162,7 @@ async function slider(ctx) {
       headers: { 'content-type': 'application/json' },
       body: JSON.stringify({ design: spec, kerf: r.kerf }),
     });
+    if (sliderMs > 0 && live()) await sleep(sliderMs);
   }
 }
 
@@ -164,7 +176,7 @@ const t0 = performance.now();
 await Promise.all([...Array(browsers)].map(() => browser(ctx)).concat([...Array(sliders)].map(() => slider(ctx))));
 const wall = (performance.now() - t0) / 1000;
 
-console.log(`load test of ${base}: ${browsers} browsing + ${sliders} slider clients, ${wall.toFixed(1)} s, ${sent} requests`);
+console.log(`load test of ${base}: ${browsers} browsing + ${sliders} slider clients, think ${thinkMs / 1000} s, slider interval ${sliderMs / 1000} s, ${wall.toFixed(1)} s, ${sent} requests (${(sent / wall).toFixed(0)}/s)`);
 console.log('category      count     p50 ms     p99 ms     max ms');
 for (const [cat, ms] of [...latencies.entries()].sort()) {
   ms.sort((a, b) => a - b);
