@@ -112,7 +112,8 @@ pub fn explain(e: &Error) -> ApiError {
     match e {
         Error::Deploy(DeployError::Rigid | DeployError::NoMotion { .. }) => unprocessable(
             "rigid",
-            "cut more edges: set some joints to none (–) so the tiles can turn",
+            "cut more edges (set joints to none) so the tiles can turn; if a shape slider did \
+             this, move it back: some linkages move only at special shapes",
         ),
         Error::Deploy(DeployError::Contact(ContactError::Inset { .. }))
         | Error::Contact(ContactError::Inset { .. }) => unprocessable(
