@@ -36,7 +36,7 @@ impl ApiError {
         message: impl Into<String>,
         hint: impl Into<String>,
     ) -> ApiError {
-        let one_line = |s: String| s.replace(['\n', '\r'], " ");
+        let one_line = |s: String| bounded(&s.replace(['\n', '\r'], " "));
         ApiError {
             status,
             kind,
@@ -52,6 +52,26 @@ impl ApiError {
             "bad_parameter",
             message,
             "see the API section of the README for the accepted values",
+        )
+    }
+
+    /// 404: no such API endpoint.
+    pub fn no_endpoint() -> ApiError {
+        ApiError::new(
+            StatusCode::NOT_FOUND,
+            "not_found",
+            "no such API endpoint",
+            "see the API section of the README",
+        )
+    }
+
+    /// 405: an endpoint that does not take this method.
+    pub fn method_not_allowed() -> ApiError {
+        ApiError::new(
+            StatusCode::METHOD_NOT_ALLOWED,
+            "method_not_allowed",
+            "this endpoint does not take this HTTP method",
+            "POST to /api/deploy and /api/designs; GET everything else",
         )
     }
 
@@ -74,6 +94,20 @@ impl ApiError {
             "check the server's database with `isogami db verify`",
         )
     }
+}
+
+/// Longest message or hint, in characters: user text echoed in a message (a spec, a number
+/// written out in full) never makes an answer long.
+pub const MAX_MESSAGE: usize = 300;
+
+/// `s`, cut to [`MAX_MESSAGE`] characters with an ellipsis.
+fn bounded(s: &str) -> String {
+    if s.chars().count() <= MAX_MESSAGE {
+        return s.to_string();
+    }
+    let mut out: String = s.chars().take(MAX_MESSAGE - 1).collect();
+    out.push('…');
+    out
 }
 
 impl From<StoreError> for ApiError {

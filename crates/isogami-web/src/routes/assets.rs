@@ -2,12 +2,26 @@
 //! files; it never reaches the file system.
 
 use crate::assets::{asset as embedded, content_type};
-use axum::http::{header, StatusCode, Uri};
+use crate::error::ApiError;
+use axum::http::{header, Method, StatusCode, Uri};
 use axum::response::{IntoResponse, Response};
 
-/// `/` is `index.html`; any other path is the embedded file of that name, or 404.
-pub async fn asset(uri: Uri) -> Response {
+/// Every request no route took. Under `/api` (which the nested API router does not see when
+/// nothing follows the prefix) the API's JSON 404; otherwise, for GET and HEAD, `/` is
+/// `index.html` and any other path the embedded file of that name, or 404.
+pub async fn asset(method: Method, uri: Uri) -> Response {
     let path = uri.path().trim_start_matches('/');
+    if path == "api" || path.starts_with("api/") {
+        return ApiError::no_endpoint().into_response();
+    }
+    if method != Method::GET && method != Method::HEAD {
+        return (
+            StatusCode::METHOD_NOT_ALLOWED,
+            [(header::ALLOW, "GET, HEAD")],
+            "method not allowed\n",
+        )
+            .into_response();
+    }
     let name = if path.is_empty() { "index.html" } else { path };
     match embedded(name) {
         Some(bytes) => (

@@ -21,7 +21,6 @@ mod design;
 use crate::error::ApiError;
 use crate::state::AppState;
 use axum::extract::DefaultBodyLimit;
-use axum::http::StatusCode;
 use axum::routing::{get, post};
 use axum::Router;
 
@@ -39,17 +38,11 @@ pub fn router(state: AppState) -> Router {
         .route("/thumbnail", get(design::thumbnail))
         .route("/gif", get(design::gif))
         .route("/deploy", post(design::deploy_live))
-        .fallback(|| async {
-            ApiError::new(
-                StatusCode::NOT_FOUND,
-                "not_found",
-                "no such API endpoint",
-                "see the API section of the README",
-            )
-        });
+        .fallback(|| async { ApiError::no_endpoint() })
+        .method_not_allowed_fallback(|| async { ApiError::method_not_allowed() });
     Router::new()
         .nest("/api", api)
-        .fallback(get(assets::asset))
+        .fallback(assets::asset)
         .layer(DefaultBodyLimit::max(limit))
         .with_state(state)
 }
