@@ -4,8 +4,11 @@
 use crate::error::{ApiError, ApiResult};
 use axum::http::StatusCode;
 use isogami::api::{deploy, resolve_design, DeployRequest, Deployment, Design, FrameSelection};
+use isogami::cell::CellError;
 use isogami::contact::{ContactError, ContactSettings};
 use isogami::deploy::{DeployError, DeploySettings};
+use isogami::tiling::TilingError;
+use isogami::topology::DesignError;
 use isogami::Error;
 use serde::Deserialize;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -104,6 +107,19 @@ pub async fn deploy_bounded(
     })
 }
 
+/// Whether `e` says the shape parameters give no valid tile or cell (as a shape slider pushed
+/// too far does), however deep it is wrapped: reading a spec wraps tiling and cell errors in
+/// the design error. An unknown family, a wrong parameter count or cell size is a bad spec.
+fn gives_no_valid_tile(e: &Error) -> bool {
+    let tiling = |t: &TilingError| matches!(t, TilingError::InvalidShape { .. });
+    let cell = |c: &CellError| !matches!(c, CellError::BadCell { .. } | CellError::Size { .. });
+    match e {
+        Error::Tiling(t) | Error::Design(DesignError::Tiling(t)) => tiling(t),
+        Error::Cell(c) | Error::Design(DesignError::Cell(c)) => cell(c),
+        _ => false,
+    }
+}
+
 /// A library error in the words of someone tuning a design: 422 with a kind and what to do.
 pub fn explain(e: &Error) -> ApiError {
     let unprocessable = |kind, hint: &str| {
@@ -120,16 +136,18 @@ pub fn explain(e: &Error) -> ApiError {
             "ill_shaped",
             "make the kerf narrower, or move the shape sliders back towards the defaults",
         ),
-        Error::Tiling(_) | Error::Cell(_) => unprocessable(
+        e if gives_no_valid_tile(e) => unprocessable(
             "ill_shaped",
             "these shape parameters give no valid tile: move the sliders back towards the defaults",
         ),
-        Error::Design(_) | Error::Kinematics(_) => ApiError::new(
-            StatusCode::UNPROCESSABLE_ENTITY,
-            "bad_design",
-            e.to_string(),
-            "a spec is FAMILY:PARAMS:CELL:JOINTS, e.g. IH1:0.12,0.5,0.14,0.62:2x1:--bbb-",
-        ),
+        Error::Tiling(_) | Error::Cell(_) | Error::Design(_) | Error::Kinematics(_) => {
+            ApiError::new(
+                StatusCode::UNPROCESSABLE_ENTITY,
+                "bad_design",
+                e.to_string(),
+                "a spec is FAMILY:PARAMS:CELL:JOINTS, e.g. IH1:0.12,0.5,0.14,0.62:2x1:--bbb-",
+            )
+        }
         Error::Settings(_) | Error::Deploy(DeployError::Settings(_)) => {
             ApiError::bad_parameter(e.to_string())
         }
