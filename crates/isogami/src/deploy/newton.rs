@@ -66,9 +66,10 @@ pub struct SolveOutcome {
     pub barrier: Real,
 }
 
-/// Total objective value (+∞ when a vertex touches an edge) and the barrier energy in it. Every state the line search
-/// evaluates is reached by conservative advancement from an intersection-free state, so the
-/// barrier skips the exact overlap test here; stored frames get it.
+/// Total objective value (+∞ when a vertex touches an edge) and the barrier energy in it.
+/// Every state the line search evaluates is reached by conservative advancement from an
+/// intersection-free state, so the barrier skips the exact overlap test here; stored frames
+/// get it.
 fn total(
     mech: &Mechanism,
     contact: &ContactModel,
