@@ -3,9 +3,10 @@
 
 use super::clearance::pair_clearance;
 use super::model::ContactModel;
-use super::pairs::CandidatePair;
+use super::pairs::{for_each_near_pair_in, CandidatePair};
 use super::placement::Placement;
 use super::reach::{far_limit, skin_for, Rates, Spread};
+use super::verlet::PairCache;
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real, Vec2};
 
@@ -42,6 +43,32 @@ impl ContactModel {
     /// `dq` do not fit the model (wrong length, NaN, a step so large that its motion bound
     /// overflows, a degenerate lattice).
     pub fn max_safe_step(&self, mech: &Mechanism, q: &DVec, dq: &DVec) -> Real {
+        self.max_safe_step_from(mech, q, dq, None, true)
+    }
+
+    /// [`ContactModel::max_safe_step`] for a q already known to be intersection-free (as
+    /// every state of a conservatively advanced solver is), with candidate pairs from
+    /// `cache` when there is one when there is one: skips the exact overlap test at q, as
+    /// [`ContactModel::min_clearance_in_free_set`] does. On an overlapping q the result is
+    /// meaningless.
+    pub(crate) fn max_safe_step_in_free_set(
+        &self,
+        mech: &Mechanism,
+        q: &DVec,
+        dq: &DVec,
+        cache: Option<&mut PairCache>,
+    ) -> Real {
+        self.max_safe_step_from(mech, q, dq, cache, false)
+    }
+
+    fn max_safe_step_from(
+        &self,
+        mech: &Mechanism,
+        q: &DVec,
+        dq: &DVec,
+        cache: Option<&mut PairCache>,
+        check_overlap: bool,
+    ) -> Real {
         if self.check(mech, q).is_err() || dq.len() != q.len() || dq.iter().any(|x| !x.is_finite())
         {
             return 0.0;
@@ -59,9 +86,10 @@ impl ContactModel {
         }
         let skin = skin_for(&spread, &step_rates);
         let limit = far_limit(&spread, &step_rates, skin).min(1.0);
-        let Some(pairs) = self.near(&placed, skin) else {
+        let mut pairs = Vec::with_capacity(64);
+        if for_each_near_pair_in(cache, &placed, &self.extents, skin, |p| pairs.push(p)).is_err() {
             return 0.0;
-        };
+        }
         let rates = self.approach_rates(&pairs, dq);
         if rates.iter().any(|r| !r.is_finite()) {
             // A step so large that the motion bound overflows.
@@ -72,7 +100,7 @@ impl ContactModel {
         // clearance at any later s from below by clearance − (s − s₀)·rate.
         let mut known = Vec::with_capacity(pairs.len());
         for pair in &pairs {
-            let c = pair_clearance(&placed, pair, true, &mut other);
+            let c = pair_clearance(&placed, pair, check_overlap, &mut other);
             if c.is_nan() || c <= 0.0 {
                 return 0.0;
             }

@@ -3,8 +3,9 @@
 
 use super::model::ContactModel;
 use super::narrow::{min_vertex_edge_distance, polygon_distance, shifted_into, OVERLAP_TOL};
-use super::pairs::{for_each_near_pair, CandidatePair};
+use super::pairs::{for_each_near_pair_in, CandidatePair};
 use super::placement::Placement;
+use super::verlet::PairCache;
 use crate::geometry::interiors_overlap;
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real, Vec2};
@@ -49,7 +50,7 @@ impl ContactModel {
     /// that does not fit or whose lattice is degenerate. Always a lower bound of every pair's
     /// distance.
     pub fn min_clearance(&self, mech: &Mechanism, q: &DVec) -> Real {
-        self.clearance(mech, q, true)
+        self.clearance(mech, q, true, None)
     }
 
     /// [`ContactModel::min_clearance`] for a state already known to be intersection-free
@@ -57,29 +58,46 @@ impl ContactModel {
     /// one): skips the exact overlap test, which dominates the cost. On an overlapping state
     /// the result is meaningless.
     pub fn min_clearance_in_free_set(&self, mech: &Mechanism, q: &DVec) -> Real {
-        self.clearance(mech, q, false)
+        self.clearance(mech, q, false, None)
     }
 
-    fn clearance(&self, mech: &Mechanism, q: &DVec, check_overlap: bool) -> Real {
+    /// [`ContactModel::min_clearance_in_free_set`] with candidate pairs from `cache`.
+    pub(crate) fn min_clearance_in_free_set_cached(
+        &self,
+        mech: &Mechanism,
+        q: &DVec,
+        cache: &mut PairCache,
+    ) -> Real {
+        self.clearance(mech, q, false, Some(cache))
+    }
+
+    fn clearance(
+        &self,
+        mech: &Mechanism,
+        q: &DVec,
+        check_overlap: bool,
+        cache: Option<&mut PairCache>,
+    ) -> Real {
         let Some(placed) = self.place(mech, q) else {
             return 0.0;
         };
         let mut best = CLEARANCE_REACH;
         let mut other = Vec::new();
-        let listed = for_each_near_pair(&placed, &self.extents, CLEARANCE_REACH, |pair| {
-            let shift = placed.shift(pair.offset);
-            let (ta, tb) = (&placed.tiles[pair.a], &placed.tiles[pair.b]);
-            if ta.aabb.gap(&tb.aabb.shifted(shift)) >= best {
-                return;
-            }
-            shifted_into(&tb.world, shift, &mut other);
-            let d = if check_overlap {
-                polygon_distance(&ta.world, &other)
-            } else {
-                min_vertex_edge_distance(&ta.world, &other)
-            };
-            best = best.min(d);
-        });
+        let listed =
+            for_each_near_pair_in(cache, &placed, &self.extents, CLEARANCE_REACH, |pair| {
+                let shift = placed.shift(pair.offset);
+                let (ta, tb) = (&placed.tiles[pair.a], &placed.tiles[pair.b]);
+                if ta.aabb.gap(&tb.aabb.shifted(shift)) >= best {
+                    return;
+                }
+                shifted_into(&tb.world, shift, &mut other);
+                let d = if check_overlap {
+                    polygon_distance(&ta.world, &other)
+                } else {
+                    min_vertex_edge_distance(&ta.world, &other)
+                };
+                best = best.min(d);
+            });
         if listed.is_err() {
             return 0.0;
         }

@@ -6,7 +6,9 @@ use super::distance::{point_edge_derivatives, Mat6, Vec6};
 use super::local::{PairVars, TermJacobian, MAX_LOCAL};
 use super::model::ContactModel;
 use super::narrow::{for_each_close, shifted_into, VertexEdge};
+use super::pairs::for_each_near_pair_in;
 use super::psd::project_psd;
+use super::verlet::PairCache;
 use crate::kinematics::Mechanism;
 use crate::math::{DMat, DVec, Real, Vec2};
 use nalgebra::{SMatrix, SVector};
@@ -54,6 +56,31 @@ impl ContactModel {
         hess: &mut DMat,
         projection: HessianProjection,
     ) {
+        self.add_derivatives_from(mech, q, grad, hess, projection, None);
+    }
+
+    /// [`ContactModel::add_derivatives`] with candidate pairs from `cache`.
+    pub(crate) fn add_derivatives_cached(
+        &self,
+        mech: &Mechanism,
+        q: &DVec,
+        grad: &mut DVec,
+        hess: &mut DMat,
+        projection: HessianProjection,
+        cache: &mut PairCache,
+    ) {
+        self.add_derivatives_from(mech, q, grad, hess, projection, Some(cache));
+    }
+
+    fn add_derivatives_from(
+        &self,
+        mech: &Mechanism,
+        q: &DVec,
+        grad: &mut DVec,
+        hess: &mut DMat,
+        projection: HessianProjection,
+        cache: Option<&mut PairCache>,
+    ) {
         let Some(placed) = self.place(mech, q) else {
             return;
         };
@@ -62,9 +89,10 @@ impl ContactModel {
             return;
         }
         let dhat = self.settings.dhat;
-        let Some(pairs) = self.near(&placed, dhat) else {
+        let mut pairs = Vec::with_capacity(64);
+        if for_each_near_pair_in(cache, &placed, &self.extents, dhat, |p| pairs.push(p)).is_err() {
             return;
-        };
+        }
         let mut other = Vec::new();
         let mut close = Vec::new();
         for pair in &pairs {

@@ -22,8 +22,23 @@ pub(crate) struct DistanceDerivatives {
 }
 
 /// Distance from p to the closed segment ab (ab may be degenerate).
+#[cfg(test)]
 pub(crate) fn point_edge_distance(p: &Vec2, a: &Vec2, b: &Vec2) -> Real {
     crate::geometry::point_segment_distance(p, a, b)
+}
+
+/// The square of the distance from p to the closed segment ab, by the formula of
+/// [`crate::geometry::point_segment_distance`]: its square root is exactly that distance (a
+/// norm is the square root of the squared norm), so the narrow phase can compare squares
+/// and take one root where it needs a distance.
+pub(crate) fn point_edge_distance_squared(p: &Vec2, a: &Vec2, b: &Vec2) -> Real {
+    let ab = b - a;
+    let len2 = ab.norm_squared();
+    if len2 == 0.0 {
+        return (p - a).norm_squared();
+    }
+    let t = ((p - a).dot(&ab) / len2).clamp(0.0, 1.0);
+    (p - (a + ab * t)).norm_squared()
 }
 
 /// The distance from p to segment ab with gradient and Hessian, or `None` when the distance
@@ -142,6 +157,28 @@ mod tests {
             }
         }
         assert!((dd.hess - dd.hess.transpose()).norm() < 1e-12);
+    }
+
+    #[test]
+    fn squared_distance_is_the_square_of_the_distance_bit_for_bit() {
+        let mut seed = 11u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 4.0 - 2.0
+        };
+        for k in 0..2000 {
+            let (p, a) = (Vec2::new(rnd(), rnd()), Vec2::new(rnd(), rnd()));
+            // Every tenth segment degenerate.
+            let b = if k % 10 == 0 {
+                a
+            } else {
+                Vec2::new(rnd(), rnd())
+            };
+            let d = point_edge_distance(&p, &a, &b);
+            assert_eq!(point_edge_distance_squared(&p, &a, &b).sqrt(), d);
+        }
     }
 
     #[test]

@@ -3,7 +3,8 @@
 use super::barrier::barrier_energy;
 use super::model::ContactModel;
 use super::narrow::{for_each_close, shifted_into, OVERLAP_TOL};
-use super::pairs::for_each_near_pair;
+use super::pairs::for_each_near_pair_in;
+use super::verlet::PairCache;
 use crate::geometry::interiors_overlap;
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
@@ -18,16 +19,32 @@ impl ContactModel {
     /// not fit the model or its lattice is degenerate. Pairs come from the broad phase (every
     /// lattice translate whose bounding circle is within d̂), then one box test each.
     pub fn energy(&self, mech: &Mechanism, q: &DVec) -> Real {
-        self.barrier_sum(mech, q, true)
+        self.barrier_sum(mech, q, true, None)
     }
 
     /// [`ContactModel::energy`] for a state already known to be intersection-free (see
     /// [`ContactModel::min_clearance_in_free_set`]): skips the exact overlap test.
     pub fn energy_in_free_set(&self, mech: &Mechanism, q: &DVec) -> Real {
-        self.barrier_sum(mech, q, false)
+        self.barrier_sum(mech, q, false, None)
     }
 
-    fn barrier_sum(&self, mech: &Mechanism, q: &DVec, check_overlap: bool) -> Real {
+    /// [`ContactModel::energy_in_free_set`] with candidate pairs from `cache`.
+    pub(crate) fn energy_in_free_set_cached(
+        &self,
+        mech: &Mechanism,
+        q: &DVec,
+        cache: &mut PairCache,
+    ) -> Real {
+        self.barrier_sum(mech, q, false, Some(cache))
+    }
+
+    fn barrier_sum(
+        &self,
+        mech: &Mechanism,
+        q: &DVec,
+        check_overlap: bool,
+        cache: Option<&mut PairCache>,
+    ) -> Real {
         let Some(placed) = self.place(mech, q) else {
             return Real::INFINITY;
         };
@@ -35,7 +52,7 @@ impl ContactModel {
         let mut total = 0.0;
         let mut other = Vec::new();
         let mut blocked = false;
-        let listed = for_each_near_pair(&placed, &self.extents, dhat, |pair| {
+        let listed = for_each_near_pair_in(cache, &placed, &self.extents, dhat, |pair| {
             if blocked {
                 return;
             }

@@ -36,8 +36,9 @@ pub(crate) enum LatticeProblem {
 }
 
 impl Lattice {
-    /// The lattice of u and w, or `Degenerate` when they do not span the plane.
-    pub(crate) fn new(u: Vec2, w: Vec2) -> Result<Lattice, LatticeProblem> {
+    /// The smallest singular value of [u w] (see `sigma_min`), or `Degenerate` when u and w
+    /// do not span the plane: the check of [`Lattice::new`] without the basis reduction.
+    pub(crate) fn smallest_singular_value(u: Vec2, w: Vec2) -> Result<Real, LatticeProblem> {
         let area = cross(&u, &w).abs();
         let frob2 = u.norm_squared() + w.norm_squared();
         if !(area.is_finite() && frob2.is_finite()) || area <= 1e-12 * frob2 {
@@ -46,7 +47,12 @@ impl Lattice {
         // σ_max² + σ_min² = ‖[u w]‖_F², σ_max·σ_min = |det|.
         let sigma_max =
             (0.5 * (frob2 + (frob2 * frob2 - 4.0 * area * area).max(0.0).sqrt())).sqrt();
-        let sigma_min = area / sigma_max;
+        Ok(area / sigma_max)
+    }
+
+    /// The lattice of u and w, or `Degenerate` when they do not span the plane.
+    pub(crate) fn new(u: Vec2, w: Vec2) -> Result<Lattice, LatticeProblem> {
+        let sigma_min = Lattice::smallest_singular_value(u, w)?;
         let (mut b1, mut b2, mut c1, mut c2) = (u, w, [1i64, 0], [0i64, 1]);
         for _ in 0..200 {
             if b1.norm_squared() > b2.norm_squared() {

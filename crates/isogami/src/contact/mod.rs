@@ -6,8 +6,11 @@
 //! kerf apart while the pin joints stay at the tiling vertices. Contact is checked between
 //! every tile of the centre cell and every lattice translate of every tile that can come
 //! within reach, each physical pair once: the broad phase (`pairs`, on a reduced basis of
-//! the current lattice, `lattice`) is redone at every state, so a sheet that shears or
-//! stretches far from its closed cell still sees every neighbour. The module provides:
+//! the current lattice, `lattice`) is exact at every state, so a sheet that shears or
+//! stretches far from its closed cell still sees every neighbour. A solver keeps Verlet
+//! lists of those pairs (`verlet`: listed with a skin, reused while a closed-form bound
+//! shows that no other pair can have come near) so that it does not enumerate the lattice
+//! at every evaluation. The module provides:
 //!
 //! - E_coll(q): a log barrier b(d) = −κ (d − d̂)² ln(d/d̂) on the unsigned (unsquared)
 //!   distance d of every vertex–edge pair (both directions) closer than d̂ < kerf, with its
@@ -67,6 +70,7 @@ mod psd;
 mod reach;
 mod settings;
 mod tracker;
+mod verlet;
 
 pub use advance::KEEP_FRACTION;
 pub use clearance::{Overlap, CLEARANCE_REACH};
@@ -77,3 +81,4 @@ pub use model::ContactModel;
 pub use pairs::CandidatePair;
 pub use settings::{ContactSettings, MAX_KERF, MIN_KERF};
 pub use tracker::ClearanceTracker;
+pub(crate) use verlet::PairCache;

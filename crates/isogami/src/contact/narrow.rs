@@ -1,7 +1,7 @@
 //! Narrow phase of one pair of placed collision polygons: vertex–edge distances in both
 //! directions, and the exact overlap test.
 
-use super::distance::point_edge_distance;
+use super::distance::point_edge_distance_squared;
 use crate::geometry::interiors_overlap;
 use crate::math::{Real, Vec2};
 
@@ -21,11 +21,23 @@ pub(crate) struct VertexEdge {
 /// Calls `f` for every vertex–edge combination of polygons `a` and `b` (world coordinates)
 /// closer than `limit`, vertices of `a` against edges of `b` first.
 pub(crate) fn for_each_close(a: &[Vec2], b: &[Vec2], limit: Real, mut f: impl FnMut(VertexEdge)) {
+    // Squares first: d = √d² < limit implies d² < limit²·(1 + 4ε) whatever the rounding, so
+    // this test drops only combinations the exact test below would drop too (for a tiny
+    // limit, whose square may underflow, it drops only d² = ∞, which the exact test drops
+    // as well).
+    let limit2 = if limit > 1e-100 {
+        limit * limit * (1.0 + 4.0 * Real::EPSILON)
+    } else {
+        Real::INFINITY
+    };
     for (vertex_side, (vs, es)) in [(a, b), (b, a)].into_iter().enumerate() {
-        let n = es.len();
         for (vertex, p) in vs.iter().enumerate() {
-            for edge in 0..n {
-                let d = point_edge_distance(p, &es[edge], &es[(edge + 1) % n]);
+            for_each_edge(es, |edge, e0, e1| {
+                let d2 = point_edge_distance_squared(p, e0, e1);
+                if d2 >= limit2 {
+                    return;
+                }
+                let d = d2.sqrt();
                 if d < limit {
                     f(VertexEdge {
                         vertex_side,
@@ -34,16 +46,37 @@ pub(crate) fn for_each_close(a: &[Vec2], b: &[Vec2], limit: Real, mut f: impl Fn
                         d,
                     });
                 }
-            }
+            });
         }
     }
 }
 
+/// Calls `f(k, v_k, v_k+1)` for every edge of a closed polygon, in order (the last edge
+/// closes it), without an index modulo per edge.
+#[inline]
+fn for_each_edge(poly: &[Vec2], mut f: impl FnMut(usize, &Vec2, &Vec2)) {
+    let (Some(first), Some(last)) = (poly.first(), poly.last()) else {
+        return;
+    };
+    for (k, pair) in poly.windows(2).enumerate() {
+        f(k, &pair[0], &pair[1]);
+    }
+    f(poly.len() - 1, last, first);
+}
+
 /// Smallest vertex–edge distance between `a` and `b` in both directions.
 pub(crate) fn min_vertex_edge_distance(a: &[Vec2], b: &[Vec2]) -> Real {
+    // The square root of the smallest square is the smallest distance, bit for bit (the
+    // root is monotone and exactly what a distance takes).
     let mut best = Real::INFINITY;
-    for_each_close(a, b, Real::INFINITY, |c| best = best.min(c.d));
-    best
+    for (vs, es) in [(a, b), (b, a)] {
+        for p in vs {
+            for_each_edge(es, |_, e0, e1| {
+                best = best.min(point_edge_distance_squared(p, e0, e1));
+            });
+        }
+    }
+    best.sqrt()
 }
 
 /// Distance between the polygons as sets: 0 when they overlap, else the smallest

@@ -10,6 +10,7 @@
 
 use super::lattice::LatticeProblem;
 use super::placement::Placement;
+use super::verlet::PairCache;
 use crate::math::Real;
 
 /// Tile `a` of the centre cell against tile `b` of the cell at `offset` = (k_u, k_w).
@@ -45,7 +46,7 @@ pub(crate) fn for_each_near_pair(
     margin: Real,
     mut f: impl FnMut(CandidatePair),
 ) -> Result<(), LatticeProblem> {
-    let lattice = placed.lattice?;
+    let lattice = placed.lattice()?;
     let n = placed.tiles.len();
     for a in 0..n {
         for b in a..n {
@@ -59,6 +60,21 @@ pub(crate) fn for_each_near_pair(
         }
     }
     Ok(())
+}
+
+/// [`for_each_near_pair`], from the Verlet lists of `cache` when there is one (the same
+/// pairs, see `verlet`).
+pub(crate) fn for_each_near_pair_in(
+    cache: Option<&mut PairCache>,
+    placed: &Placement,
+    extents: &[Real],
+    margin: Real,
+    f: impl FnMut(CandidatePair),
+) -> Result<(), LatticeProblem> {
+    match cache {
+        Some(cache) => cache.for_each_near_pair(placed, extents, margin, f),
+        None => for_each_near_pair(placed, extents, margin, f),
+    }
 }
 
 #[cfg(test)]

@@ -4,6 +4,7 @@ use super::aabb::Aabb;
 use super::lattice::{Lattice, LatticeProblem};
 use crate::kinematics::StateLayout;
 use crate::math::{rotation, DVec, Real, Vec2};
+use std::cell::OnceCell;
 
 /// One tile's collision polygon in the centre cell at state q.
 #[derive(Debug, Clone)]
@@ -24,8 +25,9 @@ pub(crate) struct Placement {
     pub(crate) tiles: Vec<PlacedTile>,
     pub(crate) u: Vec2,
     pub(crate) w: Vec2,
-    /// The lattice of u and w (or why it has none).
-    pub(crate) lattice: Result<Lattice, LatticeProblem>,
+    /// The lattice of u and w (or why it has none), reduced on first use: queries that take
+    /// their pairs from a Verlet list never need it.
+    lattice: OnceCell<Result<Lattice, LatticeProblem>>,
 }
 
 impl Placement {
@@ -81,7 +83,21 @@ impl Placement {
             tiles,
             u,
             w,
-            lattice: Lattice::new(u, w),
+            lattice: OnceCell::new(),
+        }
+    }
+
+    /// The lattice of u and w, or why they span none.
+    pub(crate) fn lattice(&self) -> Result<Lattice, LatticeProblem> {
+        *self.lattice.get_or_init(|| Lattice::new(self.u, self.w))
+    }
+
+    /// The smallest singular value of [u w] (the lattice's `sigma_min`, without reducing it),
+    /// or why u and w span no lattice.
+    pub(crate) fn sigma_min(&self) -> Result<Real, LatticeProblem> {
+        match self.lattice.get() {
+            Some(lattice) => lattice.map(|l| l.sigma_min),
+            None => Lattice::smallest_singular_value(self.u, self.w),
         }
     }
 

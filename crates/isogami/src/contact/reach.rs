@@ -26,7 +26,7 @@ pub(crate) struct Spread {
 impl Spread {
     /// The spread of `placed`, or `None` when its lattice is degenerate.
     pub(crate) fn of(placed: &Placement, extents: &[Real]) -> Option<Spread> {
-        let sigma = placed.lattice.ok()?.sigma_min;
+        let sigma = placed.sigma_min().ok()?;
         let n = placed.tiles.len() as Real;
         let mean = placed.tiles.iter().fold(Vec2::zeros(), |s, t| s + t.centre) / n;
         let far = placed

@@ -4,9 +4,10 @@
 
 use super::clearance::CLEARANCE_REACH;
 use super::model::ContactModel;
-use super::pairs::for_each_near_pair;
+use super::pairs::for_each_near_pair_in;
 use super::placement::Placement;
 use super::reach::{clearance_drop_rate, Rates, Spread};
+use super::verlet::PairCache;
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
 
@@ -43,6 +44,29 @@ impl ClearanceTracker {
         q: &DVec,
         d: &DVec,
     ) -> Real {
+        self.fraction_from(mech, contact, q, d, None)
+    }
+
+    /// [`ClearanceTracker::fraction`] with candidate pairs from `cache`.
+    pub(crate) fn fraction_cached(
+        &mut self,
+        mech: &Mechanism,
+        contact: &ContactModel,
+        q: &DVec,
+        d: &DVec,
+        cache: &mut PairCache,
+    ) -> Real {
+        self.fraction_from(mech, contact, q, d, Some(cache))
+    }
+
+    fn fraction_from(
+        &mut self,
+        mech: &Mechanism,
+        contact: &ContactModel,
+        q: &DVec,
+        d: &DVec,
+        mut cache: Option<&mut PairCache>,
+    ) -> Real {
         self.pending = None;
         if contact.check(mech, q).is_err() || d.len() != q.len() || d.iter().any(|x| !x.is_finite())
         {
@@ -59,9 +83,13 @@ impl ClearanceTracker {
         }
         let rate = contact.approach_rate(d);
         let mut near: Real = 0.0;
-        let listed = for_each_near_pair(&placed, &contact.extents, CLEARANCE_REACH, |p| {
-            near = near.max(rate(&p));
-        });
+        let listed = for_each_near_pair_in(
+            cache.as_deref_mut(),
+            &placed,
+            &contact.extents,
+            CLEARANCE_REACH,
+            |p| near = near.max(rate(&p)),
+        );
         if listed.is_err() {
             return 0.0;
         }
@@ -72,12 +100,18 @@ impl ClearanceTracker {
         if far_safe && self.clearance_lb.is_some_and(near_safe) {
             return 1.0;
         }
-        let c = contact.min_clearance_in_free_set(mech, q);
+        let c = match cache.as_deref_mut() {
+            Some(cache) => contact.min_clearance_in_free_set_cached(mech, q, cache),
+            None => contact.min_clearance_in_free_set(mech, q),
+        };
         self.clearance_lb = Some(c);
         if far_safe && near_safe(c) {
             return 1.0;
         }
-        contact.max_safe_step(mech, q, d).min(1.0)
+        // q is intersection-free (this method's precondition): no exact overlap test again.
+        contact
+            .max_safe_step_in_free_set(mech, q, d, cache)
+            .min(1.0)
     }
 
     /// The current lower bound on the clearance, if known.

@@ -6,7 +6,7 @@ use super::newton::SolveOutcome;
 use super::settings::DeploySettings;
 use super::trajectory::{EndReason, RawStep};
 use super::Progress;
-use crate::contact::ContactModel;
+use crate::contact::{ContactModel, PairCache};
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
 
@@ -55,6 +55,7 @@ pub(super) trait StepPolicy {
         contact: &ContactModel,
         settings: &DeploySettings,
         input: &StepInput,
+        cache: &mut PairCache,
     ) -> Result<StepTry, DeployError>;
 }
 
@@ -94,6 +95,7 @@ pub(super) fn march(
     arc_limit: Option<Real>,
     attempts: &mut usize,
     progress: Progress<'_>,
+    cache: &mut PairCache,
 ) -> Result<MarchEnd, DeployError> {
     let dhat = settings.contact.dhat;
     let mut prev = previous.clone();
@@ -120,7 +122,7 @@ pub(super) fn march(
             beta,
             s,
         };
-        let tried = policy.solve(mech, contact, settings, &input)?;
+        let tried = policy.solve(mech, contact, settings, &input, cache)?;
         let out = &tried.outcome;
         if out.q.iter().any(|x| !x.is_finite()) {
             return Ok(MarchEnd::Ended(EndReason::Diverged {
@@ -147,7 +149,7 @@ pub(super) fn march(
             && out.joint_residual <= settings.joint_tolerance;
         if accepted {
             let arc = last.arc + (&out.q - &q).norm();
-            let min_clearance = contact.min_clearance_in_free_set(mech, &out.q);
+            let min_clearance = contact.min_clearance_in_free_set_cached(mech, &out.q, cache);
             steps.push(RawStep {
                 q: out.q.clone(),
                 arc,
@@ -170,7 +172,7 @@ pub(super) fn march(
         } else {
             if beta * 0.5 < min_beta * (1.0 - 1e-12) {
                 let contact_blocked = out.barrier > 0.0
-                    || contact.min_clearance_in_free_set(mech, &out.q) < dhat
+                    || contact.min_clearance_in_free_set_cached(mech, &out.q, cache) < dhat
                     || last.min_clearance < dhat;
                 return Ok(MarchEnd::Ended(if contact_blocked {
                     EndReason::ContactLimit

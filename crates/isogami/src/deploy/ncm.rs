@@ -5,10 +5,10 @@
 
 use super::error::DeployError;
 use super::march::{unit_displacement, StepInput, StepPolicy, StepTry};
-use super::newton::{minimize, Objective};
+use super::newton::{minimize_cached, Objective};
 use super::settings::DeploySettings;
 use crate::contact::ClearanceTracker;
-use crate::contact::ContactModel;
+use crate::contact::{ContactModel, PairCache};
 use crate::kinematics::Mechanism;
 
 /// The NCM step.
@@ -21,6 +21,7 @@ impl StepPolicy for Ncm {
         contact: &ContactModel,
         settings: &DeploySettings,
         input: &StepInput,
+        cache: &mut PairCache,
     ) -> Result<StepTry, DeployError> {
         let StepInput {
             q,
@@ -33,7 +34,7 @@ impl StepPolicy for Ncm {
         // Predict along the last direction actually travelled.
         let predictor = previous * beta;
         let mut stepper = ClearanceTracker::new(Some(clearance));
-        let alpha = stepper.fraction(mech, contact, q, &predictor);
+        let alpha = stepper.fraction_cached(mech, contact, q, &predictor, cache);
         stepper.moved(alpha);
         let start = q + &predictor * alpha;
         let target = s + beta;
@@ -47,7 +48,7 @@ impl StepPolicy for Ncm {
             springs: Vec::new(),
             spring_k: 0.0,
         };
-        let out = minimize(mech, contact, &obj, &start, stepper.clearance(), 50);
+        let out = minimize_cached(mech, contact, &obj, &start, stepper.clearance(), 50, cache);
         let achieved = (&out.q - &mech.rest).dot(initial);
         let progress_error = (achieved - target).abs() / beta;
         let direction = unit_displacement(&out.q, q, previous.clone());

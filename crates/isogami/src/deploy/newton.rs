@@ -1,7 +1,7 @@
 //! Newton's method for one deployment step, with tile 0 held fixed and a line search that
 //! never leaves the intersection-free set.
 
-use crate::contact::{ClearanceTracker, ContactModel, HessianProjection};
+use crate::contact::{ClearanceTracker, ContactModel, HessianProjection, PairCache};
 use crate::kinematics::Mechanism;
 use crate::math::{DMat, DVec, Real};
 
@@ -66,15 +66,22 @@ pub struct SolveOutcome {
     pub barrier: Real,
 }
 
-/// Total objective value (+∞ when a vertex touches an edge). Every state the line search
-/// evaluates is reached by conservative advancement from an intersection-free state, so the
-/// barrier skips the exact overlap test here; stored frames get it.
-fn total(mech: &Mechanism, contact: &ContactModel, obj: &Objective, q: &DVec) -> Real {
-    let coll = contact.energy_in_free_set(mech, q);
+/// Total objective value (+∞ when a vertex touches an edge) and the barrier energy in it.
+/// Every state the line search evaluates is reached by conservative advancement from an
+/// intersection-free state, so the barrier skips the exact overlap test here; stored frames
+/// get it.
+fn total(
+    mech: &Mechanism,
+    contact: &ContactModel,
+    obj: &Objective,
+    q: &DVec,
+    cache: &mut PairCache,
+) -> (Real, Real) {
+    let coll = contact.energy_in_free_set_cached(mech, q, cache);
     if !coll.is_finite() {
-        return Real::INFINITY;
+        return (Real::INFINITY, coll);
     }
-    mech.energy(q) + coll + obj.extra_energy(q)
+    (mech.energy(q) + coll + obj.extra_energy(q), coll)
 }
 
 /// Minimises `obj` from `start` (which must be intersection-free; `start_clearance`, when
@@ -90,9 +97,32 @@ pub fn minimize(
     start_clearance: Option<Real>,
     max_iterations: usize,
 ) -> SolveOutcome {
+    let mut cache = PairCache::new();
+    minimize_cached(
+        mech,
+        contact,
+        obj,
+        start,
+        start_clearance,
+        max_iterations,
+        &mut cache,
+    )
+}
+
+/// [`minimize`] with the broad phase's pair lists kept in `cache` (which a deployment keeps
+/// from step to step).
+pub(super) fn minimize_cached(
+    mech: &Mechanism,
+    contact: &ContactModel,
+    obj: &Objective,
+    start: &DVec,
+    start_clearance: Option<Real>,
+    max_iterations: usize,
+    cache: &mut PairCache,
+) -> SolveOutcome {
     let n = start.len();
     let mut q = start.clone();
-    let mut f = total(mech, contact, obj, &q);
+    let (mut f, mut barrier) = total(mech, contact, obj, &q, cache);
     let mut converged = false;
     let mut iterations = 0;
     let mut stepper = ClearanceTracker::new(start_clearance);
@@ -102,7 +132,14 @@ pub fn minimize(
         let c = mech.residual(&q);
         let mut g = jac.transpose() * &c;
         let mut h = jac.transpose() * &jac;
-        contact.add_derivatives(mech, &q, &mut g, &mut h, HessianProjection::PerPairPsd);
+        contact.add_derivatives_cached(
+            mech,
+            &q,
+            &mut g,
+            &mut h,
+            HessianProjection::PerPairPsd,
+            cache,
+        );
         obj.add_extra(&q, &mut g, &mut h);
         let gr = g.rows(3, n - 3).into_owned();
         let hr = h.view((3, 3), (n - 3, n - 3)).into_owned();
@@ -116,15 +153,16 @@ pub fn minimize(
             converged = true;
             break;
         }
-        let mut alpha = stepper.fraction(mech, contact, &q, &d);
+        let mut alpha = stepper.fraction_cached(mech, contact, &q, &d, cache);
         let mut accepted = false;
         for _ in 0..40 {
             let trial = &q + &d * alpha;
-            let ft = total(mech, contact, obj, &trial);
+            let (ft, bt) = total(mech, contact, obj, &trial, cache);
             if ft.is_finite() && ft <= f + 1e-4 * alpha * slope {
                 stepper.moved(alpha);
                 q = trial;
                 f = ft;
+                barrier = bt;
                 accepted = true;
                 break;
             }
@@ -144,7 +182,6 @@ pub fn minimize(
         }
     }
     let joint_residual = mech.residual(&q).amax();
-    let barrier = contact.energy_in_free_set(mech, &q);
     SolveOutcome {
         q,
         iterations,

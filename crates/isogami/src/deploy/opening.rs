@@ -11,7 +11,7 @@ use super::march::{march, rest_step, MarchEnd, StepPolicy};
 use super::settings::DeploySettings;
 use super::trajectory::{EndReason, Trajectory};
 use super::Progress;
-use crate::contact::ContactModel;
+use crate::contact::{ContactModel, PairCache};
 use crate::kinematics::Mechanism;
 use crate::math::DVec;
 
@@ -32,6 +32,8 @@ pub(super) fn open_and_march(
     let probe = PROBE_KERFS * settings.contact.kerf;
     let mut attempts = 0;
     let mut failures = Vec::new();
+    // The broad phase's pair lists, kept for the whole deployment.
+    let mut cache = PairCache::new();
     for sign in [1.0, -1.0] {
         let dir = &v0 * sign;
         let mut steps = vec![rest_step(mech, contact)];
@@ -39,15 +41,24 @@ pub(super) fn open_and_march(
                   prev: &DVec,
                   limit,
                   attempts: &mut usize,
-                  progress: Progress<'_>| {
+                  progress: Progress<'_>,
+                  cache: &mut PairCache| {
             march(
                 mech, contact, settings, policy, steps, &dir, prev, limit, attempts, progress,
+                cache,
             )
         };
-        match go(&mut steps, &dir, Some(probe), &mut attempts, progress)? {
+        match go(
+            &mut steps,
+            &dir,
+            Some(probe),
+            &mut attempts,
+            progress,
+            &mut cache,
+        )? {
             MarchEnd::Reached => {
                 let prev = steps.last().expect("has steps").direction.clone();
-                let end = match go(&mut steps, &prev, None, &mut attempts, progress)? {
+                let end = match go(&mut steps, &prev, None, &mut attempts, progress, &mut cache)? {
                     MarchEnd::Ended(e) => e,
                     MarchEnd::Reached => EndReason::MaxSteps,
                 };

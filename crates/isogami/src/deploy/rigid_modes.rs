@@ -3,10 +3,10 @@
 use super::direction::motion_direction;
 use super::error::DeployError;
 use super::march::{StepInput, StepPolicy, StepTry};
-use super::newton::{minimize, Objective};
+use super::newton::{minimize_cached, Objective};
 use super::settings::DeploySettings;
 use crate::contact::ClearanceTracker;
-use crate::contact::ContactModel;
+use crate::contact::{ContactModel, PairCache};
 use crate::kinematics::Mechanism;
 
 /// The rigid-modes step: direction from the current null space, progress measured from the
@@ -20,6 +20,7 @@ impl StepPolicy for RigidModes {
         contact: &ContactModel,
         settings: &DeploySettings,
         input: &StepInput,
+        cache: &mut PairCache,
     ) -> Result<StepTry, DeployError> {
         let StepInput {
             q,
@@ -31,7 +32,7 @@ impl StepPolicy for RigidModes {
         let (v, nullity) = motion_direction(mech, q, previous)?;
         let predictor = &v * beta;
         let mut stepper = ClearanceTracker::new(Some(clearance));
-        let alpha = stepper.fraction(mech, contact, q, &predictor);
+        let alpha = stepper.fraction_cached(mech, contact, q, &predictor, cache);
         stepper.moved(alpha);
         let start = q + &predictor * alpha;
         let obj = Objective {
@@ -39,7 +40,7 @@ impl StepPolicy for RigidModes {
             springs: Vec::new(),
             spring_k: 0.0,
         };
-        let out = minimize(mech, contact, &obj, &start, stepper.clearance(), 50);
+        let out = minimize_cached(mech, contact, &obj, &start, stepper.clearance(), 50, cache);
         let progress_error = ((&out.q - q).dot(&v) - beta).abs() / beta;
         Ok(StepTry {
             outcome: out,

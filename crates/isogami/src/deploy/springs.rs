@@ -7,9 +7,9 @@
 
 use super::error::DeployError;
 use super::march::{unit_displacement, StepInput, StepPolicy, StepTry};
-use super::newton::{minimize, Objective};
+use super::newton::{minimize_cached, Objective};
 use super::settings::DeploySettings;
-use crate::contact::ContactModel;
+use crate::contact::{ContactModel, PairCache};
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
 
@@ -32,6 +32,7 @@ impl StepPolicy for Springs {
         contact: &ContactModel,
         settings: &DeploySettings,
         input: &StepInput,
+        cache: &mut PairCache,
     ) -> Result<StepTry, DeployError> {
         let StepInput {
             q, clearance, beta, ..
@@ -46,14 +47,15 @@ impl StepPolicy for Springs {
             springs,
             spring_k: settings.step_weight,
         };
-        let relaxed = minimize(mech, contact, &relax, q, Some(clearance), 50);
-        let out = minimize(
+        let relaxed = minimize_cached(mech, contact, &relax, q, Some(clearance), 50, cache);
+        let out = minimize_cached(
             mech,
             contact,
             &Objective::constraints_only(),
             &relaxed.q,
             None,
             50,
+            cache,
         );
         let direction = unit_displacement(&out.q, q, DVec::zeros(q.len()));
         // "Progress error" 0 when the springs opened the cell further, ∞ when they did not:
