@@ -17,6 +17,7 @@ pub mod contact;
 pub mod deploy;
 pub mod error;
 pub mod explore;
+pub mod export;
 pub mod geometry;
 pub mod kinematics;
 pub mod linkage;
