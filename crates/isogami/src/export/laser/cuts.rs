@@ -179,7 +179,7 @@ pub fn layout_cuts(
                 end = len - resume;
             }
         }
-        if !(end - start > eps) {
+        if (end - start).is_nan() || end - start <= eps {
             return Err(LaserError::HingeTooWide {
                 hinge_mm: hinge,
                 edge_mm: len,

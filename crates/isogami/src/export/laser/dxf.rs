@@ -1,4 +1,4 @@
-//! The laser sheet as ASCII DXF (R12, AC1009, millimetres): layers CUT (cuts between tiles),
+//! The laser sheet as ASCII DXF (R12, AC1009, millimetres, the patch's own coordinates): layers CUT (cuts between tiles),
 //! OUTLINE (the outline cut, closed polylines), SCORE (empty: kirigami sheets need no folds)
 //! and ENGRAVE (tile labels, when asked). Metadata as 999 comments at the top.
 
@@ -12,7 +12,7 @@ use std::fmt::Write;
 pub fn laser_dxf(sheet: &LaserSheet) -> String {
     let s = &sheet.settings;
     let place = Placement::new(&sheet.layout, s.margin_mm);
-    let (w, h) = place.size();
+    let (lo, hi) = place.extents();
     let mut d = Dxf::default();
     for (k, v) in sheet.meta_lines() {
         let line = format!("{k}: {v}").replace(['\r', '\n'], " ");
@@ -27,9 +27,9 @@ pub fn laser_dxf(sheet: &LaserSheet) -> String {
     d.pair(9, "$MEASUREMENT");
     d.pair(70, "1");
     d.pair(9, "$EXTMIN");
-    d.point(10, &Vec2::zeros());
+    d.point(10, &lo);
     d.pair(9, "$EXTMAX");
-    d.point(10, &Vec2::new(w, h));
+    d.point(10, &hi);
     d.pair(0, "ENDSEC");
 
     let layers = [
@@ -69,8 +69,8 @@ pub fn laser_dxf(sheet: &LaserSheet) -> String {
     for c in &sheet.layout.cuts {
         d.pair(0, "LINE");
         d.pair(8, "CUT");
-        d.point(10, &place.y_up(&c.a));
-        d.point(11, &place.y_up(&c.b));
+        d.point(10, &c.a);
+        d.point(11, &c.b);
     }
     for lp in &sheet.layout.outline {
         d.pair(0, "POLYLINE");
@@ -81,14 +81,14 @@ pub fn laser_dxf(sheet: &LaserSheet) -> String {
         for p in lp {
             d.pair(0, "VERTEX");
             d.pair(8, "OUTLINE");
-            d.point(10, &place.y_up(p));
+            d.point(10, p);
         }
         d.pair(0, "SEQEND");
         d.pair(8, "OUTLINE");
     }
     if s.labels {
         for (i, (c, size)) in labels(&sheet.tiles).iter().enumerate() {
-            let q = place.y_up(c);
+            let q = *c;
             d.pair(0, "TEXT");
             d.pair(8, "ENGRAVE");
             d.point(10, &q);

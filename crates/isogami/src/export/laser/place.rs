@@ -1,5 +1,6 @@
-//! Where the sheet lands in the file: the bounding box of everything cut, and the shift (and
-//! for SVG the flip of y, which points down there) that puts it `margin` from the origin.
+//! Where the sheet lands in the file. Coordinates are the patch's own millimetres (SVG flips
+//! y, which points down there), so a file can be laid over the design without a shift; the
+//! page (SVG viewBox, DXF extents) is the bounding box of everything cut plus the margin.
 
 use super::cuts::CutLayout;
 use crate::math::{Real, Vec2};
@@ -39,17 +40,20 @@ impl Placement {
         (d.x + 2.0 * self.margin, d.y + 2.0 * self.margin)
     }
 
-    /// A point in the file's frame with y up (DXF).
-    pub fn y_up(&self, p: &Vec2) -> Vec2 {
-        p - self.min + Vec2::new(self.margin, self.margin)
+    /// Lower-left and upper-right corners of the page with y up (DXF extents).
+    pub fn extents(&self) -> (Vec2, Vec2) {
+        let m = Vec2::new(self.margin, self.margin);
+        (self.min - m, self.max + m)
     }
 
-    /// A point in the file's frame with y down (SVG): the sheet seen from the same side.
+    /// Top-left corner of the page with y down (SVG viewBox origin).
+    pub fn view_origin(&self) -> Vec2 {
+        Vec2::new(self.min.x - self.margin, -self.max.y - self.margin)
+    }
+
+    /// A point in the SVG frame (y down): the sheet seen from the same side.
     pub fn y_down(&self, p: &Vec2) -> Vec2 {
-        Vec2::new(
-            p.x - self.min.x + self.margin,
-            self.max.y - p.y + self.margin,
-        )
+        Vec2::new(p.x, -p.y)
     }
 }
 

@@ -1,4 +1,5 @@
-//! The laser sheet as SVG: page size and viewBox in millimetres (one user unit = 1 mm), one
+//! The laser sheet as SVG: page size and viewBox in millimetres (one user unit = 1 mm; user
+//! coordinates are the patch's (x, -y)), one
 //! group per operation (cut, score, engrave) with its colour, hairline strokes, one path per
 //! cut and per outline loop, and the metadata in `<desc>`.
 
@@ -12,14 +13,17 @@ pub fn laser_svg(sheet: &LaserSheet) -> String {
     let s = &sheet.settings;
     let place = Placement::new(&sheet.layout, s.margin_mm);
     let (w, h) = place.size();
+    let o = place.view_origin();
     let n = fmt_mm;
     let mut out = String::new();
     let _ = writeln!(out, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     let _ = writeln!(
         out,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{}mm" height="{}mm" viewBox="0 0 {} {}">"#,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{}mm" height="{}mm" viewBox="{} {} {} {}">"#,
         n(w),
         n(h),
+        n(o.x),
+        n(o.y),
         n(w),
         n(h)
     );
