@@ -1,0 +1,23 @@
+//! Fabrication and interchange export: a finite R×C patch of a design's sheet in millimetres,
+//! and one module per file format written from it.
+//!
+//! [`patch_at`] deploys a design, picks a state and places every tile of the patch in mm
+//! ([`Patch`]: tile polygons at the state and closed, joints with the vertex on each tile,
+//! the closed outline, a series of states for animated formats). Every format module turns a
+//! [`Patch`] into text and never writes files; the front ends write (atomically).
+//!
+//! | format | module | output |
+//! |---|---|---|
+//! | patch geometry | [`patch`] | [`Patch`] (plain data) |
+//!
+//! The library does no I/O: each format returns a `String` (or bytes), the CLI writes it.
+
+mod error;
+mod outline;
+pub mod patch;
+
+pub use error::ExportError;
+pub use patch::{
+    patch_at, Patch, PatchJoint, PatchRequest, PatchState, PatchTile, Scale, State, MAX_PATCH,
+    MAX_PATCH_FRAMES,
+};

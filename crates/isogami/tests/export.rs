@@ -1,0 +1,8 @@
+//! The export module end to end: the patch geometry and every interchange format, on
+//! rotating-squares and designs of other families (concave tiles among them). Each design's
+//! patch is made once and shared by the tests.
+
+#[path = "export/fixtures.rs"]
+mod fixtures;
+#[path = "export/patch.rs"]
+mod patch;
