@@ -4,14 +4,24 @@ use isogami::api::resolve_design;
 use isogami::export::{patch_at, Patch, PatchRequest, Scale, State};
 use std::sync::OnceLock;
 
-/// rotating-squares and opening designs of four other families; IH44's and IH53's tiles
-/// are concave (checked by `the_test_designs_include_concave_tiles`).
+/// rotating-squares and opening designs of five other families. IH2 and IH44 are the
+/// library's sample designs; the IH6, IH22 and IH28 shapes were found by perturbing the
+/// parameters of explored topologies until a tile turned concave (one degree of freedom kept,
+/// area ratio above 1.2); `the_test_designs_include_concave_tiles` checks that they are.
 pub const DESIGNS: &[&str] = &[
     "rotating-squares",
     "IH2:0.12239750492,0.5,0.225335752741,0.225335752741:1x1:a--aa-",
     "IH44:0.5,0.102564102564:1x1:-aaa",
-    "IH53:0.5,0.102564102564,0.102564102564:1x1:bbaab-b-",
-    "IH78:0.230769230769:1x1:bbaaab",
+    "IH6:0.4512,0.7209,0.5231,0.9206,0.7110:1x1:-a-aaaaaaa--",
+    "IH22:0.1312,0.2611,0.4191:1x1:aa-a-",
+    "IH28:0.1136,0.2021:1x1:a--a-b-bbb",
+];
+
+/// Designs of [`DESIGNS`] with a concave tile.
+pub const CONCAVE: &[&str] = &[
+    "IH6:0.4512,0.7209,0.5231,0.9206,0.7110:1x1:-a-aaaaaaa--",
+    "IH22:0.1312,0.2611,0.4191:1x1:aa-a-",
+    "IH28:0.1136,0.2021:1x1:a--a-b-bbb",
 ];
 
 /// Rows and columns of the shared patches (not square, so rows and columns cannot be
@@ -67,7 +77,6 @@ pub fn dist(p: [f64; 2], q: [f64; 2]) -> f64 {
 }
 
 /// True when some vertex of the counter-clockwise polygon turns clockwise.
-#[allow(dead_code)]
 pub fn is_concave(poly: &[[f64; 2]]) -> bool {
     let n = poly.len();
     (0..n).any(|k| {

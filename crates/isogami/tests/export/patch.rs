@@ -1,6 +1,8 @@
 //! The patch geometry: scale, placement, joints, outline, states, request checks.
 
-use crate::fixtures::{area, closed, dist, open, COLS, DESIGNS, EDGE_MM, ROWS};
+use crate::fixtures::{
+    area, closed, dist, is_concave, open, COLS, CONCAVE, DESIGNS, EDGE_MM, ROWS,
+};
 use isogami::api::resolve_design;
 use isogami::export::{
     patch_at, ExportError, PatchRequest, Scale, State, MAX_PATCH, MAX_PATCH_FRAMES,
@@ -15,6 +17,15 @@ fn mean_edge(polys: &[Vec<[f64; 2]>]) -> f64 {
         }
     }
     sum / count as f64
+}
+
+#[test]
+fn the_test_designs_include_concave_tiles() {
+    for (p, spec) in closed().iter().zip(DESIGNS) {
+        let concave = p.closed_polygons_mm.iter().any(|q| is_concave(q));
+        assert_eq!(concave, CONCAVE.contains(spec), "{spec}");
+    }
+    assert!(CONCAVE.len() >= 3);
 }
 
 #[test]
