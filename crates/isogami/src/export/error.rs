@@ -62,6 +62,14 @@ pub enum ExportError {
         /// What is wrong, with the place.
         reason: String,
     },
+    /// A file could not be encoded.
+    #[error("cannot write {format}: {reason}")]
+    Encode {
+        /// The format.
+        format: &'static str,
+        /// Why.
+        reason: String,
+    },
     /// The pipeline failed (design, deployment, settings).
     #[error(transparent)]
     Library(#[from] crate::Error),

@@ -9,12 +9,20 @@
 //! | format | module | output |
 //! |---|---|---|
 //! | patch geometry | [`patch`] | [`Patch`] (plain data) |
+//! | FOLD 1.1 (JSON), every state a frame | [`fold`] | text; [`fold::read_fold`] reads it back |
+//! | OBJ (one object per tile) | [`obj`] | text |
+//! | tile table (CSV, JSON) | [`tile_table`] | rows; CSV text |
+//! | kirigami_sim's text files | [`kirigami_sim`] | four texts |
 //!
 //! The library does no I/O: each format returns a `String` (or bytes), the CLI writes it.
 
 mod error;
+pub mod fold;
+pub mod kirigami_sim;
+pub mod obj;
 mod outline;
 pub mod patch;
+pub mod tile_table;
 
 pub use error::ExportError;
 pub use patch::{

@@ -80,6 +80,14 @@ impl Default for PatchRequest {
 }
 
 impl PatchRequest {
+    /// The scale's name and value in mm.
+    fn scale_value(&self) -> (&'static str, Real) {
+        match self.scale {
+            Scale::EdgeMm(v) => ("edge length", v),
+            Scale::WidthMm(v) => ("patch width", v),
+        }
+    }
+
     /// Checks sizes, scale, state and frame count (the kerf is checked by the deployment).
     pub fn validate(&self) -> Result<(), ExportError> {
         let (rows, cols) = (self.rows, self.cols);
@@ -93,10 +101,7 @@ impl PatchRequest {
                 max: MAX_PATCH,
             });
         }
-        let (what, value) = match self.scale {
-            Scale::EdgeMm(v) => ("edge length", v),
-            Scale::WidthMm(v) => ("patch width", v),
-        };
+        let (what, value) = self.scale_value();
         if !(value.is_finite() && value > 0.0) {
             return Err(ExportError::BadSize { what, value });
         }
@@ -146,6 +151,9 @@ pub struct Patch {
     pub closed_polygons_mm: Vec<Vec<[Real; 2]>>,
     /// Boundary loops of the closed patch (counter-clockwise, first vertex not repeated).
     pub outline_mm: Vec<Vec<[Real; 2]>>,
+    /// The same loops as [tile id, vertex index] of the tile whose boundary edge starts at
+    /// each outline vertex.
+    pub outline_vertices: Vec<Vec<[usize; 2]>>,
     /// States nearest to evenly spaced t, closed first and contact limit last.
     pub states: Vec<PatchState>,
 }
@@ -255,7 +263,7 @@ pub fn patch_at(design: &Design, request: &PatchRequest) -> Result<Patch, Export
         })
         .collect();
     let closed_polygons_mm = to_mm(&place.polygons(&frames[0]));
-    let states = select_frames(&run.trajectory, request.frames)
+    let states: Vec<PatchState> = select_frames(&run.trajectory, request.frames)
         .into_iter()
         .filter_map(|k| frames.get(k))
         .map(|f| PatchState {
@@ -265,7 +273,25 @@ pub fn patch_at(design: &Design, request: &PatchRequest) -> Result<Patch, Export
         .collect();
     let joints = patch_joints(&cell, &design.joints, &place, &tiles);
     let edge_mm = geometry.length_scale * mm_per_unit;
-    let outline_mm = outline(&cell, &place, &closed_polygons_mm, 1e-7 * edge_mm);
+    let loops = outline(&cell, &place, &closed_polygons_mm, 1e-7 * edge_mm);
+    let outline_mm = loops
+        .iter()
+        .map(|l| l.iter().map(|(p, _)| *p).collect())
+        .collect();
+    let outline_vertices = loops
+        .iter()
+        .map(|l| l.iter().map(|(_, v)| *v).collect())
+        .collect();
+    let finite = |p: &Vec<[Real; 2]>| p.iter().flatten().all(|x| x.is_finite());
+    let all_finite = tiles.iter().all(|t| finite(&t.polygon_mm))
+        && closed_polygons_mm.iter().all(finite)
+        && states
+            .iter()
+            .all(|s: &PatchState| s.polygons_mm.iter().all(finite));
+    if !all_finite {
+        let (what, value) = request.scale_value();
+        return Err(ExportError::BadSize { what, value });
+    }
     Ok(Patch {
         design: design.to_string(),
         rows: request.rows,
@@ -281,6 +307,7 @@ pub fn patch_at(design: &Design, request: &PatchRequest) -> Result<Patch, Export
         joints,
         closed_polygons_mm,
         outline_mm,
+        outline_vertices,
         states,
     })
 }
@@ -429,7 +456,7 @@ fn outline(
     place: &Placer<'_>,
     closed: &[Vec<[Real; 2]>],
     tol: Real,
-) -> Vec<Vec<[Real; 2]>> {
+) -> Vec<Vec<([Real; 2], [usize; 2])>> {
     let n = cell.tiles.len();
     let mut edges = Vec::new();
     for (id, poly) in closed.iter().enumerate() {
@@ -442,7 +469,7 @@ fn outline(
                 [-e.offset[0], -e.offset[1]]
             };
             if place.neighbour(c, offset).is_none() {
-                edges.push([poly[k], poly[(k + 1) % poly.len()]]);
+                edges.push(([poly[k], poly[(k + 1) % poly.len()]], [id, k]));
             }
         }
     }
