@@ -4,5 +4,13 @@
 
 #[path = "export/fixtures.rs"]
 mod fixtures;
+#[path = "export/fold.rs"]
+mod fold;
+#[path = "export/kirigami_sim.rs"]
+mod kirigami_sim;
+#[path = "export/obj.rs"]
+mod obj;
 #[path = "export/patch.rs"]
 mod patch;
+#[path = "export/tile_table.rs"]
+mod tile_table;
