@@ -5,7 +5,8 @@
 //! edges with cell offsets, tiling vectors) → [`topology`] (a joint choice per edge, design
 //! specs) → [`kinematics`] (rigid tiles + pin joints + periodic lattice: residuals,
 //! Jacobian, Hessian) → [`mobility`] (spectrum of H = JᵀJ, degrees of freedom, motion).
-//! [`render`] turns results into SVG text. The library does no I/O: front ends read and write.
+//! [`render`] turns results into SVG text; [`export`] lays out a patch of the sheet in mm
+//! and writes it in fabrication and interchange formats (as text). The library does no I/O: front ends read and write.
 //!
 //! Front ends call the entry points of [`api`]: one function per job (resolve a design,
 //! analyse, deploy, linkages, compare), plain data in and out.

@@ -1,5 +1,33 @@
-//! Fabrication exports of a patch of tiles in millimetres.
+//! Fabrication and interchange export: a finite R×C patch of a design's sheet in millimetres,
+//! and one module per file format written from it.
 //!
-//! [`laser`]: laser-cutting sheets (SVG and DXF) with hinge bridges and kerf compensation.
+//! [`patch_at`] deploys a design, picks a state and places every tile of the patch in mm
+//! ([`Patch`]: tile polygons at the state and closed, joints with the vertex on each tile,
+//! the closed outline, a series of states for animated formats). Every format module turns a
+//! [`Patch`] into text and never writes files; the front ends write (atomically).
+//!
+//! | format | module | output |
+//! |---|---|---|
+//! | patch geometry | [`patch`] | [`Patch`] (plain data) |
+//! | FOLD 1.1 (JSON), every state a frame | [`fold`] | text; [`fold::read_fold`] reads it back |
+//! | OBJ (one object per tile) | [`obj`] | text |
+//! | tile table (CSV, JSON) | [`tile_table`] | rows; CSV text |
+//! | kirigami_sim's text files | [`kirigami_sim`] | four texts |
+//! | laser cutting: SVG, DXF (closed sheet, bridges, kerf) | [`laser`] | texts |
+//!
+//! The library does no I/O: each format returns a `String` (or bytes), the CLI writes it.
 
+mod error;
+pub mod fold;
+pub mod kirigami_sim;
 pub mod laser;
+pub mod obj;
+mod outline;
+pub mod patch;
+pub mod tile_table;
+
+pub use error::ExportError;
+pub use patch::{
+    patch_at, Patch, PatchJoint, PatchRequest, PatchState, PatchTile, Scale, State, MAX_PATCH,
+    MAX_PATCH_FRAMES,
+};

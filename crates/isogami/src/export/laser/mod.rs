@@ -4,12 +4,14 @@
 //! SCORE, OUTLINE, ENGRAVE, mm units).
 //!
 //! The input is plain: closed-state tile polygons in millimetres (counter-clockwise) and
-//! the joints as pairs of tiles with the tiling vertex they share. [`cuts`] holds the
+//! the joints as pairs of tiles with the tiling vertex they share; [`laser_sheet`] takes
+//! them from an export [`Patch`](crate::export::Patch). [`cuts`] holds the
 //! geometry (and documents the kerf and bridge layout); [`svg`] and [`dxf`] only write it.
 
 pub mod cuts;
 mod dxf;
 mod error;
+mod from_patch;
 mod graph;
 pub mod material;
 mod outline;
@@ -20,6 +22,7 @@ mod svg;
 pub use cuts::{layout_cuts, Bridge, Cut, CutLayout};
 pub use dxf::laser_dxf;
 pub use error::LaserError;
+pub use from_patch::laser_sheet;
 pub use material::{Material, MaterialNumbers};
 pub use settings::{LaserColours, LaserSettings};
 pub use svg::laser_svg;

@@ -1,0 +1,128 @@
+//! A laser sheet from an export [`Patch`]: always its closed state (the flat sheet a laser
+//! cuts), restricted to the largest piece that its joints hold together. A rectangle of
+//! cells can hold border tiles whose joints all lead out of the patch; cut free they would
+//! fall out of the sheet, so they are left off the sheet and counted in its metadata.
+
+use super::{fmt_mm, JointAt, LaserError, LaserSettings, LaserSheet};
+use crate::export::Patch;
+use crate::math::Real;
+
+/// The laser sheet of `patch` with `settings`.
+pub fn laser_sheet(patch: &Patch, settings: LaserSettings) -> Result<LaserSheet, LaserError> {
+    let polys = &patch.closed_polygons_mm;
+    let mut joints = Vec::with_capacity(patch.joints.len());
+    for (j, joint) in patch.joints.iter().enumerate() {
+        let point = polys
+            .get(joint.a)
+            .and_then(|p| p.get(joint.vertex_a))
+            .ok_or(LaserError::NoSuchTile {
+                joint: j,
+                tile: joint.a,
+                tiles: polys.len(),
+            })?;
+        joints.push(JointAt {
+            tiles: [joint.a, joint.b],
+            point: *point,
+        });
+    }
+    let (tiles, joints, kept) = largest_piece(polys, &joints)?;
+    let dropped = polys.len() - tiles.len();
+    let meta = vec![
+        ("spec".to_string(), patch.design.clone()),
+        (
+            "patch".to_string(),
+            format!("{}x{} cells", patch.rows, patch.cols),
+        ),
+        ("edge_mm".to_string(), fmt_mm(patch.edge_mm)),
+        ("state".to_string(), "closed (t = 0)".to_string()),
+        (
+            "tiles".to_string(),
+            format!(
+                "{} of {} (left off: {dropped} not held by joints)",
+                kept,
+                polys.len()
+            ),
+        ),
+    ];
+    LaserSheet::new(tiles, &joints, settings, meta)
+}
+
+type Piece = (Vec<Vec<[Real; 2]>>, Vec<JointAt>, usize);
+
+/// The tiles and joints of the largest connected piece of the tile/joint graph (the first
+/// such piece on a tie), tiles renumbered in their order.
+fn largest_piece(tiles: &[Vec<[Real; 2]>], joints: &[JointAt]) -> Result<Piece, LaserError> {
+    let n = tiles.len();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn find(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    for (j, joint) in joints.iter().enumerate() {
+        for &t in &joint.tiles {
+            if t >= n {
+                return Err(LaserError::NoSuchTile {
+                    joint: j,
+                    tile: t,
+                    tiles: n,
+                });
+            }
+        }
+        let (a, b) = (
+            find(&mut parent, joint.tiles[0]),
+            find(&mut parent, joint.tiles[1]),
+        );
+        parent[a] = b;
+    }
+    let root: Vec<usize> = (0..n).map(|i| find(&mut parent, i)).collect();
+    let mut size = vec![0usize; n];
+    for &r in &root {
+        size[r] += 1;
+    }
+    let Some(best) = (0..n).max_by(|&a, &b| size[a].cmp(&size[b]).then(b.cmp(&a))) else {
+        return Err(LaserError::NoTiles);
+    };
+    let mut index = vec![usize::MAX; n];
+    let mut kept = Vec::new();
+    for t in 0..n {
+        if root[t] == root[best] {
+            index[t] = kept.len();
+            kept.push(tiles[t].clone());
+        }
+    }
+    let joints = joints
+        .iter()
+        .filter(|j| root[j.tiles[0]] == root[best])
+        .map(|j| JointAt {
+            tiles: j.tiles.map(|t| index[t]),
+            point: j.point,
+        })
+        .collect();
+    let count = kept.len();
+    Ok((kept, joints, count))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_largest_joint_connected_piece_is_kept() {
+        let sq = |x: Real| vec![[x, 0.0], [x + 1.0, 0.0], [x + 1.0, 1.0], [x, 1.0]];
+        let tiles = vec![sq(0.0), sq(1.0), sq(2.0), sq(3.0)];
+        let j = |a, b, x| JointAt {
+            tiles: [a, b],
+            point: [x, 1.0],
+        };
+        // 1–2–3 held together, 0 loose.
+        let joints = [j(1, 2, 2.0), j(2, 3, 3.0)];
+        let (kept, joints, count) = largest_piece(&tiles, &joints).unwrap();
+        assert_eq!(count, 3);
+        assert_eq!(kept[0], sq(1.0));
+        assert_eq!(joints[0].tiles, [0, 1]);
+        assert_eq!(joints[1].tiles, [1, 2]);
+    }
+}

@@ -1,0 +1,477 @@
+//! A finite patch of a design's sheet in millimetres: the geometry every export format is
+//! written from.
+//!
+//! [`patch_at`] deploys the design once ([`FrameSelection::AllSteps`]), takes the accepted
+//! state whose t is nearest the asked t (states are never interpolated, so every joint of
+//! the patch is an exact solution of the constraints), and places the R×C cells of the
+//! patch: cell `[i, j]` is the cell copy at `i·u + j·w`, i in `0..cols`, j in `0..rows`.
+//! Polygons are counter-clockwise with y up; each set of polygons (the state, the closed
+//! sheet, every state of [`Patch::states`]) is shifted so that its bounding box starts at
+//! (0, 0).
+
+use super::error::ExportError;
+use super::outline::chain_loops;
+use crate::api::{deploy, sheet_geometry, DeployRequest, FrameSelection};
+use crate::cell::End;
+use crate::contact::ContactSettings;
+use crate::deploy::{select_frames, DeploySettings, FrameReport};
+use crate::math::Real;
+use crate::topology::{Design, JointChoice};
+use serde::Serialize;
+
+/// Most rows and most columns of a patch (40 × 40 cells; a 40×40 patch of a 12-tile cell
+/// holds 19 200 tiles, enough for any sheet a laser bed or a print bed takes).
+pub const MAX_PATCH: usize = 40;
+
+/// Most states in [`Patch::states`].
+pub const MAX_PATCH_FRAMES: usize = 100;
+
+/// How the patch is scaled to millimetres.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Scale {
+    /// The mean edge length L of the tiles, in mm.
+    EdgeMm(Real),
+    /// The width (x extent) of the patch at the asked state, in mm.
+    WidthMm(Real),
+}
+
+/// Which state of the deployment to export.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum State {
+    /// The accepted state with t nearest this value, in [0, 1] (0 closed, 1 the contact
+    /// limit).
+    T(Real),
+    /// The state of largest area ratio: the sheet open as far as contact lets it (the last
+    /// such state on a tie).
+    Open,
+}
+
+/// What patch to make.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PatchRequest {
+    /// Cells along w, 1..=[`MAX_PATCH`].
+    pub rows: usize,
+    /// Cells along u, 1..=[`MAX_PATCH`].
+    pub cols: usize,
+    /// Millimetres.
+    pub scale: Scale,
+    /// The state.
+    pub state: State,
+    /// Cut width relative to the mean edge length, the deployment's contact setting (see
+    /// [`ContactSettings::kerf`]): it decides where contact ends the deployment.
+    pub kerf: Real,
+    /// States kept in [`Patch::states`] for animated formats, nearest to evenly spaced t,
+    /// 2..=[`MAX_PATCH_FRAMES`].
+    pub frames: usize,
+}
+
+impl Default for PatchRequest {
+    /// 6×6 cells, 20 mm mean edge, closed, default kerf, 11 states.
+    fn default() -> Self {
+        PatchRequest {
+            rows: 6,
+            cols: 6,
+            scale: Scale::EdgeMm(20.0),
+            state: State::T(0.0),
+            kerf: ContactSettings::default().kerf,
+            frames: 11,
+        }
+    }
+}
+
+impl PatchRequest {
+    /// The scale's name and value in mm.
+    fn scale_value(&self) -> (&'static str, Real) {
+        match self.scale {
+            Scale::EdgeMm(v) => ("edge length", v),
+            Scale::WidthMm(v) => ("patch width", v),
+        }
+    }
+
+    /// Checks sizes, scale, state and frame count (the kerf is checked by the deployment).
+    pub fn validate(&self) -> Result<(), ExportError> {
+        let (rows, cols) = (self.rows, self.cols);
+        if rows == 0 || cols == 0 {
+            return Err(ExportError::EmptyPatch { rows, cols });
+        }
+        if rows > MAX_PATCH || cols > MAX_PATCH {
+            return Err(ExportError::PatchTooLarge {
+                rows,
+                cols,
+                max: MAX_PATCH,
+            });
+        }
+        let (what, value) = self.scale_value();
+        if !(value.is_finite() && value > 0.0) {
+            return Err(ExportError::BadSize { what, value });
+        }
+        if let State::T(t) = self.state {
+            if !(0.0..=1.0).contains(&t) {
+                return Err(ExportError::StatePastTrajectory { t });
+            }
+        }
+        if !(2..=MAX_PATCH_FRAMES).contains(&self.frames) {
+            return Err(ExportError::FrameCount {
+                count: self.frames,
+                max: MAX_PATCH_FRAMES,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// A patch of the sheet in millimetres.
+#[derive(Debug, Clone, Serialize)]
+pub struct Patch {
+    /// The design's spec string.
+    pub design: String,
+    /// Cells along w.
+    pub rows: usize,
+    /// Cells along u.
+    pub cols: usize,
+    /// Tiles in one cell.
+    pub tiles_per_cell: usize,
+    /// Kerf relative to the mean edge length (the deployment's setting).
+    pub kerf: Real,
+    /// Mean edge length of the tiles, mm.
+    pub edge_mm: Real,
+    /// Millimetres per tiling unit.
+    pub mm_per_unit: Real,
+    /// t of the exported state.
+    pub t: Real,
+    /// Area ratio det F of the exported state.
+    pub area_ratio: Real,
+    /// Bounding box size [width, height] of the tiles at the state, mm.
+    pub size_mm: [Real; 2],
+    /// The tiles, ordered by cell (row by row: j, then i) then tile index.
+    pub tiles: Vec<PatchTile>,
+    /// Every joint whose two tiles are both in the patch.
+    pub joints: Vec<PatchJoint>,
+    /// The same tiles in the closed state (t = 0), by tile id: the sheet a laser cuts.
+    pub closed_polygons_mm: Vec<Vec<[Real; 2]>>,
+    /// Boundary loops of the closed patch (counter-clockwise, first vertex not repeated).
+    pub outline_mm: Vec<Vec<[Real; 2]>>,
+    /// The same loops as [tile id, vertex index] of the tile whose boundary edge starts at
+    /// each outline vertex.
+    pub outline_vertices: Vec<Vec<[usize; 2]>>,
+    /// States nearest to evenly spaced t, closed first and contact limit last.
+    pub states: Vec<PatchState>,
+}
+
+/// One tile of the patch at the exported state.
+#[derive(Debug, Clone, Serialize)]
+pub struct PatchTile {
+    /// Index in [`Patch::tiles`].
+    pub id: usize,
+    /// Tile index in the cell.
+    pub tile: usize,
+    /// Cell [i, j] (multiples of u and w).
+    pub cell: [usize; 2],
+    /// Vertices, counter-clockwise, mm.
+    pub polygon_mm: Vec<[Real; 2]>,
+    /// Area centroid, mm.
+    pub centroid_mm: [Real; 2],
+    /// Rotation from the closed state, radians (counter-clockwise).
+    pub rotation: Real,
+}
+
+/// A pin joint between two tiles of the patch.
+#[derive(Debug, Clone, Serialize)]
+pub struct PatchJoint {
+    /// Tile id on the edge's first side.
+    pub a: usize,
+    /// Tile id on the other side.
+    pub b: usize,
+    /// Where the pin is at the exported state, mm (vertex `vertex_a` of tile `a`).
+    pub point_mm: [Real; 2],
+    /// Unique edge index in the cell (the spec's joint string order).
+    pub edge: usize,
+    /// Which end of the edge: `'a'` or `'b'`.
+    pub end: char,
+    /// Vertex index on tile `a`'s polygon.
+    pub vertex_a: usize,
+    /// Vertex index on tile `b`'s polygon.
+    pub vertex_b: usize,
+}
+
+/// The patch at one state of the deployment.
+#[derive(Debug, Clone, Serialize)]
+pub struct PatchState {
+    /// Normalised arc length.
+    pub t: Real,
+    /// Tile polygons by tile id, mm.
+    pub polygons_mm: Vec<Vec<[Real; 2]>>,
+}
+
+/// The patch of `design` asked for by `request` (see the module docs for placement).
+pub fn patch_at(design: &Design, request: &PatchRequest) -> Result<Patch, ExportError> {
+    request.validate()?;
+    let cell = design.cell().map_err(crate::Error::from)?;
+    let geometry = sheet_geometry(design)?;
+    let deploy_request = DeployRequest {
+        settings: DeploySettings {
+            contact: ContactSettings::with_kerf(request.kerf),
+            ..DeploySettings::default()
+        },
+        frames: FrameSelection::AllSteps,
+    };
+    let run = deploy(design, &deploy_request, &mut |_| true)?;
+    let frames = &run.report.frames;
+    let chosen = choose_frame(frames, request.state);
+    let place = Placer {
+        shapes: &geometry.tiles,
+        rows: request.rows,
+        cols: request.cols,
+    };
+    let at_state = place.polygons(&frames[chosen]);
+    let (lo, hi) = bounds(&at_state);
+    let mm_per_unit = match request.scale {
+        Scale::EdgeMm(mm) => mm / geometry.length_scale,
+        Scale::WidthMm(mm) => {
+            let width = hi[0] - lo[0];
+            if !(width.is_finite() && width > 0.0) {
+                return Err(ExportError::Degenerate { what: "width" });
+            }
+            mm / width
+        }
+    };
+    let to_mm = |polys: &[Vec<[Real; 2]>]| -> Vec<Vec<[Real; 2]>> {
+        let (lo, _) = bounds(polys);
+        polys
+            .iter()
+            .map(|p| p.iter().map(|v| mm(*v, lo, mm_per_unit)).collect())
+            .collect()
+    };
+    let n = geometry.tiles.len();
+    let frame = &frames[chosen];
+    let tiles: Vec<PatchTile> = to_mm(&at_state)
+        .into_iter()
+        .enumerate()
+        .map(|(id, polygon_mm)| {
+            let (cell, tile) = place.cell_of(id, n);
+            let pose = frame.tiles[tile];
+            let shift = place.shift(frame, cell);
+            let centre = [pose.x + shift[0], pose.y + shift[1]];
+            PatchTile {
+                id,
+                tile,
+                cell,
+                polygon_mm,
+                centroid_mm: mm(centre, lo, mm_per_unit),
+                rotation: pose.theta,
+            }
+        })
+        .collect();
+    let closed_polygons_mm = to_mm(&place.polygons(&frames[0]));
+    let states: Vec<PatchState> = select_frames(&run.trajectory, request.frames)
+        .into_iter()
+        .filter_map(|k| frames.get(k))
+        .map(|f| PatchState {
+            t: f.t,
+            polygons_mm: to_mm(&place.polygons(f)),
+        })
+        .collect();
+    let joints = patch_joints(&cell, &design.joints, &place, &tiles);
+    let edge_mm = geometry.length_scale * mm_per_unit;
+    let loops = outline(&cell, &place, &closed_polygons_mm, 1e-7 * edge_mm);
+    let outline_mm = loops
+        .iter()
+        .map(|l| l.iter().map(|(p, _)| *p).collect())
+        .collect();
+    let outline_vertices = loops
+        .iter()
+        .map(|l| l.iter().map(|(_, v)| *v).collect())
+        .collect();
+    let finite = |p: &Vec<[Real; 2]>| p.iter().flatten().all(|x| x.is_finite());
+    let all_finite = tiles.iter().all(|t| finite(&t.polygon_mm))
+        && closed_polygons_mm.iter().all(finite)
+        && states
+            .iter()
+            .all(|s: &PatchState| s.polygons_mm.iter().all(finite));
+    if !all_finite {
+        let (what, value) = request.scale_value();
+        return Err(ExportError::BadSize { what, value });
+    }
+    Ok(Patch {
+        design: design.to_string(),
+        rows: request.rows,
+        cols: request.cols,
+        tiles_per_cell: n,
+        kerf: request.kerf,
+        edge_mm,
+        mm_per_unit,
+        t: frame.t,
+        area_ratio: frame.measures.area_ratio,
+        size_mm: [(hi[0] - lo[0]) * mm_per_unit, (hi[1] - lo[1]) * mm_per_unit],
+        tiles,
+        joints,
+        closed_polygons_mm,
+        outline_mm,
+        outline_vertices,
+        states,
+    })
+}
+
+/// Index of the frame asked for (frames are ordered by t, the closed state first).
+fn choose_frame(frames: &[FrameReport], state: State) -> usize {
+    let key = |k: usize| match state {
+        State::T(t) => -(frames[k].t - t).abs(),
+        State::Open => frames[k].measures.area_ratio,
+    };
+    // The first of equally near states for t, the last of equally open ones.
+    let mut best = 0;
+    for k in 1..frames.len() {
+        let better = match state {
+            State::T(_) => key(k) > key(best),
+            State::Open => key(k) >= key(best),
+        };
+        if better {
+            best = k;
+        }
+    }
+    best
+}
+
+/// Places the cell's tile shapes by a frame's poses into the patch's cells.
+struct Placer<'a> {
+    shapes: &'a [Vec<[Real; 2]>],
+    rows: usize,
+    cols: usize,
+}
+
+impl Placer<'_> {
+    /// Tile id of tile `tile` in cell [i, j].
+    fn id(&self, cell: [usize; 2], tile: usize) -> usize {
+        (cell[1] * self.cols + cell[0]) * self.shapes.len() + tile
+    }
+
+    /// Cell and tile index of a tile id (`n` tiles per cell).
+    fn cell_of(&self, id: usize, n: usize) -> ([usize; 2], usize) {
+        let c = id / n;
+        ([c % self.cols, c / self.cols], id % n)
+    }
+
+    /// The cell containing `cell + offset`, if it is in the patch.
+    fn neighbour(&self, cell: [usize; 2], offset: [i32; 2]) -> Option<[usize; 2]> {
+        let i = i64::try_from(cell[0]).ok()? + i64::from(offset[0]);
+        let j = i64::try_from(cell[1]).ok()? + i64::from(offset[1]);
+        let i = usize::try_from(i).ok().filter(|&i| i < self.cols)?;
+        let j = usize::try_from(j).ok().filter(|&j| j < self.rows)?;
+        Some([i, j])
+    }
+
+    /// Translation of cell [i, j] at a frame (tiling units).
+    fn shift(&self, frame: &FrameReport, cell: [usize; 2]) -> [Real; 2] {
+        let (i, j) = (cell[0] as Real, cell[1] as Real);
+        [
+            i * frame.u[0] + j * frame.w[0],
+            i * frame.u[1] + j * frame.w[1],
+        ]
+    }
+
+    /// Every tile polygon of the patch at a frame, by tile id (tiling units).
+    fn polygons(&self, frame: &FrameReport) -> Vec<Vec<[Real; 2]>> {
+        let mut out = Vec::with_capacity(self.rows * self.cols * self.shapes.len());
+        for j in 0..self.rows {
+            for i in 0..self.cols {
+                let s = self.shift(frame, [i, j]);
+                for (shape, pose) in self.shapes.iter().zip(&frame.tiles) {
+                    let (sin, cos) = pose.theta.sin_cos();
+                    out.push(
+                        shape
+                            .iter()
+                            .map(|p| {
+                                [
+                                    pose.x + cos * p[0] - sin * p[1] + s[0],
+                                    pose.y + sin * p[0] + cos * p[1] + s[1],
+                                ]
+                            })
+                            .collect(),
+                    );
+                }
+            }
+        }
+        out
+    }
+}
+
+/// Lower and upper corners of the bounding box of polygons.
+fn bounds(polys: &[Vec<[Real; 2]>]) -> ([Real; 2], [Real; 2]) {
+    let (mut lo, mut hi) = ([Real::INFINITY; 2], [Real::NEG_INFINITY; 2]);
+    for v in polys.iter().flatten() {
+        for d in 0..2 {
+            lo[d] = lo[d].min(v[d]);
+            hi[d] = hi[d].max(v[d]);
+        }
+    }
+    (lo, hi)
+}
+
+fn mm(v: [Real; 2], lo: [Real; 2], scale: Real) -> [Real; 2] {
+    [(v[0] - lo[0]) * scale, (v[1] - lo[1]) * scale]
+}
+
+/// Every joint of the design between two tiles of the patch.
+fn patch_joints(
+    cell: &crate::cell::UnitCell,
+    choices: &[JointChoice],
+    place: &Placer<'_>,
+    tiles: &[PatchTile],
+) -> Vec<PatchJoint> {
+    let mut out = Vec::new();
+    for j in 0..place.rows {
+        for i in 0..place.cols {
+            for (k, (edge, choice)) in cell.edges.iter().zip(choices).enumerate() {
+                let ends: &[End] = match choice {
+                    JointChoice::None => &[],
+                    JointChoice::A => &[End::A],
+                    JointChoice::B => &[End::B],
+                    JointChoice::Both => &[End::A, End::B],
+                };
+                let Some(other) = place.neighbour([i, j], edge.offset) else {
+                    continue;
+                };
+                for &end in ends {
+                    let a = place.id([i, j], edge.tile_a);
+                    let vertex_a = cell.endpoint_index_on_a(k, end);
+                    out.push(PatchJoint {
+                        a,
+                        b: place.id(other, edge.tile_b),
+                        point_mm: tiles[a].polygon_mm[vertex_a],
+                        edge: k,
+                        end: if end == End::A { 'a' } else { 'b' },
+                        vertex_a,
+                        vertex_b: cell.endpoint_index_on_b(k, end),
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Boundary loops of the closed patch: tile edges whose neighbour is outside the patch.
+fn outline(
+    cell: &crate::cell::UnitCell,
+    place: &Placer<'_>,
+    closed: &[Vec<[Real; 2]>],
+    tol: Real,
+) -> Vec<Vec<([Real; 2], [usize; 2])>> {
+    let n = cell.tiles.len();
+    let mut edges = Vec::new();
+    for (id, poly) in closed.iter().enumerate() {
+        let (c, tile) = place.cell_of(id, n);
+        for k in 0..poly.len() {
+            let e = &cell.edges[cell.tile_edges[tile][k]];
+            let offset = if e.tile_a == tile && e.edge_a == k {
+                e.offset
+            } else {
+                [-e.offset[0], -e.offset[1]]
+            };
+            if place.neighbour(c, offset).is_none() {
+                edges.push(([poly[k], poly[(k + 1) % poly.len()]], [id, k]));
+            }
+        }
+    }
+    chain_loops(&edges, tol)
+}
