@@ -317,3 +317,44 @@ fn bad_laser_values_are_refused() {
     });
     assert!(e.contains("kerf") || e.contains("does not fit"), "{e}");
 }
+
+/// The library path the CLI takes: `patch_at` (the export Patch, deployed) then
+/// `laser_sheet`, read back and judged on the patch's own closed polygons and joints.
+#[test]
+fn sheets_of_export_patches_read_back_sound() {
+    use isogami::export::laser::laser_sheet;
+    use isogami::export::{patch_at, PatchRequest};
+    let settings = LaserSettings::default();
+    for spec in ["rotating-squares", "IH53:0.35,0.15,0.35:1x1:bbaab-b-"] {
+        let design = isogami::api::resolve_design(spec).unwrap();
+        let request = PatchRequest {
+            rows: 3,
+            cols: 3,
+            ..PatchRequest::default()
+        };
+        let patch = patch_at(&design, &request).unwrap();
+        let sheet = laser_sheet(&patch, settings.clone()).unwrap();
+        let whole = TestPatch {
+            tiles: patch.closed_polygons_mm.clone(),
+            joints: patch
+                .joints
+                .iter()
+                .map(|j| isogami::export::laser::JointAt {
+                    tiles: [j.a, j.b],
+                    point: patch.closed_polygons_mm[j.a][j.vertex_a],
+                })
+                .collect(),
+        };
+        let p = largest_piece(whole);
+        assert_eq!(sheet.tiles.len(), p.tiles.len(), "{spec}");
+        let (rb, _) = read_svg(&laser_svg(&sheet), [0, 0, 0]);
+        assert_sound(spec, "patch svg", &rb, &p, &settings);
+        let (rb, _) = read_dxf(&laser_dxf(&sheet));
+        assert_sound(spec, "patch dxf", &rb, &p, &settings);
+        let svg = laser_svg(&sheet);
+        assert!(
+            svg.contains(&format!("spec: {design}")) && svg.contains("hinge_mm: 1.5"),
+            "metadata names the design and settings"
+        );
+    }
+}
