@@ -24,7 +24,10 @@ fn csv_rows_hold_what_the_json_table_holds() {
         for (r, t) in rows.iter().zip(&table.tiles) {
             assert_eq!(r.len(), columns);
             assert_eq!(r[0].parse::<usize>().unwrap(), t.id);
-            assert_eq!([r[1].parse::<usize>().unwrap(), r[2].parse().unwrap()], t.cell);
+            assert_eq!(
+                [r[1].parse::<usize>().unwrap(), r[2].parse().unwrap()],
+                t.cell
+            );
             assert_eq!(r[3].parse::<usize>().unwrap(), t.tile);
             assert_eq!(r[4].parse::<f64>().unwrap(), t.pose.x);
             assert_eq!(r[6].parse::<f64>().unwrap(), t.pose.theta);
