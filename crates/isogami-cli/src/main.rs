@@ -35,6 +35,8 @@ enum Command {
     Linkages(commands::linkages::Args),
     /// Explore the design space into the design database (resumable, shardable).
     Explore(commands::explore::Args),
+    /// Export a patch of a design in mm: FOLD, OBJ, tile tables, kirigami_sim files.
+    Export(commands::export::Args),
     /// Serve the material browser over the design database (runs the quick exploration
     /// first when the database does not exist).
     Serve(commands::serve::ServeArgs),
@@ -63,6 +65,7 @@ fn main() -> ExitCode {
         Command::Compare(a) => commands::compare::run(a),
         Command::Explore(a) => commands::explore::run(a),
         Command::Linkages(a) => commands::linkages::run(a),
+        Command::Export(a) => commands::export::run(a),
         Command::Serve(a) => commands::serve::serve(a),
         Command::Site(a) => commands::serve::site(a),
         Command::Merge(a) => commands::db::merge(a),

@@ -6,6 +6,7 @@ pub mod compare;
 pub mod db;
 pub mod deploy;
 pub mod explore;
+pub mod export;
 pub mod families;
 pub mod linkages;
 pub mod serve;

@@ -171,7 +171,8 @@ pub struct PatchTile {
     pub polygon_mm: Vec<[Real; 2]>,
     /// Area centroid, mm.
     pub centroid_mm: [Real; 2],
-    /// Rotation from the closed state, radians (counter-clockwise).
+    /// Rotation from the closed state, radians (counter-clockwise; the deployment holds the
+    /// cell's tile 0 fixed, so rotations are relative to it).
     pub rotation: Real,
 }
 

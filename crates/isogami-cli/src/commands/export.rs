@@ -1,0 +1,171 @@
+//! `isogami export`: a patch of a design in millimetres, written in one format.
+//!
+//! Arguments are read in two stages: the raw flags, then a validated [`PatchRequest`] the
+//! library checks again; every file is built in memory first and then written to a
+//! temporary name and renamed, so a bad value or a failure leaves no file behind. Adding a
+//! format is one variant of [`Format`] and one arm in [`render`].
+
+use crate::output::{write_atomic, CliResult};
+use isogami::api::resolve_design;
+use isogami::contact::ContactSettings;
+use isogami::export::fold::fold_text;
+use isogami::export::kirigami_sim::{kirigami_sim_files, KIRIGAMI_SIM_FILES};
+use isogami::export::obj::obj_text;
+use isogami::export::tile_table::{tile_csv, tile_table};
+use isogami::export::{patch_at, Patch, PatchRequest, Scale, State, MAX_PATCH};
+use std::path::{Path, PathBuf};
+
+/// The formats `export` writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// FOLD 1.1 JSON, every deployment state a frame.
+    Fold,
+    /// Wavefront OBJ of the state, one object per tile.
+    Obj,
+    /// The tile table as CSV.
+    TilesCsv,
+    /// The tile table as JSON.
+    TilesJson,
+    /// kirigami_sim's text files (vertices, constraints, hull tiles, hull vertices) in a
+    /// folder.
+    KirigamiSim,
+}
+
+/// Arguments of `export`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The design: a name (rotating-squares), a spec string, or design JSON.
+    #[arg(long, allow_hyphen_values = true)]
+    design: String,
+    /// Output format.
+    #[arg(long, value_enum)]
+    format: Format,
+    /// Output file (a folder for kirigami-sim, created when missing).
+    #[arg(long)]
+    out: PathBuf,
+    /// Patch size ROWSxCOLS in cells (rows along w, columns along u), each 1..=40.
+    #[arg(long, default_value = "6x6")]
+    patch: String,
+    /// Mean tile edge length in mm [default: 20].
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "width_mm")]
+    edge_mm: Option<f64>,
+    /// Width of the patch at the exported state in mm (instead of --edge-mm).
+    #[arg(long, allow_hyphen_values = true)]
+    width_mm: Option<f64>,
+    /// State: t in [0, 1] (the nearest accepted state; 0 closed) or `open` (largest area
+    /// ratio, at the contact limit).
+    #[arg(long, default_value = "0", allow_hyphen_values = true)]
+    t: String,
+    /// Cut width relative to the mean edge length, for the deployment's contact model.
+    #[arg(long, default_value_t = ContactSettings::default().kerf, allow_hyphen_values = true)]
+    kerf: f64,
+    /// Deployment states written as frames by animated formats (FOLD), 2..=100.
+    #[arg(long, default_value_t = PatchRequest::default().frames)]
+    frames: usize,
+}
+
+/// Builds the patch and writes the file(s).
+pub fn run(args: Args) -> CliResult {
+    let request = request(&args)?;
+    let design = resolve_design(&args.design).map_err(|e| e.to_string())?;
+    let patch = patch_at(&design, &request).map_err(|e| e.to_string())?;
+    let files = render(args.format, &patch)?;
+    write_files(&args.out, &files)?;
+    println!(
+        "wrote {} ({} tiles, {} joints, t = {:.4}, {:.1} x {:.1} mm)",
+        args.out.display(),
+        patch.tiles.len(),
+        patch.joints.len(),
+        patch.t,
+        patch.size_mm[0],
+        patch.size_mm[1]
+    );
+    Ok(())
+}
+
+/// What to write: one unnamed file, or named files in a folder.
+enum Files {
+    One(String),
+    Folder(Vec<(&'static str, String)>),
+}
+
+/// The file contents of `format`: one arm per format.
+fn render(format: Format, patch: &Patch) -> Result<Files, String> {
+    let creator = concat!("isogami ", env!("CARGO_PKG_VERSION"));
+    Ok(match format {
+        Format::Fold => Files::One(fold_text(patch, creator).map_err(|e| e.to_string())?),
+        Format::Obj => Files::One(obj_text(patch, creator)),
+        Format::TilesCsv => Files::One(tile_csv(&tile_table(patch))),
+        Format::TilesJson => Files::One(crate::output::json_text(&tile_table(patch))?),
+        Format::KirigamiSim => Files::Folder(
+            KIRIGAMI_SIM_FILES
+                .into_iter()
+                .zip(kirigami_sim_files(patch))
+                .collect(),
+        ),
+    })
+}
+
+fn write_files(out: &Path, files: &Files) -> CliResult {
+    match files {
+        Files::One(text) => {
+            if out.is_dir() {
+                return Err(format!(
+                    "--out {}: is a folder, expected a file",
+                    out.display()
+                ));
+            }
+            write_atomic(out, text.as_bytes())
+        }
+        Files::Folder(named) => {
+            if out.exists() && !out.is_dir() {
+                return Err(format!(
+                    "--out {}: is a file, expected a folder",
+                    out.display()
+                ));
+            }
+            std::fs::create_dir_all(out)
+                .map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+            for (name, text) in named {
+                write_atomic(&out.join(name), text.as_bytes())?;
+            }
+            Ok(())
+        }
+    }
+}
+
+/// The validated request of the raw flags.
+fn request(args: &Args) -> Result<PatchRequest, String> {
+    let (rows, cols) = parse_patch(&args.patch)?;
+    let scale = match (args.edge_mm, args.width_mm) {
+        (_, Some(w)) => Scale::WidthMm(w),
+        (Some(e), None) => Scale::EdgeMm(e),
+        (None, None) => Scale::EdgeMm(20.0),
+    };
+    let state = match args.t.trim() {
+        "open" => State::Open,
+        t => State::T(
+            t.parse::<f64>()
+                .map_err(|_| format!("--t '{t}': expected a number in [0, 1] or 'open'"))?,
+        ),
+    };
+    let request = PatchRequest {
+        rows,
+        cols,
+        scale,
+        state,
+        kerf: args.kerf,
+        frames: args.frames,
+    };
+    request.validate().map_err(|e| e.to_string())?;
+    Ok(request)
+}
+
+/// `ROWSxCOLS`.
+fn parse_patch(text: &str) -> Result<(usize, usize), String> {
+    let bad = || format!("--patch '{text}': expected ROWSxCOLS, each 1..={MAX_PATCH}, e.g. 6x6");
+    let (r, c) = text.trim().split_once(['x', 'X']).ok_or_else(bad)?;
+    let r = r.trim().parse::<usize>().map_err(|_| bad())?;
+    let c = c.trim().parse::<usize>().map_err(|_| bad())?;
+    Ok((r, c))
+}
