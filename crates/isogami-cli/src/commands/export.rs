@@ -10,6 +10,7 @@ use isogami::api::resolve_design;
 use isogami::contact::ContactSettings;
 use isogami::export::fold::fold_text;
 use isogami::export::kirigami_sim::{kirigami_sim_files, KIRIGAMI_SIM_FILES};
+use isogami::export::laser::{laser_dxf, laser_sheet, laser_svg, LaserSettings};
 use isogami::export::obj::obj_text;
 use isogami::export::tile_table::{tile_csv, tile_table};
 use isogami::export::{patch_at, Patch, PatchRequest, Scale, State, MAX_PATCH};
@@ -29,6 +30,10 @@ pub enum Format {
     /// kirigami_sim's text files (vertices, constraints, hull tiles, hull vertices) in a
     /// folder.
     KirigamiSim,
+    /// Laser-cutting SVG of the closed sheet (mm; cut, score, engrave groups).
+    Svg,
+    /// Laser-cutting DXF of the closed sheet (R12, mm; layers CUT, SCORE, OUTLINE).
+    Dxf,
 }
 
 /// Arguments of `export`.
@@ -62,14 +67,17 @@ pub struct Args {
     /// Deployment states written as frames by animated formats (FOLD), 2..=100.
     #[arg(long, default_value_t = PatchRequest::default().frames)]
     frames: usize,
+    #[command(flatten)]
+    laser: super::laser_args::LaserArgs,
 }
 
 /// Builds the patch and writes the file(s).
 pub fn run(args: Args) -> CliResult {
     let request = request(&args)?;
+    let laser = args.laser.settings()?;
     let design = resolve_design(&args.design).map_err(|e| e.to_string())?;
     let patch = patch_at(&design, &request).map_err(|e| e.to_string())?;
-    let files = render(args.format, &patch)?;
+    let files = render(args.format, &patch, &laser)?;
     write_files(&args.out, &files)?;
     println!(
         "wrote {} ({} tiles, {} joints, t = {:.4}, {:.1} x {:.1} mm)",
@@ -90,7 +98,8 @@ enum Files {
 }
 
 /// The file contents of `format`: one arm per format.
-fn render(format: Format, patch: &Patch) -> Result<Files, String> {
+fn render(format: Format, patch: &Patch, laser: &LaserSettings) -> Result<Files, String> {
+    let sheet = || laser_sheet(patch, laser.clone()).map_err(|e| e.to_string());
     let creator = concat!("isogami ", env!("CARGO_PKG_VERSION"));
     Ok(match format {
         Format::Fold => Files::One(fold_text(patch, creator).map_err(|e| e.to_string())?),
@@ -103,6 +112,8 @@ fn render(format: Format, patch: &Patch) -> Result<Files, String> {
                 .zip(kirigami_sim_files(patch))
                 .collect(),
         ),
+        Format::Svg => Files::One(laser_svg(&sheet()?)),
+        Format::Dxf => Files::One(laser_dxf(&sheet()?)),
     })
 }
 

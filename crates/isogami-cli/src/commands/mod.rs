@@ -8,5 +8,6 @@ pub mod deploy;
 pub mod explore;
 pub mod export;
 pub mod families;
+pub mod laser_args;
 pub mod linkages;
 pub mod serve;
