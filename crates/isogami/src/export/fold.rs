@@ -26,10 +26,11 @@ pub const FOLD_SPEC: Real = 1.1;
 /// The frame units the FOLD spec defines.
 pub const FOLD_UNITS: &[&str] = &["unit", "in", "pt", "m", "cm", "mm", "um", "nm"];
 
-/// The FOLD file of a patch, as pretty JSON text.
+/// The FOLD file of a patch, as compact JSON text (one line; pretty printing would put every
+/// coordinate on a line of its own and more than double the size).
 pub fn fold_text(patch: &Patch, creator: &str) -> Result<String, ExportError> {
     let file = fold_file(patch, creator);
-    serde_json::to_string_pretty(&file).map_err(|e| ExportError::Encode {
+    serde_json::to_string(&file).map_err(|e| ExportError::Encode {
         format: "FOLD",
         reason: e.to_string(),
     })

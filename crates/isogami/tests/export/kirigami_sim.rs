@@ -10,7 +10,7 @@ fn parse_tiles(text: &str) -> Vec<Vec<[f64; 2]>> {
     text.lines()
         .map(|l| {
             let xs: Vec<f64> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
-            assert!(xs.len() >= 6 && xs.len() % 2 == 0);
+            assert!(xs.len() >= 6 && xs.len().is_multiple_of(2));
             xs.chunks(2).map(|c| [c[0], c[1]]).collect()
         })
         .collect()
