@@ -1,13 +1,7 @@
 //! The `isogami` binary end to end: outputs, JSON contracts and exit codes.
 
-use std::process::{Command, Output};
-
-fn isogami(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_isogami"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
+mod common;
+use common::isogami;
 
 fn json(args: &[&str]) -> serde_json::Value {
     let out = isogami(args);

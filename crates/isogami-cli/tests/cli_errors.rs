@@ -1,24 +1,8 @@
 //! Every malformed invocation fails the same way: exactly one line on stderr (`error: …`),
 //! nothing on stdout, exit code 2. `--help` and `--version` still print and exit 0.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn isogami(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_isogami"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
-
-/// A fresh directory for files the invocation must not create.
-fn scratch(name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("isogami-cli-errors-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
+mod common;
+use common::{isogami, scratch};
 
 /// Asserts the one-line failure and returns the line.
 fn fails_in_one_line(args: &[&str]) -> String {

@@ -3,23 +3,10 @@
 //! finite numbers or refuse with one line naming the offending field, and write no file.
 
 use serde_json::Value;
-use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn isogami(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_isogami"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("isogami-cli-output-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
+mod common;
+use common::{isogami, scratch};
 
 /// Every number finite (serde_json holds nothing else) and no `null` outside `behaviour`.
 fn assert_finite_report(v: &Value, path: &str) {

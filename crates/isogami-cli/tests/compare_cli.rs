@@ -1,14 +1,8 @@
 //! `isogami compare` end to end: the JSON fields per method, the table, and one-line errors
 //! with exit code 2.
 
-use std::process::{Command, Output};
-
-fn isogami(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_isogami"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
+mod common;
+use common::isogami;
 
 const FIELDS: [&str; 9] = [
     "final_t",

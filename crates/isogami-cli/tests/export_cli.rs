@@ -1,22 +1,10 @@
 //! `isogami export` end to end: every format writes its file(s) and they parse; bad values
 //! fail in one line with exit code 2 and leave no file (nor a temporary one) behind.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
 
-fn isogami(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_isogami"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("isogami-export-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
+mod common;
+use common::{isogami, scratch};
 
 fn entries(dir: &Path) -> Vec<String> {
     let mut names: Vec<String> = std::fs::read_dir(dir)

@@ -2,22 +2,8 @@
 //! their metadata, a material preset overridden by a flag, bad values refused in one line
 //! (exit 2) with no file left behind.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn isogami(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_isogami"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("isogami-laser-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
+mod common;
+use common::{isogami, scratch};
 
 #[test]
 fn svg_and_dxf_carry_the_preset_and_the_overrides() {
