@@ -24,6 +24,23 @@ function padDomain([lo, hi]) {
  * Scatter plot of `{spec, x, y}` points. `onClick(point)` opens a design; `describe(point)`
  * fills the hover tooltip element.
  */
+/** The x label under the plot and the y label turned along its left side. */
+function axisLabels(svg, width, h, xLabel, yLabel) {
+  svg
+    .append('text')
+    .attr('class', 'axis-label')
+    .attr('x', (MARGIN.left + width - MARGIN.right) / 2)
+    .attr('y', h - 6)
+    .attr('text-anchor', 'middle')
+    .text(xLabel);
+  svg
+    .append('text')
+    .attr('class', 'axis-label')
+    .attr('transform', `translate(14,${(MARGIN.top + h - MARGIN.bottom) / 2}) rotate(-90)`)
+    .attr('text-anchor', 'middle')
+    .text(yLabel);
+}
+
 export function createScatter(container, { onClick, describe, height = 340 }) {
   container.classList.add('plot', 'scatter');
   const svg = d3.select(container).append('svg').attr('aria-hidden', 'true');
@@ -61,19 +78,7 @@ export function createScatter(container, { onClick, describe, height = 340 }) {
       .attr('transform', `translate(0,${h - MARGIN.bottom})`)
       .call(d3.axisBottom(sx).ticks(Math.max(2, Math.floor(width / 90))));
     svg.append('g').attr('transform', `translate(${MARGIN.left},0)`).call(d3.axisLeft(sy).ticks(6));
-    svg
-      .append('text')
-      .attr('class', 'axis-label')
-      .attr('x', (MARGIN.left + width - MARGIN.right) / 2)
-      .attr('y', h - 6)
-      .attr('text-anchor', 'middle')
-      .text(xLabel);
-    svg
-      .append('text')
-      .attr('class', 'axis-label')
-      .attr('transform', `translate(14,${(MARGIN.top + h - MARGIN.bottom) / 2}) rotate(-90)`)
-      .attr('text-anchor', 'middle')
-      .text(yLabel);
+    axisLabels(svg, width, h, xLabel, yLabel);
     const ratio = window.devicePixelRatio || 1;
     canvas.width = Math.round(width * ratio);
     canvas.height = Math.round(h * ratio);
@@ -178,19 +183,7 @@ export function createLinePlot(container, { xLabel, yLabel, height = 220 }) {
       .attr('transform', `translate(0,${h - MARGIN.bottom})`)
       .call(d3.axisBottom(sx).ticks(5));
     svg.append('g').attr('transform', `translate(${MARGIN.left},0)`).call(d3.axisLeft(sy).ticks(5));
-    svg
-      .append('text')
-      .attr('class', 'axis-label')
-      .attr('x', (MARGIN.left + width - MARGIN.right) / 2)
-      .attr('y', h - 6)
-      .attr('text-anchor', 'middle')
-      .text(xLabel);
-    svg
-      .append('text')
-      .attr('class', 'axis-label')
-      .attr('transform', `translate(14,${(MARGIN.top + h - MARGIN.bottom) / 2}) rotate(-90)`)
-      .attr('text-anchor', 'middle')
-      .text(yLabel);
+    axisLabels(svg, width, h, xLabel, yLabel);
     const line = d3
       .line()
       .x((p) => sx(p[0]))
