@@ -78,14 +78,7 @@ fn assemble(design: &Design) -> Result<(UnitCell, Mechanism)> {
 
 /// Mobility of a design in its closed state (paper §3.2).
 pub fn analyze(design: &Design, settings: MobilitySettings) -> Result<Analysis> {
-    if !(settings.rel_tol.is_finite() && settings.rel_tol > 0.0) {
-        return Err(SettingsError::new(
-            "mobility tolerance",
-            settings.rel_tol,
-            Requirement::Positive,
-        )
-        .into());
-    }
+    settings.validate()?;
     let (cell, mech) = assemble(design)?;
     let mobility = crate::mobility::analyze(&mech, &mech.rest, settings)?;
     Ok(Analysis {

@@ -126,7 +126,7 @@ impl DeploySettings {
         positive("step_tolerance", self.step_tolerance)?;
         positive("joint_tolerance", self.joint_tolerance)?;
         positive("frame_joint_tolerance", self.frame_joint_tolerance)?;
-        positive("mobility tolerance", self.mobility.rel_tol)?;
+        self.mobility.validate()?;
         if !(self.max_stretch.is_finite() && self.max_stretch > 1.0) {
             return Err(SettingsError::new(
                 "max_stretch",
