@@ -50,17 +50,9 @@ fn text(s: impl Into<String>) -> Value {
     Value::Text(s.into())
 }
 
-/// The column a facet is stored in.
+/// The column a facet is stored in: the schema names each facet column after its facet.
 pub(crate) fn facet_column(facet: Facet) -> &'static str {
-    match facet {
-        Facet::Family => "family",
-        Facet::Cell => "cell",
-        Facet::TileCount => "tile_count",
-        Facet::Behaviour => "behaviour",
-        Facet::LinkageSignature => "linkage_signature",
-        Facet::EndReason => "end_reason",
-        Facet::Origin => "origin",
-    }
+    facet.name()
 }
 
 /// The filters of `q`, leaving out the selection of `skip` (for disjunctive facet counts).

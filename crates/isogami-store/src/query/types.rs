@@ -268,9 +268,10 @@ impl Facet {
     }
 }
 
-impl fmt::Display for Facet {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
+impl Facet {
+    /// The facet's name (also the column it is stored in).
+    pub fn name(self) -> &'static str {
+        match self {
             Facet::Family => "family",
             Facet::Cell => "cell",
             Facet::TileCount => "tile_count",
@@ -278,7 +279,13 @@ impl fmt::Display for Facet {
             Facet::LinkageSignature => "linkage_signature",
             Facet::EndReason => "end_reason",
             Facet::Origin => "origin",
-        })
+        }
+    }
+}
+
+impl fmt::Display for Facet {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
     }
 }
 

@@ -12,9 +12,7 @@ use axum::extract::{RawQuery, State};
 use axum::http::{header, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::Json;
-use isogami::api::{linkages, resolve_design, DeployRequest, FrameSelection};
-use isogami::contact::ContactSettings;
-use isogami::deploy::DeploySettings;
+use isogami::api::{linkages, resolve_design};
 use isogami::render::{deployment_frame_svgs, gif_from_svgs, Fonts};
 use isogami_store::{Check, DesignRecord, Origin, StoreWriter};
 use serde_json::json;
@@ -151,7 +149,7 @@ pub async fn deploy_live(
     Ok(Json(DesignView::live(&design, run)?))
 }
 
-/// `POST /api/designs`: deploys a design as the catalogue would and saves it as a user
+/// `POST /api/designs`: deploys a design as `POST /api/deploy` does and saves it as a user
 /// design (`origin = user`).
 pub async fn save(
     State(state): State<AppState>,
@@ -166,17 +164,7 @@ pub async fn save(
         ));
     }
     let live = body_json(body)?;
-    let (design, _) = live.resolve()?;
-    let request = DeployRequest {
-        settings: DeploySettings {
-            contact: live.kerf.map_or(
-                DeploySettings::default().contact,
-                ContactSettings::with_kerf,
-            ),
-            ..DeploySettings::default()
-        },
-        frames: FrameSelection::Evenly(crate::live::DEFAULT_FRAMES),
-    };
+    let (design, request) = live.resolve()?;
     let run = deploy_bounded(design.clone(), request, state.settings().sim_timeout).await?;
     let analysis = linkages(&design).ok();
     let spec = design.to_string();
