@@ -1,39 +1,26 @@
 //! `isogami export`: a patch of a design in millimetres, written in one format.
 //!
-//! Arguments are read in two stages: the raw flags, then a validated [`PatchRequest`] the
-//! library checks again; every file is built in memory first and then written to a
-//! temporary name and renamed, so a bad value or a failure leaves no file behind. Adding a
-//! format is one variant of [`Format`] and one arm in [`render`].
+//! Arguments are read in two stages: the raw flags, then a validated [`PatchRequest`] and
+//! options that the library's one export entry point ([`export_design`]) checks again; every
+//! file is built in memory first and then written to a temporary name and renamed, so a bad
+//! value or a failure leaves no file behind. The formats and their names come from the
+//! library ([`Format`]).
 
 use crate::output::{write_atomic, CliResult};
 use isogami::api::resolve_design;
 use isogami::contact::ContactSettings;
-use isogami::export::fold::fold_text;
-use isogami::export::kirigami_sim::{kirigami_sim_files, KIRIGAMI_SIM_FILES};
-use isogami::export::laser::{laser_dxf, laser_sheet, laser_svg, LaserSettings};
-use isogami::export::obj::obj_text;
-use isogami::export::tile_table::{tile_csv, tile_table};
-use isogami::export::{patch_at, Patch, PatchRequest, Scale, State, MAX_PATCH};
+use isogami::export::{
+    export_design, ExportFiles, ExportOptions, Format, PatchRequest, Scale, State, MAX_PATCH,
+};
 use std::path::{Path, PathBuf};
 
-/// The formats `export` writes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Format {
-    /// FOLD 1.1 JSON, every deployment state a frame.
-    Fold,
-    /// Wavefront OBJ of the state, one object per tile.
-    Obj,
-    /// The tile table as CSV.
-    TilesCsv,
-    /// The tile table as JSON.
-    TilesJson,
-    /// kirigami_sim's text files (vertices, constraints, hull tiles, hull vertices) in a
-    /// folder.
-    KirigamiSim,
-    /// Laser-cutting SVG of the closed sheet (mm; cut, score, engrave groups).
-    Svg,
-    /// Laser-cutting DXF of the closed sheet (R12, mm; layers CUT, SCORE, OUTLINE).
-    Dxf,
+/// The `--format` values: the library's formats by name, each with its description.
+fn format_parser() -> impl clap::builder::TypedValueParser<Value = Format> {
+    use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+    PossibleValuesParser::new(
+        Format::ALL.map(|f| PossibleValue::new(f.name()).help(f.description())),
+    )
+    .try_map(|name| name.parse::<Format>())
 }
 
 /// Arguments of `export`.
@@ -43,7 +30,7 @@ pub struct Args {
     #[arg(long, allow_hyphen_values = true)]
     design: String,
     /// Output format.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = format_parser())]
     format: Format,
     /// Output file (a folder for kirigami-sim, created when missing).
     #[arg(long)]
@@ -74,10 +61,14 @@ pub struct Args {
 /// Builds the patch and writes the file(s).
 pub fn run(args: Args) -> CliResult {
     let request = request(&args)?;
-    let laser = args.laser.settings()?;
+    let options = ExportOptions {
+        laser: args.laser.settings()?,
+        ..ExportOptions::default()
+    };
+    options.validate(args.format).map_err(|e| e.to_string())?;
     let design = resolve_design(&args.design).map_err(|e| e.to_string())?;
-    let patch = patch_at(&design, &request).map_err(|e| e.to_string())?;
-    let files = render(args.format, &patch, &laser)?;
+    let (patch, files) = export_design(&design, &request, args.format, &options, &mut |_| true)
+        .map_err(|e| e.to_string())?;
     write_files(&args.out, &files)?;
     println!(
         "wrote {} ({} tiles, {} joints, t = {:.4}, {:.1} x {:.1} mm)",
@@ -91,44 +82,18 @@ pub fn run(args: Args) -> CliResult {
     Ok(())
 }
 
-/// What to write: one unnamed file, or named files in a folder.
-enum Files {
-    One(String),
-    Folder(Vec<(&'static str, String)>),
-}
-
-/// The file contents of `format`: one arm per format.
-fn render(format: Format, patch: &Patch, laser: &LaserSettings) -> Result<Files, String> {
-    let sheet = || laser_sheet(patch, laser.clone()).map_err(|e| e.to_string());
-    let creator = concat!("isogami ", env!("CARGO_PKG_VERSION"));
-    Ok(match format {
-        Format::Fold => Files::One(fold_text(patch, creator).map_err(|e| e.to_string())?),
-        Format::Obj => Files::One(obj_text(patch, creator)),
-        Format::TilesCsv => Files::One(tile_csv(&tile_table(patch))),
-        Format::TilesJson => Files::One(crate::output::json_text(&tile_table(patch))?),
-        Format::KirigamiSim => Files::Folder(
-            KIRIGAMI_SIM_FILES
-                .into_iter()
-                .zip(kirigami_sim_files(patch))
-                .collect(),
-        ),
-        Format::Svg => Files::One(laser_svg(&sheet()?)),
-        Format::Dxf => Files::One(laser_dxf(&sheet()?)),
-    })
-}
-
-fn write_files(out: &Path, files: &Files) -> CliResult {
+fn write_files(out: &Path, files: &ExportFiles) -> CliResult {
     match files {
-        Files::One(text) => {
+        ExportFiles::One(bytes) => {
             if out.is_dir() {
                 return Err(format!(
                     "--out {}: is a folder, expected a file",
                     out.display()
                 ));
             }
-            write_atomic(out, text.as_bytes())
+            write_atomic(out, bytes)
         }
-        Files::Folder(named) => {
+        ExportFiles::Folder(named) => {
             if out.exists() && !out.is_dir() {
                 return Err(format!(
                     "--out {}: is a file, expected a folder",
@@ -137,8 +102,8 @@ fn write_files(out: &Path, files: &Files) -> CliResult {
             }
             std::fs::create_dir_all(out)
                 .map_err(|e| format!("cannot create {}: {e}", out.display()))?;
-            for (name, text) in named {
-                write_atomic(&out.join(name), text.as_bytes())?;
+            for (name, bytes) in named {
+                write_atomic(&out.join(name), bytes)?;
             }
             Ok(())
         }

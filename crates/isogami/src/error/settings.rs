@@ -82,10 +82,21 @@ impl From<u32> for SettingValue {
 impl fmt::Display for SettingValue {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            SettingValue::Number(v) => write!(f, "{v}"),
+            SettingValue::Number(v) => f.write_str(&short_real(*v)),
             SettingValue::Count(n) => write!(f, "{n}"),
             SettingValue::Text(s) => write!(f, "'{s}'"),
         }
+    }
+}
+
+/// A number as the shortest text that reads back to it: plain for everyday magnitudes,
+/// scientific (`1e300`, `-2.5e-9`) for huge and tiny ones, so a message stays one short line.
+pub(crate) fn short_real(v: Real) -> String {
+    let magnitude = v.abs();
+    if v != 0.0 && v.is_finite() && !(1e-4..1e9).contains(&magnitude) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
     }
 }
 
@@ -138,9 +149,9 @@ impl fmt::Display for Requirement {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Requirement::Positive => f.write_str("be a finite number above 0"),
-            Requirement::Above(b) => write!(f, "be a finite number above {b}"),
-            Requirement::AtLeast(b) => write!(f, "be a finite number >= {b}"),
-            Requirement::AtMost(b) => write!(f, "be at most {b}"),
+            Requirement::Above(b) => write!(f, "be a finite number above {}", short_real(*b)),
+            Requirement::AtLeast(b) => write!(f, "be a finite number >= {}", short_real(*b)),
+            Requirement::AtMost(b) => write!(f, "be at most {}", short_real(*b)),
             Requirement::Within {
                 low,
                 high,
@@ -148,8 +159,10 @@ impl fmt::Display for Requirement {
                 open_high,
             } => write!(
                 f,
-                "lie in {}{low}, {high}{}",
+                "lie in {}{}, {}{}",
                 if *open_low { '(' } else { '[' },
+                short_real(*low),
+                short_real(*high),
                 if *open_high { ')' } else { ']' }
             ),
             Requirement::CountIn { low, high } => write!(f, "lie in {low}..={high}"),
@@ -176,5 +189,21 @@ mod tests {
             e.to_string(),
             "invalid setting: samples 0 must lie in 1..=9"
         );
+    }
+
+    #[test]
+    fn extreme_values_print_short_and_read_back_exactly() {
+        for v in [1e300, -2.5e-9, 1e9, 123456789.0, 1e-4, 0.5, 0.0, -0.0, 7.0] {
+            let text = short_real(v);
+            assert!(text.len() <= 12, "{v}: {text}");
+            assert_eq!(text.parse::<Real>().unwrap(), v, "{text}");
+        }
+        let e = SettingsError::new("kerf", 1e300, Requirement::closed(1e-4, 0.2));
+        assert_eq!(
+            e.to_string(),
+            "invalid setting: kerf 1e300 must lie in [0.0001, 0.2]"
+        );
+        assert_eq!(short_real(Real::NAN), "NaN");
+        assert_eq!(short_real(Real::NEG_INFINITY), "-inf");
     }
 }

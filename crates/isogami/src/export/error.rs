@@ -8,6 +8,14 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum ExportError {
+    /// A format name that is not one of ours.
+    #[error("unknown export format '{given}': expected one of {known}")]
+    UnknownFormat {
+        /// The name given.
+        given: String,
+        /// The known names, comma separated.
+        known: String,
+    },
     /// A patch with no rows or no columns.
     #[error("patch {rows}x{cols}: rows and columns must be at least 1")]
     EmptyPatch {

@@ -16,9 +16,13 @@
 //! | laser cutting: SVG, DXF (closed sheet, bridges, kerf) | [`laser`] | texts |
 //!
 //! The library does no I/O: each format returns a `String` (or bytes), the CLI writes it.
+//! Front ends call one entry point, [`export_design`] (or [`export_files`] for a patch they
+//! already have), with a [`Format`] parsed from its name; they never dispatch on formats.
 
 mod error;
+mod files;
 pub mod fold;
+mod format;
 pub mod kirigami_sim;
 pub mod laser;
 pub mod obj;
@@ -27,7 +31,9 @@ pub mod patch;
 pub mod tile_table;
 
 pub use error::ExportError;
+pub use files::{export_design, export_files, ExportFiles, ExportOptions};
+pub use format::Format;
 pub use patch::{
-    patch_at, Patch, PatchJoint, PatchRequest, PatchState, PatchTile, Scale, State, MAX_PATCH,
-    MAX_PATCH_FRAMES,
+    patch_at, patch_at_with, Patch, PatchJoint, PatchRequest, PatchState, PatchTile, Scale, State,
+    MAX_PATCH, MAX_PATCH_FRAMES,
 };

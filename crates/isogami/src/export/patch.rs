@@ -14,7 +14,7 @@ use super::outline::chain_loops;
 use crate::api::{deploy, sheet_geometry, DeployRequest, FrameSelection};
 use crate::cell::End;
 use crate::contact::ContactSettings;
-use crate::deploy::{select_frames, DeploySettings, FrameReport};
+use crate::deploy::{select_frames, DeploySettings, FrameReport, Progress};
 use crate::math::Real;
 use crate::topology::{Design, JointChoice};
 use serde::Serialize;
@@ -206,6 +206,16 @@ pub struct PatchState {
 
 /// The patch of `design` asked for by `request` (see the module docs for placement).
 pub fn patch_at(design: &Design, request: &PatchRequest) -> Result<Patch, ExportError> {
+    patch_at_with(design, request, &mut |_| true)
+}
+
+/// [`patch_at`] with a progress callback for the deployment: called with the number of
+/// accepted states; returning `false` stops the export (a cancelled error).
+pub fn patch_at_with(
+    design: &Design,
+    request: &PatchRequest,
+    progress: Progress<'_>,
+) -> Result<Patch, ExportError> {
     request.validate()?;
     let cell = design.cell().map_err(crate::Error::from)?;
     let geometry = sheet_geometry(design)?;
@@ -216,7 +226,7 @@ pub fn patch_at(design: &Design, request: &PatchRequest) -> Result<Patch, Export
         },
         frames: FrameSelection::AllSteps,
     };
-    let run = deploy(design, &deploy_request, &mut |_| true)?;
+    let run = deploy(design, &deploy_request, progress)?;
     let frames = &run.report.frames;
     let chosen = choose_frame(frames, request.state);
     let place = Placer {

@@ -1,0 +1,103 @@
+//! The one export entry point every front end calls: a design, a patch request, a format and
+//! its options in; the file contents out (bytes, not yet written anywhere).
+//!
+//! [`export_design`] checks the request and the options before anything is deployed, builds
+//! the patch ([`patch_at_with`](super::patch::patch_at_with)) and writes the format ([`export_files`]). Front ends only parse
+//! their arguments into these types and store the bytes (the CLI atomically, the server as a
+//! download, Python as `bytes`).
+
+use super::error::ExportError;
+use super::fold::fold_text;
+use super::format::Format;
+use super::kirigami_sim::{kirigami_sim_files, KIRIGAMI_SIM_FILES};
+use super::laser::{laser_dxf, laser_sheet, laser_svg, LaserSettings};
+use super::obj::obj_text;
+use super::patch::{patch_at_with, Patch, PatchRequest};
+use super::tile_table::{tile_csv, tile_table};
+use crate::deploy::Progress;
+use crate::topology::Design;
+
+/// Settings of the formats beyond the patch: the laser layout, and the creator string
+/// written into the files' metadata.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExportOptions {
+    /// Laser layout (SVG, DXF); ignored by the other formats.
+    pub laser: LaserSettings,
+    /// Who made the file (metadata), e.g. `isogami 0.1.0`.
+    pub creator: String,
+}
+
+impl Default for ExportOptions {
+    fn default() -> Self {
+        ExportOptions {
+            laser: LaserSettings::default(),
+            creator: concat!("isogami ", env!("CARGO_PKG_VERSION")).to_string(),
+        }
+    }
+}
+
+impl ExportOptions {
+    /// Checks the settings `format` uses (a bad laser value is refused even before the
+    /// deployment runs).
+    pub fn validate(&self, format: Format) -> Result<(), ExportError> {
+        if format.uses_laser_settings() {
+            self.laser.validate()?;
+        }
+        Ok(())
+    }
+}
+
+/// What an export produced: one file, or named files that belong in one folder.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ExportFiles {
+    /// A single file's contents.
+    One(Vec<u8>),
+    /// Files by name (no paths), in a fixed order.
+    Folder(Vec<(&'static str, Vec<u8>)>),
+}
+
+/// The files of `format` for a patch.
+pub fn export_files(
+    format: Format,
+    patch: &Patch,
+    options: &ExportOptions,
+) -> Result<ExportFiles, ExportError> {
+    let one = |text: String| ExportFiles::One(text.into_bytes());
+    let sheet = || laser_sheet(patch, options.laser.clone());
+    Ok(match format {
+        Format::Svg => one(laser_svg(&sheet()?)),
+        Format::Dxf => one(laser_dxf(&sheet()?)),
+        Format::Fold => one(fold_text(patch, &options.creator)?),
+        Format::Obj => one(obj_text(patch, &options.creator)),
+        Format::TilesCsv => one(tile_csv(&tile_table(patch))),
+        Format::TilesJson => one(serde_json::to_string_pretty(&tile_table(patch)).map_err(
+            |e| ExportError::Encode {
+                format: "tile table JSON",
+                reason: e.to_string(),
+            },
+        )? + "\n"),
+        Format::KirigamiSim => ExportFiles::Folder(
+            KIRIGAMI_SIM_FILES
+                .into_iter()
+                .zip(kirigami_sim_files(patch).map(String::into_bytes))
+                .collect(),
+        ),
+    })
+}
+
+/// Checks `request` and `options`, deploys `design` (reporting to `progress`, which may stop
+/// it), places the patch and writes `format`. Returns the patch too, for a summary of what
+/// was written.
+pub fn export_design(
+    design: &Design,
+    request: &PatchRequest,
+    format: Format,
+    options: &ExportOptions,
+    progress: Progress<'_>,
+) -> Result<(Patch, ExportFiles), ExportError> {
+    request.validate()?;
+    options.validate(format)?;
+    let patch = patch_at_with(design, request, progress)?;
+    let files = export_files(format, &patch, options)?;
+    Ok((patch, files))
+}

@@ -1,0 +1,151 @@
+//! The export formats by name: what each writes, its file extension and media type. Every
+//! front end (CLI flags, the server's export endpoint, the Python bindings) lists and parses
+//! formats from here, so a new format appears everywhere at once.
+
+use super::error::ExportError;
+use std::fmt;
+use std::str::FromStr;
+
+/// A file format `export` writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(into = "&'static str")]
+pub enum Format {
+    /// Laser-cutting SVG of the closed sheet (mm; cut, score, engrave groups).
+    Svg,
+    /// Laser-cutting DXF of the closed sheet (R12, mm; layers CUT, SCORE, OUTLINE).
+    Dxf,
+    /// FOLD 1.1 JSON, every deployment state a frame.
+    Fold,
+    /// Wavefront OBJ of the state, one object per tile.
+    Obj,
+    /// The tile table as CSV.
+    TilesCsv,
+    /// The tile table as JSON.
+    TilesJson,
+    /// kirigami_sim's text files (vertices, constraints, hull tiles, hull vertices): a
+    /// folder of files.
+    KirigamiSim,
+}
+
+impl Format {
+    /// Every format, in the order front ends list them.
+    pub const ALL: [Format; 7] = [
+        Format::Svg,
+        Format::Dxf,
+        Format::Fold,
+        Format::Obj,
+        Format::TilesCsv,
+        Format::TilesJson,
+        Format::KirigamiSim,
+    ];
+
+    /// The name used on the command line, in URLs and in Python (`tiles-csv`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Svg => "svg",
+            Format::Dxf => "dxf",
+            Format::Fold => "fold",
+            Format::Obj => "obj",
+            Format::TilesCsv => "tiles-csv",
+            Format::TilesJson => "tiles-json",
+            Format::KirigamiSim => "kirigami-sim",
+        }
+    }
+
+    /// One line saying what the file is for.
+    pub fn description(self) -> &'static str {
+        match self {
+            Format::Svg => "laser cutting: SVG in mm with cut, score and engrave groups",
+            Format::Dxf => "laser cutting: DXF R12 in mm with layers CUT, SCORE, OUTLINE",
+            Format::Fold => "FOLD 1.1 (JSON) with every deployment state as a frame",
+            Format::Obj => "Wavefront OBJ of the state, one object per tile",
+            Format::TilesCsv => "tile table (CSV): polygon, pose, rotation, neighbours",
+            Format::TilesJson => "tile table (JSON): polygon, pose, rotation, neighbours",
+            Format::KirigamiSim => "the spring simulator kirigami_sim's input files",
+        }
+    }
+
+    /// The file name extension (without the dot) of a single-file format; `None` for a
+    /// folder of files.
+    pub fn extension(self) -> Option<&'static str> {
+        match self {
+            Format::Svg => Some("svg"),
+            Format::Dxf => Some("dxf"),
+            Format::Fold => Some("fold"),
+            Format::Obj => Some("obj"),
+            Format::TilesCsv => Some("csv"),
+            Format::TilesJson => Some("json"),
+            Format::KirigamiSim => None,
+        }
+    }
+
+    /// The media type of a single-file format's content.
+    pub fn media_type(self) -> &'static str {
+        match self {
+            Format::Svg => "image/svg+xml",
+            Format::Dxf => "image/vnd.dxf",
+            Format::Fold | Format::TilesJson => "application/json",
+            Format::Obj => "model/obj",
+            Format::TilesCsv => "text/csv",
+            Format::KirigamiSim => "text/plain",
+        }
+    }
+
+    /// Whether the format's files are laid out with the laser settings.
+    pub fn uses_laser_settings(self) -> bool {
+        matches!(self, Format::Svg | Format::Dxf)
+    }
+}
+
+impl fmt::Display for Format {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl From<Format> for &'static str {
+    fn from(format: Format) -> &'static str {
+        format.name()
+    }
+}
+
+impl FromStr for Format {
+    type Err = ExportError;
+
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        let wanted = text.trim().to_ascii_lowercase();
+        Format::ALL
+            .into_iter()
+            .find(|f| f.name() == wanted)
+            .ok_or_else(|| ExportError::UnknownFormat {
+                given: text.to_string(),
+                known: Format::ALL.map(Format::name).join(", "),
+            })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_name_parses_back_and_names_are_unique() {
+        for f in Format::ALL {
+            assert_eq!(f.name().parse::<Format>().unwrap(), f);
+            assert_eq!(f.to_string().to_uppercase().parse::<Format>().unwrap(), f);
+            assert_eq!(
+                Format::ALL.iter().filter(|g| g.name() == f.name()).count(),
+                1
+            );
+        }
+    }
+
+    #[test]
+    fn an_unknown_name_lists_the_known_ones() {
+        let e = "stp".parse::<Format>().unwrap_err().to_string();
+        assert!(
+            e.contains("'stp'") && e.contains("tiles-csv") && !e.contains('\n'),
+            "{e}"
+        );
+    }
+}
