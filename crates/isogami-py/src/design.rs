@@ -103,8 +103,13 @@ pub fn family_of(obj: &Bound<'_, PyAny>) -> PyResult<Family> {
             .parse()
             .map_err(|e: isogami::tiling::TilingError| errors::library(e.into()));
     }
-    if let Ok(n) = obj.extract::<i64>() {
-        let n = u32::try_from(n).unwrap_or(u32::MAX);
+    if obj.is_instance_of::<pyo3::types::PyInt>() && !obj.is_instance_of::<pyo3::types::PyBool>() {
+        // Numbers beyond u32 are no family either.
+        let n = obj
+            .extract::<i64>()
+            .ok()
+            .and_then(|n| u32::try_from(n).ok())
+            .unwrap_or(u32::MAX);
         return Family::from_number(n).map_err(|e| errors::library(e.into()));
     }
     Err(PyTypeError::new_err(format!(
@@ -294,7 +299,8 @@ impl PyDesign {
     }
 
     fn __repr__(&self) -> String {
-        format!("isogami.Design({:?})", self.inner.to_string())
+        // A spec holds no quotes or backslashes: this is Python's repr of the str.
+        format!("isogami.Design('{}')", self.inner)
     }
 
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {

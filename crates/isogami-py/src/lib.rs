@@ -1,12 +1,12 @@
 //! The `isogami` Python package's native module `isogami._isogami`: PyO3 bindings over the
-//! library (`isogami::api`, the measures, the linkage analysis, the export) and the design
+//! library (`isogami::api`, the measures, the linkage analysis, `isogami::export`) and the design
 //! database (`isogami-store`), never over the command line. Plain data in, numpy arrays and
 //! plain Python values out; library errors become one exception class per kind; long calls
 //! release the GIL and can be interrupted.
 //!
 //! One module per concern: `design`, `family`, `cell`, `mobility`, `settings`,
 //! `deployment` (with `progress`), `measure`, `linkage`, `compare`, `query` and `database`,
-//! `errors`, and `convert` for the boundary's conversions.
+//! `export`, `errors`, and `convert` for the boundary's conversions.
 
 mod cell;
 mod compare;
@@ -15,6 +15,7 @@ mod database;
 mod deployment;
 mod design;
 mod errors;
+mod export;
 mod family;
 mod linkage;
 mod measure;
@@ -52,6 +53,8 @@ fn _isogami(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(linkage::linkages, m)?)?;
     m.add_function(wrap_pyfunction!(compare::compare, m)?)?;
     m.add_function(wrap_pyfunction!(database::open_database, m)?)?;
+    m.add_function(wrap_pyfunction!(export::export, m)?)?;
+    m.add_function(wrap_pyfunction!(export::export_formats, m)?)?;
     for f in [
         wrap_pyfunction!(measure::deformation_gradient, m)?,
         wrap_pyfunction!(measure::polar, m)?,

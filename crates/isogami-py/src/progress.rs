@@ -103,20 +103,24 @@ impl Watch {
     /// The Python result of the watched call: a cancellation becomes the exception that
     /// caused it (KeyboardInterrupt, the callback's own), or `CancelledError` saying why.
     pub fn finish<T>(self, result: isogami::Result<T>) -> PyResult<T> {
-        match result {
-            Ok(v) => Ok(v),
-            Err(e) if e.is_cancelled() => Err(match self.stop {
-                Some(Stop::Raised(err)) => err,
-                Some(Stop::Timeout(limit)) => errors::CancelledError::new_err(format!(
-                    "cancelled: did not finish within the timeout of {} s",
-                    limit.as_secs_f64()
-                )),
-                Some(Stop::Callback) => errors::CancelledError::new_err(
-                    "cancelled: the progress callback returned False",
-                ),
-                None => errors::library(e),
-            }),
-            Err(e) => Err(errors::library(e)),
+        result.map_err(|e| self.error(e))
+    }
+
+    /// The Python exception of a library error raised under this watch.
+    pub fn error(self, e: isogami::Error) -> PyErr {
+        if !e.is_cancelled() {
+            return errors::library(e);
+        }
+        match self.stop {
+            Some(Stop::Raised(err)) => err,
+            Some(Stop::Timeout(limit)) => errors::CancelledError::new_err(format!(
+                "cancelled: did not finish within the timeout of {} s",
+                limit.as_secs_f64()
+            )),
+            Some(Stop::Callback) => {
+                errors::CancelledError::new_err("cancelled: the progress callback returned False")
+            }
+            None => errors::library(e),
         }
     }
 }

@@ -15,7 +15,7 @@ the browser's filters. Long calls release the GIL and can be interrupted with Ct
 
 Main entry points: ``design``, ``families``/``family``, ``cell``, ``analyze``, ``deploy``
 (with ``DeploySettings``), ``linkages``, ``compare``, ``open_database`` (with ``Query``),
-and the measure functions (``polar``, ``principal_expansions``, ``expansion_profile``, ...).
+``export`` (``export_formats``) and the measure functions (``polar``, ``principal_expansions``, ``expansion_profile``, ...).
 Every library error is an ``IsogamiError`` subclass carrying the library's message.
 """
 
@@ -64,6 +64,8 @@ from ._isogami import (
     design,
     directional_expansion,
     expansion_profile,
+    export,
+    export_formats,
     families,
     family,
     linkages,
@@ -119,6 +121,8 @@ __all__ = [
     "design",
     "directional_expansion",
     "expansion_profile",
+    "export",
+    "export_formats",
     "families",
     "family",
     "linkages",
