@@ -17,6 +17,7 @@ def test_cell_equals_the_cli(cli, family, params, cell):
     want = cli(*args)
     p = [float(v) for v in params.split(",")] if params else None
     c = isogami.cell(family, p, cell)
+    assert isinstance(c, isogami.Cell)
     assert_same(c.to_dict(), want)
     assert c.cell == tuple(int(v) for v in cell.split("x"))
     assert np.allclose(c.u, want["u"], rtol=0, atol=1e-12) and np.allclose(c.w, want["w"], rtol=0, atol=1e-12)

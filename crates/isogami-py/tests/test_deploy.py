@@ -48,6 +48,7 @@ def python_args(flags):
 def test_report_and_arrays_equal_the_cli(cli, spec, flags):
     want = cli("deploy", "--design", spec, "--json", *flags)
     run = isogami.deploy(spec, **python_args(flags))
+    assert isinstance(run, isogami.Deployment)
     assert_same(run.report(), want)
     frames = want["frames"]
     n, tiles = len(frames), len(frames[0]["tiles"])

@@ -10,7 +10,7 @@ from conftest import assert_same
 def test_families_equal_the_cli_listing(cli):
     want = cli("families", "--json")
     got = isogami.families()
-    assert len(got) == 81
+    assert len(got) == 81 and all(isinstance(f, isogami.Family) for f in got)
     assert_same([f.info() for f in got], want)
     for f, w in zip(got, want):
         assert f.name == w["name"] and f.number == w["number"]

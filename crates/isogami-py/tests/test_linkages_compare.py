@@ -10,6 +10,7 @@ from conftest import assert_same
 def test_linkages_equal_the_cli(cli, spec):
     want = cli("linkages", "--design", spec, "--json")
     got = isogami.linkages(spec)
+    assert isinstance(got, isogami.Linkages)
     assert_same(got.to_dict(), want)
     assert got.signature == want["signature"]
     assert got.bars == [l["bars"] for l in want["linkages"]] and len(got) == len(want["linkages"])
@@ -47,6 +48,8 @@ def drop_times(rows):
 def test_compare_equals_the_cli(cli, spec):
     want = drop_times(cli("compare", "--design", spec, "--json"))[0]
     c = isogami.compare(spec)
+    assert isinstance(c, isogami.Comparison)
+    assert all(isinstance(r, isogami.MethodResult) for r in c.results)
     got = drop_times([c.to_dict()])[0]
     assert_same(got, want)
     assert c.design == want["design"] and c.dof == want["dof"] and len(c) == 3

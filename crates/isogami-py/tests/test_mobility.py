@@ -11,6 +11,8 @@ from conftest import assert_same
 def test_analysis_equals_the_cli(cli, spec):
     want = cli("analyze", "--design", spec, "--json")
     a = isogami.analyze(spec)
+    assert isinstance(a, isogami.Analysis)
+    assert all(isinstance(m, isogami.Motion) for m in a.modes)
     assert_same(a.to_dict(), want)
     assert a.dof == want["dof"] and a.design == want["design"]
     assert (a.tiles, a.edges, a.joints) == (want["tiles"], want["edges"], want["joints"])
