@@ -13,6 +13,9 @@ fn vector(what: &str, v: [f64; 2]) -> PyResult<Vec2> {
     Ok(Vec2::new(finite(what, v[0])?, finite(what, v[1])?))
 }
 
+/// A 2×2 numpy array.
+type Matrix<'py> = Bound<'py, PyArray2<f64>>;
+
 fn matrix_array<'py>(py: Python<'py>, m: [[f64; 2]; 2]) -> PyResult<Bound<'py, PyArray2<f64>>> {
     array(py, (2, 2), m.into_iter().flatten().collect())
 }
@@ -44,7 +47,7 @@ pub fn deformation_gradient<'py>(
 pub fn polar<'py>(
     py: Python<'py>,
     f: [[f64; 2]; 2],
-) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>)> {
+) -> PyResult<(Matrix<'py>, Matrix<'py>)> {
     let (r, u) = measure::polar(&matrix("F", f)?).map_err(|e| errors::library(e.into()))?;
     Ok((matrix_array(py, rows(&r))?, matrix_array(py, rows(&u))?))
 }

@@ -2,6 +2,7 @@
 test; help() useful; the installed package carries its stubs and py.typed marker."""
 
 import ast
+import doctest
 import inspect
 import pydoc
 import re
@@ -85,3 +86,13 @@ def test_every_public_name_is_tested():
     sources = "\n".join(p.read_text() for p in HERE.glob("test_*.py") if p.name != Path(__file__).name)
     untested = [n for n in public() if not re.search(rf"\bisogami\.{re.escape(n)}\b", sources)]
     assert untested == []
+
+
+def test_docstring_examples_run():
+    finder, runner = doctest.DocTestFinder(recurse=False), doctest.DocTestRunner()
+    examples = 0
+    for obj, name in [(isogami, "isogami"), (isogami.deploy, "isogami.deploy")]:
+        for test in finder.find(obj, name, globs={"isogami": isogami}):
+            examples += len(test.examples)
+            runner.run(test)
+    assert examples >= 5 and runner.summarize(verbose=False).failed == 0
