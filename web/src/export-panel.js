@@ -200,7 +200,15 @@ export function createExportPanel(container, { data, current, initial }) {
         h('label', { for: 'export-cols' }, 'columns'),
         el.cols,
       ),
-      h('div', { class: 'export-row' }, h('label', { for: 'export-scale' }, 'scale by'), el.scale, h('label', { for: 'export-mm' }, 'mm'), el.mm),
+      h(
+        'div',
+        { class: 'export-row' },
+        h('label', { for: 'export-scale' }, 'scale by'),
+        el.scale,
+        h('label', { for: 'export-mm' }, 'length'),
+        el.mm,
+        h('span', { class: 'unit' }, 'mm'),
+      ),
       h(
         'fieldset',
         { class: 'export-state' },
