@@ -393,6 +393,7 @@ async fn bad_values_are_400_with_the_librarys_message() {
         format!("{base}&format=svg&colour=red"),
         format!("{base}&format=svg&format=dxf"),
         format!("{base}&format=svg&frames=1000"),
+        format!("{base}&format=fold&patch=40x40&frames=100"),
         format!("{base}&format=svg&kerf=NaN"),
         format!("/api/export?design={}&format=svg", "x".repeat(17 * 1024)),
     ] {

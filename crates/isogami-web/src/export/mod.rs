@@ -66,7 +66,11 @@ pub fn catalog() -> Value {
             "kerf": ContactSettings::default().kerf,
             "frames": d.frames,
         },
-        "limits": { "max_patch": MAX_PATCH, "max_frames": MAX_PATCH_FRAMES },
+        "limits": {
+            "max_patch": MAX_PATCH,
+            "max_frames": MAX_PATCH_FRAMES,
+            "max_cell_frames": query::MAX_CELL_FRAMES,
+        },
     })
 }
 

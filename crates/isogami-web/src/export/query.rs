@@ -12,6 +12,12 @@ use isogami::export::{ExportOptions, Format, PatchRequest, Scale, State, MAX_PAT
 /// Longest design text (a spec, a name or design JSON), as for `POST /api/deploy`.
 pub const MAX_DESIGN: usize = 16 * 1024;
 
+/// Most cells × frames one export may hold on the server: every frame places every tile of
+/// the patch, and a FOLD file writes them all (a 40×40 patch of a 12-tile cell with 100
+/// frames would be about half a gigabyte). The limit lets the largest patch through at the
+/// default frame count; the CLI has no such limit.
+pub const MAX_CELL_FRAMES: usize = MAX_PATCH * MAX_PATCH * 11;
+
 /// Keys of the request itself (the settings groups add theirs).
 pub const REQUEST_KEYS: [&str; 8] = [
     "design", "format", "patch", "edge_mm", "width_mm", "t", "kerf", "frames",
@@ -108,6 +114,12 @@ pub fn parse_export(pairs: &[(String, String)]) -> ApiResult<ExportQuery> {
     request
         .validate()
         .map_err(|e| ApiError::bad_parameter(e.to_string()))?;
+    if rows * cols * frames > MAX_CELL_FRAMES {
+        return Err(ApiError::bad_parameter(format!(
+            "patch {rows}x{cols} with {frames} frames: at most {MAX_CELL_FRAMES} cells × frames \
+             on the server (fewer frames or a smaller patch, or `isogami export`)"
+        )));
+    }
 
     let mut options = ExportOptions::default();
     for group in GROUPS {
@@ -202,11 +214,21 @@ mod tests {
             ("design=x&format=svg&cut_colour=red", "cut colour"),
             ("design=x&format=svg&colour=red", "unknown parameter"),
             ("design=x&format=svg&format=dxf", "twice"),
+            (
+                "design=x&format=fold&patch=40x40&frames=12",
+                "cells × frames",
+            ),
         ] {
             let e = parsed(q).unwrap_err();
             assert_eq!(e.status, 400, "{q}");
             assert!(e.message.contains(needle), "{q}: {}", e.message);
         }
+        // The largest patch at the default frame count is allowed.
+        assert!(parsed("design=x&format=fold&patch=40x40").is_ok());
+        assert_eq!(
+            PatchRequest::default().frames * MAX_PATCH * MAX_PATCH,
+            MAX_CELL_FRAMES
+        );
         // Laser values are only judged for the formats laid out with them.
         assert!(parsed("design=x&format=fold&hinge_mm=-1").is_ok());
     }
