@@ -56,7 +56,7 @@ test('a catalogue design downloads as a laser SVG in mm, and the CLI command wri
   await openDesign(page, spec);
   assert.equal(await byTestId(page, 'export-format').inputValue(), 'svg');
   assert.match(await byTestId(page, 'export-format-help').textContent(), /laser/);
-  await byTestId(page, 'export-hinge_mm').waitFor({ state: 'visible' });
+  await byTestId(page, 'export-laser-hinge_mm').waitFor({ state: 'visible' });
   const file = await downloadExport(page);
   assert.equal(file.name, `${slug(spec)}-4x4.svg`);
 
@@ -179,7 +179,7 @@ test('a hinge too wide is explained in the panel and nothing is downloaded', asy
     downloads += 1;
   });
   await byTestId(page, 'export-format').selectOption('svg');
-  await byTestId(page, 'export-hinge_mm').fill('1000');
+  await byTestId(page, 'export-laser-hinge_mm').fill('1000');
   assert.match(await byTestId(page, 'export-command').textContent(), / --hinge-mm 1000 /);
   const response = page.waitForResponse((r) => r.url().includes('/api/export?'));
   await byTestId(page, 'export-download').click();

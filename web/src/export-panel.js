@@ -22,7 +22,7 @@ function size(n) {
 export function createExportPanel(container, { data, current, initial }) {
   let catalog = null;
   let inflight = null;
-  const settings = {}; // field name → text (or boolean for flags) the user set
+  const settings = {}; // group → field name → text (or boolean for flags) the user set
   const el = {};
 
   const form = () => {
@@ -58,18 +58,19 @@ export function createExportPanel(container, { data, current, initial }) {
     return h('input', { id, type: 'number', inputmode: 'decimal', ...attrs, oninput: update, onchange: update });
   }
 
-  function settingInput(field) {
-    const id = `export-${field.name}`;
+  function settingInput(group, field) {
+    const id = `export-${group.name}-${field.name}`;
+    const values = (settings[group.name] ??= {});
     const set = (value) => {
-      if (value === '' || value === null) delete settings[field.name];
-      else settings[field.name] = value;
+      if (value === '' || value === null) delete values[field.name];
+      else values[field.name] = value;
       update();
     };
     let input;
     if (field.kind === 'choice') {
       input = h(
         'select',
-        { id, testid: id, onchange: (e) => choose(field, e.target.value, set) },
+        { id, testid: id, onchange: (e) => choose(group, field, e.target.value, set) },
         h('option', { value: '' }, 'none (defaults)'),
         field.choices.map((c) => h('option', { value: c.value }, c.label)),
       );
@@ -92,12 +93,11 @@ export function createExportPanel(container, { data, current, initial }) {
   }
 
   /** A preset choice: its values become the placeholders of the fields it sets. */
-  function choose(field, value, set) {
+  function choose(group, field, value, set) {
     const choice = field.choices.find((c) => c.value === value);
-    const group = catalog.settings.find((g) => g.fields.includes(field));
     for (const other of group.fields) {
       if (other.kind !== 'number') continue;
-      const input = container.querySelector(`#export-${other.name}`);
+      const input = container.querySelector(`#export-${group.name}-${other.name}`);
       if (input) input.placeholder = String(choice?.sets?.[other.name] ?? other.default);
     }
     set(value);
@@ -179,7 +179,7 @@ export function createExportPanel(container, { data, current, initial }) {
       );
     el.groups = {};
     const groups = catalog.settings.map((g) => {
-      const box = h('fieldset', { class: 'export-group', testid: `export-group-${g.name}` }, h('legend', {}, g.label), g.fields.map(settingInput));
+      const box = h('fieldset', { class: 'export-group', testid: `export-group-${g.name}` }, h('legend', {}, g.label), g.fields.map((f) => settingInput(g, f)));
       el.groups[g.name] = box;
       return box;
     });

@@ -5,8 +5,10 @@
 // static site's data/site.json `export`); export-panel.js draws the form.
 //
 // Form state: { spec, kerf, format, rows, cols, scale: 'edge'|'width', mm, state:
-// 'closed'|'current'|'open', t, settings: {key: text} } where `settings` holds only the
-// fields the user set (an empty field means the library's default, or the preset's value).
+// 'closed'|'current'|'open', t, settings: {group: {key: text}} } where `settings` holds only
+// the fields the user set (an empty field means the library's default, or the preset's
+// value). Values are kept per group: two groups may share a key (a hinge width for laser
+// sheets and for printed sheets) and only the groups of the chosen format are sent.
 
 import { slug } from './schema.js';
 
@@ -15,10 +17,15 @@ export function formatOf(catalog, name) {
   return catalog.formats.find((f) => f.name === name) ?? catalog.formats[0];
 }
 
+/** The settings groups `format` uses, in catalogue order. */
+export function groupsOf(catalog, format) {
+  const used = new Set(formatOf(catalog, format).settings);
+  return catalog.settings.filter((g) => used.has(g.name));
+}
+
 /** The settings fields of every group `format` uses, in catalogue order. */
 export function fieldsOf(catalog, format) {
-  const used = new Set(formatOf(catalog, format).settings);
-  return catalog.settings.filter((g) => used.has(g.name)).flatMap((g) => g.fields);
+  return groupsOf(catalog, format).flatMap((g) => g.fields);
 }
 
 /** t with at most three decimals (the slider's step). */
@@ -41,12 +48,17 @@ export function exportPairs(form, catalog) {
   if (form.kerf !== null && form.kerf !== undefined && Math.abs(kerf - catalog.defaults.kerf) > 1e-12) {
     pairs.push(['kerf', String(kerf)]);
   }
-  for (const field of fieldsOf(catalog, form.format)) {
-    const value = form.settings?.[field.name];
-    if (value === undefined || value === null || value === '') continue;
-    if (field.kind === 'flag') {
-      if (value !== field.default) pairs.push([field.name, String(value)]);
-    } else pairs.push([field.name, String(value).trim()]);
+  const seen = new Set();
+  for (const group of groupsOf(catalog, form.format)) {
+    for (const field of group.fields) {
+      const value = form.settings?.[group.name]?.[field.name];
+      if (value === undefined || value === null || value === '' || seen.has(field.name)) continue;
+      if (field.kind === 'flag') {
+        if (value === field.default) continue;
+        pairs.push([field.name, String(value)]);
+      } else pairs.push([field.name, String(value).trim()]);
+      seen.add(field.name);
+    }
   }
   return pairs;
 }

@@ -91,8 +91,8 @@ test('the CLI command carries exactly the query of the download', () => {
   const cases = [
     form(),
     form({ state: 'open', scale: 'width', mm: 300, kerf: 0.02 }),
-    form({ state: 'closed', settings: { material: 'card', hinge_mm: '0.8', labels: true, cut_colour: '#ff00ff' } }),
-    form({ spec: "{\"family\": \"it's\"}", format: 'fold', settings: { hinge_mm: '9' } }),
+    form({ state: 'closed', settings: { laser: { material: 'card', hinge_mm: '0.8', labels: true, cut_colour: '#ff00ff' } } }),
+    form({ spec: "{\"family\": \"it's\"}", format: 'fold', settings: { laser: { hinge_mm: '9' } } }),
   ];
   for (const f of cases) {
     const pairs = exportPairs(f, catalog);
@@ -113,11 +113,20 @@ test('the query holds the state, the scale and only the settings the format uses
   // The default kerf is left out, another one is sent.
   assert.equal(get(form(), 'kerf'), undefined);
   assert.equal(get(form({ kerf: 0.05 }), 'kerf'), '0.05');
-  const laser = { hinge_mm: '2', labels: true };
+  const laser = { laser: { hinge_mm: '2', labels: true } };
   assert.equal(get(form({ settings: laser }), 'hinge_mm'), '2');
   assert.equal(get(form({ settings: laser }), 'labels'), 'true');
   assert.equal(get(form({ format: 'fold', settings: laser }), 'hinge_mm'), undefined);
-  assert.equal(get(form({ settings: { labels: false } }), 'labels'), undefined);
+  assert.equal(get(form({ settings: { laser: { labels: false } } }), 'labels'), undefined);
+  // Values of a group the format does not use are never sent, even under a shared key.
+  const shared = {
+    ...catalog,
+    formats: [...catalog.formats, { name: 'stl', extension: 'stl', settings: ['print'] }],
+    settings: [...catalog.settings, { name: 'print', fields: [{ name: 'hinge_mm', kind: 'number', default: 1 }] }],
+  };
+  const both = { laser: { hinge_mm: '2' }, print: { hinge_mm: '3' } };
+  assert.equal(new Map(exportPairs(form({ format: 'stl', settings: both }), shared)).get('hinge_mm'), '3');
+  assert.equal(new Map(exportPairs(form({ format: 'svg', settings: both }), shared)).get('hinge_mm'), '2');
   assert.deepEqual(fieldsOf(catalog, 'fold'), []);
   assert.deepEqual(fieldsOf(catalog, 'svg').map((f) => f.name), ['material', 'hinge_mm', 'cut_colour', 'labels']);
 });
@@ -143,5 +152,7 @@ test('shell words: bare when safe, quoted otherwise', () => {
   assert.equal(shellWord('#ff0000'), "'#ff0000'");
   assert.equal(shellWord("it's"), "'it'\\''s'");
   assert.equal(shellWord('-x'), "'-x'");
+  assert.equal(shellWord('~x'), "'~x'");
+  assert.equal(shellWord('a~b'), 'a~b');
   assert.deepEqual(shellSplit(`a ${shellWord("it's")} b`), ['a', "it's", 'b']);
 });
