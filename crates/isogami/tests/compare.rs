@@ -262,3 +262,28 @@ fn ncm_stops_where_the_path_turns_away_from_the_first_eigenvector() {
         );
     }
 }
+
+/// The progress callback of a comparison sees every method's states and can stop it.
+#[test]
+fn comparison_progress_reports_each_method_and_cancels() {
+    use isogami::api::{compare_with, resolve_design};
+    let design = resolve_design("rotating-squares").unwrap();
+    let settings = DeploySettings::default();
+    let mut calls = Vec::new();
+    let full = compare_with(&design, &settings, &mut |n| {
+        calls.push(n);
+        true
+    })
+    .unwrap();
+    // Each method's count starts again (and so does a probe of the other opening sign).
+    let restarts = calls.windows(2).filter(|w| w[1] < w[0]).count();
+    assert!(restarts >= METHODS.len() - 1, "{calls:?}");
+    let expected: usize = full.results.iter().map(|r| r.steps - 1).sum();
+    assert!(
+        calls.len() >= expected,
+        "{} calls, {expected} accepted steps",
+        calls.len()
+    );
+    let e = compare_with(&design, &settings, &mut |n| n < 3).unwrap_err();
+    assert!(e.is_cancelled(), "{e}");
+}

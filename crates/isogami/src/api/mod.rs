@@ -9,7 +9,7 @@
 //! | mobility | [`analyze`] | [`Analysis`] |
 //! | deployment | [`deploy`] | [`Deployment`] (the serialisable report and the states) |
 //! | linkages | [`linkages`] | [`LinkageAnalysis`] |
-//! | baseline comparison | [`compare`] | [`DesignComparison`]: one result per method |
+//! | baseline comparison | [`compare`], [`compare_with`] (progress, cancel) | [`DesignComparison`]: one result per method |
 //! | drawing and joint editing | [`sheet_geometry`], [`tile_linkages`] | [`SheetGeometry`] |
 //!
 //! ```
@@ -25,7 +25,7 @@
 use crate::cell::UnitCell;
 use crate::contact::ContactModel;
 use crate::deploy::{
-    build_report, compare_design, deploy_with, frame_records, select_frames, DeploySettings,
+    build_report, compare_design_with, deploy_with, frame_records, select_frames, DeploySettings,
     DeploymentReport, DesignComparison, FrameRecord, Progress, Trajectory,
 };
 use crate::error::{Requirement, Result, SettingsError};
@@ -207,6 +207,17 @@ pub fn linkages(design: &Design) -> Result<LinkageAnalysis> {
 /// Rigid modes, NCM and springs on the same design with otherwise equal settings (paper §5,
 /// Fig. 4): how far along the rigid-modes path each gets and how much it opens.
 pub fn compare(design: &Design, settings: &DeploySettings) -> Result<DesignComparison> {
+    compare_with(design, settings, &mut |_| true)
+}
+
+/// [`compare`] with a progress callback: called after every accepted step of each method
+/// with that method's number of states so far; when it returns `false` the comparison stops
+/// with [`DeployError::Cancelled`](crate::deploy::DeployError::Cancelled).
+pub fn compare_with(
+    design: &Design,
+    settings: &DeploySettings,
+    progress: Progress<'_>,
+) -> Result<DesignComparison> {
     settings.validate()?;
-    compare_design(design, settings)
+    compare_design_with(design, settings, progress)
 }

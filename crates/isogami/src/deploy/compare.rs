@@ -12,6 +12,7 @@ use super::error::DeployError;
 use super::frames::{frame_records, FrameRecord};
 use super::settings::{DeploySettings, Method};
 use super::trajectory::{EndReason, Trajectory};
+use super::Progress;
 use crate::contact::ContactModel;
 use crate::error::Result;
 use crate::kinematics::Mechanism;
@@ -105,9 +106,18 @@ pub struct DesignComparison {
 
 /// Runs the three methods on `design` with otherwise equal `settings`.
 pub fn compare_design(design: &Design, settings: &DeploySettings) -> Result<DesignComparison> {
+    compare_design_with(design, settings, &mut |_| true)
+}
+
+/// [`compare_design`] with a progress callback, as [`compare_methods_with`] calls it.
+pub fn compare_design_with(
+    design: &Design,
+    settings: &DeploySettings,
+    progress: Progress<'_>,
+) -> Result<DesignComparison> {
     let cell = design.cell()?;
     let mech = Mechanism::new(&cell, &design.joints)?;
-    let results = compare_methods(&mech, settings)?;
+    let results = compare_methods_with(&mech, settings, progress)?;
     Ok(DesignComparison {
         design: design.to_string(),
         dof: analyze(&mech, &mech.rest, settings.mobility)?.dof,
@@ -121,6 +131,17 @@ pub fn compare_methods(
     mech: &Mechanism,
     settings: &DeploySettings,
 ) -> std::result::Result<Vec<MethodResult>, DeployError> {
+    compare_methods_with(mech, settings, &mut |_| true)
+}
+
+/// [`compare_methods`] with a progress callback: called after every accepted step of each
+/// method with that method's number of states so far; when it returns `false` the comparison
+/// stops with [`DeployError::Cancelled`].
+pub fn compare_methods_with(
+    mech: &Mechanism,
+    settings: &DeploySettings,
+    progress: Progress<'_>,
+) -> std::result::Result<Vec<MethodResult>, DeployError> {
     let contact = ContactModel::new(mech, settings.contact)?;
     let mut runs = Vec::with_capacity(METHODS.len());
     for method in METHODS {
@@ -129,7 +150,7 @@ pub fn compare_methods(
             ..*settings
         };
         let start = std::time::Instant::now();
-        let traj = super::deploy_with(mech, &contact, &s, &mut |_| true)?;
+        let traj = super::deploy_with(mech, &contact, &s, &mut *progress)?;
         let millis = start.elapsed().as_secs_f64() * 1e3;
         let all: Vec<usize> = (0..traj.steps.len()).collect();
         let frames = frame_records(mech, &contact, &traj, &all, settings.frame_joint_tolerance)

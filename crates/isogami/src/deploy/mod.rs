@@ -32,8 +32,8 @@ mod springs;
 mod trajectory;
 
 pub use compare::{
-    compare_design, compare_methods, DesignComparison, MethodResult, COMPARISON_DESIGNS, METHODS,
-    PEAK_FRACTION,
+    compare_design, compare_design_with, compare_methods, compare_methods_with, DesignComparison,
+    MethodResult, COMPARISON_DESIGNS, METHODS, PEAK_FRACTION,
 };
 pub use error::{DeployError, FrameProblem, ReportField};
 pub use frames::{frame_records, select_frames, FrameRecord};

@@ -13,6 +13,6 @@ mod shape;
 pub use error::{Culprit, ShapeProblem, TilingError};
 pub use family::{EdgeShapeKind, Family, FamilyInfo, PrototileEdge};
 pub use sampling::{
-    shape_grid, shape_quality_problem, MIN_ANGLE_DEG, MIN_EDGE_RATIO, MIN_ROUNDNESS,
+    param_ranges, shape_grid, shape_quality_problem, MIN_ANGLE_DEG, MIN_EDGE_RATIO, MIN_ROUNDNESS,
 };
 pub use shape::{Affine, Tiling};

@@ -49,8 +49,28 @@ pub fn shape_quality_problem(poly: &[Vec2]) -> Option<String> {
     (roundness < MIN_ROUNDNESS).then(|| format!("tile is a sliver (roundness {roundness:.3})"))
 }
 
+/// The interval the shape grid samples each parameter of `family` over: default ±
+/// `span`·max(|default|, 0.25), as (low, high) per parameter. Not every point of the box gives
+/// a valid tile; the grid keeps those that do and are well shaped.
+pub fn param_ranges(family: Family, span: Real) -> Vec<(Real, Real)> {
+    half_widths(family, span)
+        .into_iter()
+        .map(|(d, half)| (d - half, d + half))
+        .collect()
+}
+
+/// Each default parameter with the half width of its sampling interval.
+fn half_widths(family: Family, span: Real) -> Vec<(Real, Real)> {
+    family
+        .default_params()
+        .into_iter()
+        .map(|d| (d, span * d.abs().max(0.25)))
+        .collect()
+}
+
 /// Up to `max_samples` well-shaped parameter vectors of `family` on a grid with `levels`
-/// values per parameter (levels ≥ 2; families without parameters give their one shape).
+/// values per parameter (levels ≥ 2; families without parameters give their one shape),
+/// evenly spaced over [`param_ranges`].
 pub fn shape_grid(family: Family, levels: usize, span: Real, max_samples: usize) -> Vec<Vec<Real>> {
     let defaults = family.default_params();
     let p = defaults.len();
@@ -58,10 +78,9 @@ pub fn shape_grid(family: Family, levels: usize, span: Real, max_samples: usize)
     if p == 0 || levels < 2 || max_samples <= 1 {
         return out;
     }
-    let values: Vec<Vec<Real>> = defaults
-        .iter()
-        .map(|&d| {
-            let half = span * d.abs().max(0.25);
+    let values: Vec<Vec<Real>> = half_widths(family, span)
+        .into_iter()
+        .map(|(d, half)| {
             (0..levels)
                 .map(|i| d - half + 2.0 * half * i as Real / (levels - 1) as Real)
                 .collect()
@@ -124,6 +143,25 @@ mod tests {
         assert!(shape_quality_problem(&sliver).is_some());
         let sharp = [vec2(0.0, 0.0), vec2(1.0, 0.0), vec2(0.0, 0.2)];
         assert!(shape_quality_problem(&sharp).is_some());
+    }
+
+    #[test]
+    fn grid_values_lie_in_the_parameter_ranges() {
+        for f in Family::all() {
+            let ranges = param_ranges(f, 0.3);
+            assert_eq!(ranges.len(), f.param_count(), "{f}");
+            for (k, (&d, &(lo, hi))) in f.default_params().iter().zip(&ranges).enumerate() {
+                assert!(lo < d && d < hi, "{f} v{k}: {lo} < {d} < {hi}");
+            }
+            for p in shape_grid(f, 3, 0.3, 40) {
+                for (k, (&v, &(lo, hi))) in p.iter().zip(&ranges).enumerate() {
+                    assert!(
+                        lo - 1e-12 <= v && v <= hi + 1e-12,
+                        "{f} v{k}: {v} outside [{lo}, {hi}]"
+                    );
+                }
+            }
+        }
     }
 
     #[test]

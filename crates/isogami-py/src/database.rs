@@ -1,0 +1,476 @@
+//! `isogami.Database`: a design database (made by `isogami explore`) opened read-only and
+//! queried with the browser's filters; rows as records or a pandas DataFrame.
+
+use crate::convert::{to_python, type_name};
+use crate::design::PyDesign;
+use crate::errors;
+use crate::query::PyQuery;
+use isogami_store::query::MAX_LIMIT;
+use isogami_store::{Check, DesignSummary, Facet, Measure, Store, StoredDesign};
+use numpy::PyArray1;
+use pyo3::exceptions::{PyImportError, PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use std::path::PathBuf;
+use std::sync::Mutex;
+
+/// One design of a catalogue: every value the browser lists, filters, sorts, facets or plots
+/// by. ``to_dict()`` gives them as a dict; ``design()`` the ``Design``.
+#[pyclass(name = "Record", module = "isogami", frozen)]
+pub struct PyRecord {
+    inner: DesignSummary,
+    /// Spec string (unique in a database).
+    #[pyo3(get)]
+    spec: String,
+    /// ``"explored"`` or ``"user"``.
+    #[pyo3(get)]
+    origin: &'static str,
+    /// Tiling family, e.g. ``"IH28"``.
+    #[pyo3(get)]
+    family: String,
+    /// Supercell ``(a, b)``.
+    #[pyo3(get)]
+    cell: (u8, u8),
+    /// Tiles in the cell.
+    #[pyo3(get)]
+    tile_count: u32,
+    /// Joint characters, one per unique edge.
+    #[pyo3(get)]
+    joints: String,
+    /// Spec of the topology at default parameters this design was sampled from.
+    #[pyo3(get)]
+    topology: String,
+    /// Shape parameters.
+    #[pyo3(get)]
+    params: Vec<f64>,
+    /// Behaviour class (None when the sheet does not expand).
+    #[pyo3(get)]
+    behaviour: Option<String>,
+    /// Linkage signature such as "2×4-bar + 1×6-bar" (None without a linkage analysis).
+    #[pyo3(get)]
+    linkage_signature: Option<String>,
+    /// Why the deployment ended, e.g. ``"contact_limit"``.
+    #[pyo3(get)]
+    end_reason: String,
+    /// Deployment method.
+    #[pyo3(get)]
+    method: String,
+    /// Degrees of freedom of the closed state.
+    #[pyo3(get)]
+    dof: u32,
+    /// Kerf relative to the mean edge length.
+    #[pyo3(get)]
+    kerf: f64,
+    /// Largest principal expansion reached.
+    #[pyo3(get)]
+    max_expansion: f64,
+    /// Smallest principal expansion reached.
+    #[pyo3(get)]
+    min_expansion: f64,
+    /// Largest area ratio reached.
+    #[pyo3(get)]
+    max_area_ratio: f64,
+    /// Largest tile rotation reached (radians).
+    #[pyo3(get)]
+    max_tile_rotation: f64,
+    /// Smallest Poisson-like ratio over the open frames (None when it never opens).
+    #[pyo3(get)]
+    poisson_min: Option<f64>,
+    /// Largest Poisson-like ratio over the open frames.
+    #[pyo3(get)]
+    poisson_max: Option<f64>,
+    /// Accepted deployment states.
+    #[pyo3(get)]
+    steps: u64,
+}
+
+impl PyRecord {
+    fn new(s: DesignSummary) -> PyRecord {
+        PyRecord {
+            spec: s.spec.clone(),
+            origin: s.origin.as_str(),
+            family: s.family.name(),
+            cell: (s.cell.a(), s.cell.b()),
+            tile_count: s.tile_count,
+            joints: s.joints.clone(),
+            topology: s.topology.clone(),
+            params: s.params.clone(),
+            behaviour: s.behaviour.map(|b| b.to_string()),
+            linkage_signature: s.linkage_signature.clone(),
+            end_reason: s.end_reason.clone(),
+            method: s.method.to_string(),
+            dof: s.dof,
+            kerf: s.kerf,
+            max_expansion: s.max_expansion,
+            min_expansion: s.min_expansion,
+            max_area_ratio: s.max_area_ratio,
+            max_tile_rotation: s.max_tile_rotation,
+            poisson_min: s.poisson_min,
+            poisson_max: s.poisson_max,
+            steps: s.steps,
+            inner: s,
+        }
+    }
+}
+
+#[pymethods]
+impl PyRecord {
+    /// The design (read from the spec).
+    fn design(&self) -> PyResult<PyDesign> {
+        crate::design::design(&self.inner.spec)
+    }
+    /// Every column as a dict (as the browser's API sends it: ``cell`` is ``[a, b]``).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.inner)
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "isogami.Record({}: {}, area ratio up to {:.4})",
+            self.inner.spec,
+            self.inner
+                .behaviour
+                .map_or("no class".to_string(), |b| b.to_string()),
+            self.inner.max_area_ratio
+        )
+    }
+}
+
+/// A design read back whole: its record, deployment report and linkage analysis.
+#[pyclass(name = "StoredDesign", module = "isogami", frozen)]
+pub struct PyStoredDesign {
+    inner: StoredDesign,
+}
+
+#[pymethods]
+impl PyStoredDesign {
+    /// The catalogue columns.
+    #[getter]
+    fn record(&self) -> PyRecord {
+        PyRecord::new(self.inner.summary.clone())
+    }
+    /// The stored deployment report (the dict ``isogami deploy --json`` prints).
+    fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.inner.report)
+    }
+    /// The stored linkage analysis (as ``isogami linkages --json``), or None.
+    fn linkages<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.inner
+            .linkages
+            .as_ref()
+            .map(|l| to_python(py, l))
+            .transpose()
+    }
+    fn __repr__(&self) -> String {
+        format!("isogami.StoredDesign({})", self.inner.summary.spec)
+    }
+}
+
+/// A design database opened for reading only (nothing is ever written or created).
+///
+/// ``check`` is ``"quick"`` (SQLite's quick_check, default) or ``"full"`` (integrity check and
+/// every row's checksum and stored JSON). Raises ``StoreError`` for a missing, foreign,
+/// damaged or other-version file. Queries take a ``Query`` and/or the browser's filter
+/// keywords (see ``Query``). Usable as a context manager; ``close()`` releases the file.
+#[pyclass(name = "Database", module = "isogami", frozen)]
+pub struct PyDatabase {
+    path: PathBuf,
+    store: Mutex<Option<Store>>,
+}
+
+impl PyDatabase {
+    /// Runs `f` on the open store with the GIL released.
+    fn with<T: Send>(
+        &self,
+        py: Python<'_>,
+        f: impl FnOnce(&Store) -> isogami_store::StoreResult<T> + Send,
+    ) -> PyResult<T> {
+        let shown = self.path.display().to_string();
+        py.detach(|| {
+            let guard = self
+                .store
+                .lock()
+                .map_err(|_| errors::StoreError::new_err("the database handle was poisoned"))?;
+            let store = guard
+                .as_ref()
+                .ok_or_else(|| PyValueError::new_err(format!("{shown}: database is closed")))?;
+            f(store).map_err(|e| errors::store(e, &shown))
+        })
+    }
+
+    /// Every row of a query (all pages when it has no limit).
+    fn rows(&self, py: Python<'_>, q: &PyQuery) -> PyResult<Vec<DesignSummary>> {
+        let mut query = q.inner.clone();
+        self.with(py, move |store| {
+            let mut out = Vec::new();
+            loop {
+                let wanted = q.limit.map(|n| u64::from(n) - out.len() as u64);
+                if let Some(w) = wanted {
+                    query.limit = u32::try_from(w.min(u64::from(MAX_LIMIT))).unwrap_or(MAX_LIMIT);
+                }
+                let page = store.page(&query)?;
+                let got = page.rows.len();
+                out.extend(page.rows);
+                let done = got == 0
+                    || q.limit.is_some_and(|n| out.len() as u64 >= u64::from(n))
+                    || query.offset + got as u64 >= page.total;
+                if done {
+                    return Ok(out);
+                }
+                query.offset += got as u64;
+            }
+        })
+    }
+}
+
+#[pymethods]
+impl PyDatabase {
+    #[new]
+    #[pyo3(signature = (path, check="quick"))]
+    fn new(py: Python<'_>, path: PathBuf, check: &str) -> PyResult<PyDatabase> {
+        let check = match check {
+            "quick" => Check::Quick,
+            "full" => Check::Full,
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "check must be 'quick' or 'full', got '{}'",
+                    other.escape_debug()
+                )))
+            }
+        };
+        let shown = path.display().to_string();
+        let store = py
+            .detach(|| Store::open_read(&path, check))
+            .map_err(|e| errors::store(e, &shown))?;
+        Ok(PyDatabase {
+            path,
+            store: Mutex::new(Some(store)),
+        })
+    }
+
+    /// The file's path.
+    #[getter]
+    fn path(&self) -> PathBuf {
+        self.path.clone()
+    }
+
+    /// The designs matching a query, in its order (default: by spec), as ``Record`` objects.
+    /// Without a limit every matching design is returned.
+    #[pyo3(signature = (query=None, **filters))]
+    fn designs(
+        &self,
+        py: Python<'_>,
+        query: Option<&Bound<'_, PyAny>>,
+        filters: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Vec<PyRecord>> {
+        let q = PyQuery::of(query, filters)?;
+        Ok(self.rows(py, &q)?.into_iter().map(PyRecord::new).collect())
+    }
+
+    /// The designs matching a query as a pandas DataFrame, one row per design and one column
+    /// per record field (``cell`` as ``"AxB"``). Needs pandas (raises ``ImportError``
+    /// without it; ``designs()`` gives the same rows as records).
+    #[pyo3(signature = (query=None, **filters))]
+    fn dataframe<'py>(
+        &self,
+        py: Python<'py>,
+        query: Option<&Bound<'py, PyAny>>,
+        filters: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let pandas = py.import("pandas").map_err(|_| {
+            PyImportError::new_err(
+                "Database.dataframe needs pandas (pip install pandas); \
+                 Database.designs returns the same rows as records",
+            )
+        })?;
+        let q = PyQuery::of(query, filters)?;
+        let rows = self.rows(py, &q)?;
+        let records = PyList::empty(py);
+        for r in &rows {
+            let d = to_python(py, r)?;
+            d.set_item("cell", r.cell.to_string())?;
+            records.append(d)?;
+        }
+        let columns: Vec<&str> = COLUMNS.to_vec();
+        let kwargs = PyDict::new(py);
+        kwargs.set_item("columns", columns)?;
+        pandas
+            .getattr("DataFrame")?
+            .call_method("from_records", (records,), Some(&kwargs))
+    }
+
+    /// Number of designs matching a query (limit and offset ignored).
+    #[pyo3(signature = (query=None, **filters))]
+    fn count(
+        &self,
+        py: Python<'_>,
+        query: Option<&Bound<'_, PyAny>>,
+        filters: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<u64> {
+        let mut q = PyQuery::of(query, filters)?.inner;
+        q.limit = 1;
+        q.offset = 0;
+        self.with(py, move |s| s.page(&q).map(|p| p.total))
+    }
+
+    /// Designs per value of ``facet`` (``"family"``, ``"cell"``, ``"tile_count"``,
+    /// ``"behaviour"``, ``"linkage_signature"``, ``"end_reason"``, ``"origin"``) under every
+    /// filter except the facet's own selection, most frequent first: a list of
+    /// ``(value, count)``. Values as in the browser's API (``cell`` as ``[a, b]``,
+    /// ``behaviour`` None for unclassified).
+    #[pyo3(signature = (facet, query=None, **filters))]
+    fn facet_counts<'py>(
+        &self,
+        py: Python<'py>,
+        facet: &str,
+        query: Option<&Bound<'py, PyAny>>,
+        filters: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Vec<(Bound<'py, PyAny>, u64)>> {
+        let f = Facet::ALL
+            .into_iter()
+            .find(|f| f.name() == facet)
+            .ok_or_else(|| {
+                let names: Vec<&str> = Facet::ALL.iter().map(|f| f.name()).collect();
+                errors::QueryError::new_err(format!(
+                    "unknown facet '{}'; facets are: {}",
+                    facet.escape_debug(),
+                    names.join(", ")
+                ))
+            })?;
+        let q = PyQuery::of(query, filters)?.inner;
+        let counts = self.with(py, move |s| s.facet_counts(&q, f))?;
+        counts
+            .into_iter()
+            .map(|c| Ok((to_python(py, &c.value)?, c.count)))
+            .collect()
+    }
+
+    /// Measures ``x`` and ``y`` (names as for ``range``) of every design matching a query that
+    /// has both, at most ``limit``: a dict with ``spec`` (list), ``x`` and ``y`` (numpy
+    /// arrays).
+    #[pyo3(signature = (x, y, query=None, limit=100_000, **filters))]
+    fn scatter<'py>(
+        &self,
+        py: Python<'py>,
+        x: &str,
+        y: &str,
+        query: Option<&Bound<'py, PyAny>>,
+        limit: u32,
+        filters: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let mx: Measure = x.parse().map_err(errors::query)?;
+        let my: Measure = y.parse().map_err(errors::query)?;
+        let q = PyQuery::of(query, filters)?.inner;
+        let points = self.with(py, move |s| s.scatter(&q, mx, my, limit))?;
+        let d = PyDict::new(py);
+        d.set_item(
+            "spec",
+            points.iter().map(|p| p.spec.clone()).collect::<Vec<_>>(),
+        )?;
+        d.set_item(
+            "x",
+            PyArray1::from_vec(py, points.iter().map(|p| p.x).collect()),
+        )?;
+        d.set_item(
+            "y",
+            PyArray1::from_vec(py, points.iter().map(|p| p.y).collect()),
+        )?;
+        Ok(d)
+    }
+
+    /// One design read back whole (record, report, linkages), or None when the database does
+    /// not hold ``spec``. ``spec`` may be a ``Design``.
+    fn design(&self, py: Python<'_>, spec: &Bound<'_, PyAny>) -> PyResult<Option<PyStoredDesign>> {
+        let spec = if let Ok(d) = spec.cast::<PyDesign>() {
+            d.get().inner.to_string()
+        } else {
+            spec.extract::<String>().map_err(|_| {
+                PyTypeError::new_err(format!(
+                    "spec must be a str or an isogami.Design, got {}",
+                    type_name(spec)
+                ))
+            })?
+        };
+        Ok(self
+            .with(py, move |s| s.design(&spec))?
+            .map(|inner| PyStoredDesign { inner }))
+    }
+
+    /// Work units, designs, per-stage and per-family counts, as ``isogami db stats --json``.
+    fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let stats = self.with(py, |s| s.stats())?;
+        to_python(py, &stats)
+    }
+
+    /// The exploration settings the database was made with (a dict), or None.
+    #[getter]
+    fn settings<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let text = self.with(py, |s| s.settings())?;
+        text.map(|t| py.import("json")?.call_method1("loads", (t,)))
+            .transpose()
+    }
+
+    /// The isogami version that made the database, or None.
+    #[getter]
+    fn tool_version(&self, py: Python<'_>) -> PyResult<Option<String>> {
+        self.with(py, |s| s.tool_version())
+    }
+
+    /// Closes the file; later queries raise ``ValueError``.
+    fn close(&self) -> PyResult<()> {
+        if let Ok(mut g) = self.store.lock() {
+            g.take();
+        }
+        Ok(())
+    }
+
+    fn __len__(&self, py: Python<'_>) -> PyResult<usize> {
+        let n = self.with(py, |s| s.design_count())?;
+        Ok(usize::try_from(n).unwrap_or(usize::MAX))
+    }
+
+    fn __enter__(slf: Bound<'_, Self>) -> Bound<'_, Self> {
+        slf
+    }
+
+    #[pyo3(signature = (*_args))]
+    fn __exit__(&self, _args: &Bound<'_, pyo3::types::PyTuple>) -> PyResult<bool> {
+        self.close()?;
+        Ok(false)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("isogami.Database({:?})", self.path.display().to_string())
+    }
+}
+
+/// The DataFrame's columns, in the record's order.
+const COLUMNS: &[&str] = &[
+    "spec",
+    "origin",
+    "family",
+    "cell",
+    "tile_count",
+    "joints",
+    "topology",
+    "params",
+    "behaviour",
+    "linkage_signature",
+    "end_reason",
+    "method",
+    "dof",
+    "kerf",
+    "max_expansion",
+    "min_expansion",
+    "max_area_ratio",
+    "max_tile_rotation",
+    "poisson_min",
+    "poisson_max",
+    "steps",
+];
+
+/// Opens a design database for reading (see ``Database``).
+#[pyfunction]
+#[pyo3(signature = (path, check="quick"))]
+pub fn open_database(py: Python<'_>, path: PathBuf, check: &str) -> PyResult<PyDatabase> {
+    PyDatabase::new(py, path, check)
+}

@@ -1,0 +1,258 @@
+//! `isogami.export`: a patch of a design in millimetres in any of the library's export formats
+//! (laser SVG/DXF, FOLD, OBJ, tile tables, kirigami_sim files, ...), through the library's one
+//! export entry point. Formats are listed and parsed by the library, so a format it gains
+//! appears here at once. Returns the file contents; Python writes them where it likes.
+
+use crate::convert::{design_of, type_name};
+use crate::errors;
+use crate::progress::Watch;
+use isogami::export::laser::{LaserSettings, Material};
+use isogami::export::{
+    export_design, ExportError, ExportFiles, ExportOptions, Format, PatchRequest, Scale, State,
+};
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict};
+
+/// The Python exception of an export error.
+fn export_error(e: ExportError, watch: Watch) -> PyErr {
+    match e {
+        ExportError::Library(inner) => watch.error(inner),
+        other => errors::ExportError::new_err(other.to_string()),
+    }
+}
+
+/// Patch rows and columns from "RxC" or a pair.
+fn patch_size(obj: &Bound<'_, PyAny>) -> PyResult<(usize, usize)> {
+    let bad = || {
+        errors::ExportError::new_err(format!(
+            "patch {}: expected 'ROWSxCOLS' or (rows, cols)",
+            obj.repr().map(|r| r.to_string()).unwrap_or_default()
+        ))
+    };
+    if let Ok(text) = obj.extract::<String>() {
+        let (r, c) = text.trim().split_once(['x', 'X']).ok_or_else(bad)?;
+        return Ok((
+            r.trim().parse().map_err(|_| bad())?,
+            c.trim().parse().map_err(|_| bad())?,
+        ));
+    }
+    let (r, c): (i64, i64) = obj.extract().map_err(|_| {
+        PyTypeError::new_err(format!(
+            "patch must be 'ROWSxCOLS' or a pair of ints, got {}",
+            type_name(obj)
+        ))
+    })?;
+    // Negative sizes read as 0, which the library refuses with its own message.
+    Ok((
+        usize::try_from(r).unwrap_or(0),
+        usize::try_from(c).unwrap_or(0),
+    ))
+}
+
+/// The state: a number t in [0, 1] or "open".
+fn state_of(obj: &Bound<'_, PyAny>) -> PyResult<State> {
+    if let Ok(text) = obj.extract::<String>() {
+        return match text.trim() {
+            "open" => Ok(State::Open),
+            other => Err(errors::ExportError::new_err(format!(
+                "t '{}': expected a number in [0, 1] or 'open'",
+                other.escape_debug()
+            ))),
+        };
+    }
+    obj.extract::<f64>().map(State::T).map_err(|_| {
+        PyTypeError::new_err(format!(
+            "t must be a number in [0, 1] or 'open', got {}",
+            type_name(obj)
+        ))
+    })
+}
+
+/// The laser settings: a material preset (or the defaults), then every value given.
+#[allow(clippy::too_many_arguments)]
+fn laser_settings(
+    material: Option<&str>,
+    hinge_mm: Option<f64>,
+    kerf_mm: Option<f64>,
+    thickness_mm: Option<f64>,
+    margin_mm: Option<f64>,
+    stroke_mm: Option<f64>,
+    colours: [Option<String>; 3],
+    labels: bool,
+) -> PyResult<LaserSettings> {
+    let mut s = match material {
+        None => LaserSettings::default(),
+        Some(name) => {
+            let m = Material::from_name(name.trim()).ok_or_else(|| {
+                let names: Vec<&str> = Material::ALL.iter().map(|m| m.name()).collect();
+                errors::ExportError::new_err(format!(
+                    "material '{}': expected one of {}",
+                    name.escape_debug(),
+                    names.join(", ")
+                ))
+            })?;
+            LaserSettings::for_material(m)
+        }
+    };
+    for (slot, v) in [
+        (&mut s.hinge_mm, hinge_mm),
+        (&mut s.kerf_mm, kerf_mm),
+        (&mut s.thickness_mm, thickness_mm),
+        (&mut s.margin_mm, margin_mm),
+        (&mut s.stroke_mm, stroke_mm),
+    ] {
+        if let Some(v) = v {
+            *slot = v;
+        }
+    }
+    let [cut, score, engrave] = colours;
+    for (slot, v) in [
+        (&mut s.colours.cut, cut),
+        (&mut s.colours.score, score),
+        (&mut s.colours.engrave, engrave),
+    ] {
+        if let Some(v) = v {
+            *slot = v.trim().to_string();
+        }
+    }
+    s.labels = labels;
+    Ok(s)
+}
+
+/// Writes an R×C patch of ``design`` in millimetres in ``format`` and returns the file
+/// contents: ``bytes`` for a single-file format, a dict ``{file name: bytes}`` for a folder of
+/// files (``"kirigami-sim"``). ``export_formats()`` lists the formats.
+///
+/// Patch: ``patch`` (``"6x6"`` or ``(rows, cols)``, rows along w, 1..40 each); the scale is
+/// ``edge_mm`` (mean tile edge, default 20 mm) or ``width_mm`` (patch width at the state);
+/// ``t`` is the state (a number in [0, 1], the nearest accepted state; 0 closed) or ``"open"``
+/// (largest area ratio); ``kerf`` is the deployment's cut width relative to the mean edge
+/// (default 0.01); ``frames`` the states animated formats keep (2..100, default 11).
+///
+/// Laser formats (svg, dxf): ``material`` (``"card"``, ``"felt"``, ``"pla"``) sets hinge,
+/// kerf and thickness, then ``hinge_mm``, ``kerf_mm``, ``thickness_mm``, ``margin_mm``,
+/// ``stroke_mm``, ``cut_colour``, ``score_colour``, ``engrave_colour`` and ``labels``
+/// override single values. ``creator`` is written into the files' metadata.
+///
+/// Every value is checked before the deployment runs (``ExportError``, ``SettingsError``);
+/// ``progress`` and ``timeout`` as for ``deploy``; the GIL is released while it runs.
+#[pyfunction]
+#[pyo3(signature = (
+    design, format, *, patch=None, edge_mm=None, width_mm=None, t=None, kerf=None, frames=None,
+    material=None, hinge_mm=None, kerf_mm=None, thickness_mm=None, margin_mm=None,
+    stroke_mm=None, cut_colour=None, score_colour=None, engrave_colour=None, labels=false,
+    creator=None, progress=None, timeout=None
+))]
+#[allow(clippy::too_many_arguments)]
+pub fn export<'py>(
+    py: Python<'py>,
+    design: &Bound<'py, PyAny>,
+    format: &str,
+    patch: Option<&Bound<'py, PyAny>>,
+    edge_mm: Option<f64>,
+    width_mm: Option<f64>,
+    t: Option<&Bound<'py, PyAny>>,
+    kerf: Option<f64>,
+    frames: Option<usize>,
+    material: Option<&str>,
+    hinge_mm: Option<f64>,
+    kerf_mm: Option<f64>,
+    thickness_mm: Option<f64>,
+    margin_mm: Option<f64>,
+    stroke_mm: Option<f64>,
+    cut_colour: Option<String>,
+    score_colour: Option<String>,
+    engrave_colour: Option<String>,
+    labels: bool,
+    creator: Option<String>,
+    progress: Option<Bound<'py, PyAny>>,
+    timeout: Option<f64>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let format: Format = format
+        .parse()
+        .map_err(|e: ExportError| errors::ExportError::new_err(e.to_string()))?;
+    let defaults = PatchRequest::default();
+    let (rows, cols) = match patch {
+        Some(p) if !p.is_none() => patch_size(p)?,
+        _ => (defaults.rows, defaults.cols),
+    };
+    let scale = match (edge_mm, width_mm) {
+        (Some(_), Some(_)) => {
+            return Err(PyTypeError::new_err("give edge_mm or width_mm, not both"))
+        }
+        (_, Some(w)) => Scale::WidthMm(w),
+        (Some(e), None) => Scale::EdgeMm(e),
+        (None, None) => defaults.scale,
+    };
+    let state = match t {
+        Some(t) if !t.is_none() => state_of(t)?,
+        _ => defaults.state,
+    };
+    let request = PatchRequest {
+        rows,
+        cols,
+        scale,
+        state,
+        kerf: kerf.unwrap_or(defaults.kerf),
+        frames: frames.unwrap_or(defaults.frames),
+    };
+    let laser = laser_settings(
+        material,
+        hinge_mm,
+        kerf_mm,
+        thickness_mm,
+        margin_mm,
+        stroke_mm,
+        [cut_colour, score_colour, engrave_colour],
+        labels,
+    )?;
+    let mut options = ExportOptions {
+        laser,
+        ..ExportOptions::default()
+    };
+    if let Some(c) = creator {
+        options.creator = c;
+    }
+    request
+        .validate()
+        .map_err(|e| errors::ExportError::new_err(e.to_string()))?;
+    options
+        .validate(format)
+        .map_err(|e| errors::ExportError::new_err(e.to_string()))?;
+    let design = design_of(design)?;
+    let mut watch = Watch::new(progress.filter(|p| !p.is_none()), timeout)?;
+    let result =
+        py.detach(|| export_design(&design, &request, format, &options, &mut |n| watch.tick(n)));
+    let files = match result {
+        Ok((_, files)) => files,
+        Err(e) => return Err(export_error(e, watch)),
+    };
+    Ok(match files {
+        ExportFiles::One(bytes) => PyBytes::new(py, &bytes).into_any(),
+        ExportFiles::Folder(named) => {
+            let d = PyDict::new(py);
+            for (name, bytes) in named {
+                d.set_item(name, PyBytes::new(py, &bytes))?;
+            }
+            d.into_any()
+        }
+    })
+}
+
+/// The export formats: a list of dicts with ``name`` (what ``export`` takes),
+/// ``description``, ``extension`` (None for a folder of files) and ``media_type``.
+#[pyfunction]
+pub fn export_formats(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
+    Format::ALL
+        .into_iter()
+        .map(|f| {
+            let d = PyDict::new(py);
+            d.set_item("name", f.name())?;
+            d.set_item("description", f.description())?;
+            d.set_item("extension", f.extension())?;
+            d.set_item("media_type", f.media_type())?;
+            Ok(d)
+        })
+        .collect()
+}

@@ -1,0 +1,126 @@
+//! What a long library call does while the GIL is released: it reports progress to an
+//! optional Python callback, checks for Ctrl-C, and keeps a deadline. All three go through the
+//! library's one cancellation hook, the progress callback that returns `false` to stop (the
+//! same hook the web server's live deploy uses for its deadline and for a closed connection).
+
+use crate::errors;
+use pyo3::prelude::*;
+use std::time::{Duration, Instant};
+
+/// Ctrl-C is checked at least this often (and at every step when a callback is given).
+const SIGNAL_INTERVAL: Duration = Duration::from_millis(20);
+
+/// Why a watched call stopped itself.
+enum Stop {
+    /// The callback returned False.
+    Callback,
+    /// The timeout passed.
+    Timeout(Duration),
+    /// Python raised: KeyboardInterrupt from a signal handler, or the callback's exception.
+    Raised(PyErr),
+}
+
+/// The state of one watched call.
+pub struct Watch {
+    callback: Option<Py<PyAny>>,
+    started: Instant,
+    timeout: Option<Duration>,
+    last_check: Instant,
+    stop: Option<Stop>,
+}
+
+impl Watch {
+    /// A watch with an optional callback `callback(states) -> bool | None` and an optional
+    /// timeout in seconds (finite, above zero).
+    pub fn new(callback: Option<Bound<'_, PyAny>>, timeout: Option<f64>) -> PyResult<Watch> {
+        if let Some(cb) = &callback {
+            if !cb.is_callable() {
+                return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                    "progress must be callable (states: int) -> bool | None, got {}",
+                    crate::convert::type_name(cb)
+                )));
+            }
+        }
+        let timeout = match timeout {
+            None => None,
+            Some(s) if s.is_finite() && s > 0.0 && s < 1e9 => Some(Duration::from_secs_f64(s)),
+            Some(s) => {
+                return Err(errors::SettingsError::new_err(format!(
+                    "invalid setting: timeout {s} must be a finite number of seconds above 0"
+                )))
+            }
+        };
+        let now = Instant::now();
+        Ok(Watch {
+            callback: callback.map(Bound::unbind),
+            started: now,
+            timeout,
+            last_check: now,
+            stop: None,
+        })
+    }
+
+    /// Called by the library after every accepted step with the number of states so far;
+    /// `false` stops the call. Attaches to Python only when a callback is given or a signal
+    /// check is due.
+    pub fn tick(&mut self, states: usize) -> bool {
+        if let Some(limit) = self.timeout {
+            if self.started.elapsed() >= limit {
+                self.stop = Some(Stop::Timeout(limit));
+                return false;
+            }
+        }
+        let now = Instant::now();
+        if self.callback.is_none() && now.duration_since(self.last_check) < SIGNAL_INTERVAL {
+            return true;
+        }
+        self.last_check = now;
+        let outcome = Python::attach(|py| -> Result<bool, PyErr> {
+            py.check_signals()?;
+            match &self.callback {
+                None => Ok(true),
+                Some(cb) => {
+                    let answer = cb.call1(py, (states,))?;
+                    // None (no return value) goes on; False (any falsy value) stops.
+                    let answer = answer.bind(py);
+                    Ok(answer.is_none() || answer.is_truthy()?)
+                }
+            }
+        });
+        match outcome {
+            Ok(true) => true,
+            Ok(false) => {
+                self.stop = Some(Stop::Callback);
+                false
+            }
+            Err(e) => {
+                self.stop = Some(Stop::Raised(e));
+                false
+            }
+        }
+    }
+
+    /// The Python result of the watched call: a cancellation becomes the exception that
+    /// caused it (KeyboardInterrupt, the callback's own), or `CancelledError` saying why.
+    pub fn finish<T>(self, result: isogami::Result<T>) -> PyResult<T> {
+        result.map_err(|e| self.error(e))
+    }
+
+    /// The Python exception of a library error raised under this watch.
+    pub fn error(self, e: isogami::Error) -> PyErr {
+        if !e.is_cancelled() {
+            return errors::library(e);
+        }
+        match self.stop {
+            Some(Stop::Raised(err)) => err,
+            Some(Stop::Timeout(limit)) => errors::CancelledError::new_err(format!(
+                "cancelled: did not finish within the timeout of {} s",
+                limit.as_secs_f64()
+            )),
+            Some(Stop::Callback) => {
+                errors::CancelledError::new_err("cancelled: the progress callback returned False")
+            }
+            None => errors::library(e),
+        }
+    }
+}
