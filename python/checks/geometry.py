@@ -79,6 +79,14 @@ def expected_volume(table, settings):
 
 
 def kept_bounds(table):
+    """Bounds of the printed tiles as designed."""
     kept = largest_piece(table)
     polys = tile_polygons(table)
     return unary_union([polys[i] for i in kept]).bounds
+
+
+def shrunk_bounds(table, gap):
+    """Bounds of the printed footprints: where two tiles meet on the outline the gap takes a
+    notch out of it, which can move an extreme vertex inwards."""
+    kept = largest_piece(table)
+    return unary_union(list(shrunk_tiles(table, kept, gap).values())).bounds

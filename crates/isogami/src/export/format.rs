@@ -95,7 +95,9 @@ impl Format {
             Format::TilesJson => "tile table (JSON): polygon, pose, rotation, neighbours",
             Format::KirigamiSim => "the spring simulator kirigami_sim's input files",
             Format::Stl => "3D printing: binary STL (mm) of the sheet with lamella hinges",
-            Format::ThreeMf => "3D printing: 3MF (mm, with metadata) of the sheet with lamella hinges",
+            Format::ThreeMf => {
+                "3D printing: 3MF (mm, with metadata) of the sheet with lamella hinges"
+            }
         }
     }
 

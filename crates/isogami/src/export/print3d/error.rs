@@ -36,7 +36,9 @@ pub enum PrintError {
         nozzle_mm: Real,
     },
     /// The lamella is as thick as the tiles or thicker.
-    #[error("lamella_mm {lamella_mm} must be thinner than the tiles (thickness_mm {thickness_mm})")]
+    #[error(
+        "lamella_mm {lamella_mm} must be thinner than the tiles (thickness_mm {thickness_mm})"
+    )]
     LamellaTooThick {
         /// The lamella thickness asked.
         lamella_mm: Real,

@@ -265,7 +265,7 @@ impl Geometry<'_> {
                 reason: format!("the joint of tiles {ids:?} is not on an edge they share"),
             });
         };
-        let (pa, pb) = (&self.closed[a], &self.closed[b]);
+        let pa = &self.closed[a];
         let (fa, fb) = (sa.far(self), sb.far(self));
         let len = (pa[fa] - pa[va]).norm();
         let s0 = self.start(a, va, fa).max(self.start(b, vb, fb));
@@ -380,8 +380,10 @@ fn convex_hull(points: &[Vec2]) -> Vec<Vec2> {
         let start = hull.len();
         for p in &pts {
             while hull.len() >= start + 2
-                && cross(&(hull[hull.len() - 1] - hull[hull.len() - 2]), &(p - hull[hull.len() - 2]))
-                    <= 0.0
+                && cross(
+                    &(hull[hull.len() - 1] - hull[hull.len() - 2]),
+                    &(p - hull[hull.len() - 2]),
+                ) <= 0.0
             {
                 hull.pop();
             }
@@ -423,7 +425,14 @@ mod tests {
 
     #[test]
     fn distances_between_polygons() {
-        let sq = |x: Real| vec![vec2(x, 0.0), vec2(x + 1.0, 0.0), vec2(x + 1.0, 1.0), vec2(x, 1.0)];
+        let sq = |x: Real| {
+            vec![
+                vec2(x, 0.0),
+                vec2(x + 1.0, 0.0),
+                vec2(x + 1.0, 1.0),
+                vec2(x, 1.0),
+            ]
+        };
         assert!((polygon_distance(&sq(0.0), &sq(1.5)) - 0.5).abs() < 1e-12);
         assert_eq!(polygon_distance(&sq(0.0), &sq(0.5)), 0.0);
     }

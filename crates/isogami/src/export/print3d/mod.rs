@@ -58,12 +58,19 @@ pub fn print_sheet(patch: &Patch, settings: &PrintSettings) -> Result<PrintSheet
     let mesh = print_solid(&layout, settings)?;
     let mut meta: Vec<(String, String)> = vec![
         ("spec".into(), patch.design.clone()),
-        ("patch".into(), format!("{}x{} cells", patch.rows, patch.cols)),
+        (
+            "patch".into(),
+            format!("{}x{} cells", patch.rows, patch.cols),
+        ),
         ("units".into(), "mm".into()),
         ("edge_mm".into(), fmt_mm(patch.edge_mm)),
         (
             "size_mm".into(),
-            format!("{} x {}", fmt_mm(patch.size_mm[0]), fmt_mm(patch.size_mm[1])),
+            format!(
+                "{} x {}",
+                fmt_mm(patch.size_mm[0]),
+                fmt_mm(patch.size_mm[1])
+            ),
         ),
         ("t".into(), format!("{:.4}", patch.t)),
     ];

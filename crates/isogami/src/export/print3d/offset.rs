@@ -22,7 +22,10 @@ pub fn inset_edges(poly: &[Vec2], d: &[Real]) -> Result<Vec<Vec2>, InsetProblem>
     if n < 3 {
         return Err(InsetProblem::TooFewVertices(n));
     }
-    if let Some(v) = poly.iter().position(|v| !(v.x.is_finite() && v.y.is_finite())) {
+    if let Some(v) = poly
+        .iter()
+        .position(|v| !(v.x.is_finite() && v.y.is_finite()))
+    {
         return Err(InsetProblem::NonFiniteVertex(v));
     }
     if signed_area(poly) <= 0.0 {
@@ -51,7 +54,11 @@ pub fn inset_edges(poly: &[Vec2], d: &[Real]) -> Result<Vec<Vec2>, InsetProblem>
         }
         let sin = cross(&n1, &n2);
         if d1 == d2 {
-            out.push((poly[k] + (n1 + n2) * (d1 / (1.0 + dot)), Some(prev), Some(k)));
+            out.push((
+                poly[k] + (n1 + n2) * (d1 / (1.0 + dot)),
+                Some(prev),
+                Some(k),
+            ));
         } else if sin.abs() < STEP_SIN && dot > 0.0 {
             out.push((poly[k] + n1 * d1, Some(prev), None));
             out.push((poly[k] + n2 * d2, None, Some(k)));
@@ -122,7 +129,11 @@ mod tests {
         let out = inset_edges(&l, &[0.5; 6]).unwrap();
         // Each edge moved by 0.5: area = 75 - 0.5·perimeter + corner terms (4 convex, 1
         // reflex mitre squares): 75 - 20 + (5 - 1)·0.25 = 56.
-        assert!((signed_area(&out) - 56.0).abs() < 1e-9, "{}", signed_area(&out));
+        assert!(
+            (signed_area(&out) - 56.0).abs() < 1e-9,
+            "{}",
+            signed_area(&out)
+        );
         // A vertex in the middle of a straight side where the offset changes.
         let mut s = square(10.0);
         s.insert(1, vec2(5.0, 0.0));

@@ -107,23 +107,80 @@ mod tests {
     fn each_bad_value_is_named_in_one_line() {
         let base = PrintSettings::default();
         let cases: [(PrintSettings, &str); 8] = [
-            (PrintSettings { thickness_mm: 0.0, ..base }, "thickness_mm"),
-            (PrintSettings { gap_mm: -0.1, ..base }, "gap_mm"),
-            (PrintSettings { hinge_mm: Real::NAN, ..base }, "hinge_mm"),
-            (PrintSettings { lamella_mm: Real::INFINITY, ..base }, "lamella_mm"),
-            (PrintSettings { nozzle_mm: -1.0, ..base }, "nozzle_mm"),
-            (PrintSettings { hinge_mm: 0.3, ..base }, "nozzle"),
-            (PrintSettings { lamella_mm: 2.0, ..base }, "thinner than"),
-            (PrintSettings { lamella_mm: 3.0, thickness_mm: 1.0, ..base }, "lamella"),
+            (
+                PrintSettings {
+                    thickness_mm: 0.0,
+                    ..base
+                },
+                "thickness_mm",
+            ),
+            (
+                PrintSettings {
+                    gap_mm: -0.1,
+                    ..base
+                },
+                "gap_mm",
+            ),
+            (
+                PrintSettings {
+                    hinge_mm: Real::NAN,
+                    ..base
+                },
+                "hinge_mm",
+            ),
+            (
+                PrintSettings {
+                    lamella_mm: Real::INFINITY,
+                    ..base
+                },
+                "lamella_mm",
+            ),
+            (
+                PrintSettings {
+                    nozzle_mm: -1.0,
+                    ..base
+                },
+                "nozzle_mm",
+            ),
+            (
+                PrintSettings {
+                    hinge_mm: 0.3,
+                    ..base
+                },
+                "nozzle",
+            ),
+            (
+                PrintSettings {
+                    lamella_mm: 2.0,
+                    ..base
+                },
+                "thinner than",
+            ),
+            (
+                PrintSettings {
+                    lamella_mm: 3.0,
+                    thickness_mm: 1.0,
+                    ..base
+                },
+                "lamella",
+            ),
         ];
         for (s, needle) in cases {
             let e = s.validate().unwrap_err().to_string();
             assert!(e.contains(needle) && !e.contains('\n'), "{e}");
         }
         // A hinge exactly one extrusion wide is accepted.
-        let edge = PrintSettings { hinge_mm: 0.4, ..base };
+        let edge = PrintSettings {
+            hinge_mm: 0.4,
+            ..base
+        };
         assert!(edge.validate().is_ok());
-        let e = PrintSettings { hinge_mm: 0.3, ..base }.validate().unwrap_err();
+        let e = PrintSettings {
+            hinge_mm: 0.3,
+            ..base
+        }
+        .validate()
+        .unwrap_err();
         assert!(matches!(e, PrintError::HingeBelowNozzle { .. }));
     }
 }

@@ -16,9 +16,15 @@ use manifold_rust::manifold::Manifold;
 use manifold_rust::types::Error as Status;
 
 /// The united solid of `layout`.
-pub fn print_solid(layout: &PrintLayout, settings: &PrintSettings) -> Result<PrintMesh, PrintError> {
+pub fn print_solid(
+    layout: &PrintLayout,
+    settings: &PrintSettings,
+) -> Result<PrintMesh, PrintError> {
     let tiles = prisms(layout.tiles.iter(), settings.thickness_mm)?;
-    let slabs = prisms(layout.hinges.iter().map(|h| &h.polygon), settings.lamella_mm)?;
+    let slabs = prisms(
+        layout.hinges.iter().map(|h| &h.polygon),
+        settings.lamella_mm,
+    )?;
     let body = Manifold::compose(&tiles).union(&Manifold::compose(&slabs));
     check(&body, "union")?;
     let bodies = body.decompose().len();
@@ -34,7 +40,11 @@ pub fn print_solid(layout: &PrintLayout, settings: &PrintSettings) -> Result<Pri
         .chunks_exact(stride)
         .map(|p| [p[0], p[1], p[2]])
         .collect();
-    let index = |i: u64| u32::try_from(i).ok().filter(|&i| (i as usize) < positions.len());
+    let index = |i: u64| {
+        u32::try_from(i)
+            .ok()
+            .filter(|&i| (i as usize) < positions.len())
+    };
     let mut triangles = Vec::with_capacity(gl.tri_verts.len() / 3);
     for t in gl.tri_verts.chunks_exact(3) {
         match (index(t[0]), index(t[1]), index(t[2])) {

@@ -61,11 +61,17 @@ mod tests {
         assert_eq!(b.len(), 80 + 4 + 4 * 50);
         assert!(b.starts_with(b"isogami binary STL, units mm: rotating"));
         assert!(!b.starts_with(b"solid"));
-        assert!(std::str::from_utf8(&b[..80]).is_ok(), "header cut inside a character");
+        assert!(
+            std::str::from_utf8(&b[..80]).is_ok(),
+            "header cut inside a character"
+        );
         assert_eq!(u32::from_le_bytes(b[80..84].try_into().unwrap()), 4);
         // Triangle 0 = corners 0, 2, 1: normal -z, then (0,0,0), (0,1,0), (1,0,0).
         let t0 = 84;
-        assert_eq!([f32_at(&b, t0), f32_at(&b, t0 + 4), f32_at(&b, t0 + 8)], [0.0, 0.0, -1.0]);
+        assert_eq!(
+            [f32_at(&b, t0), f32_at(&b, t0 + 4), f32_at(&b, t0 + 8)],
+            [0.0, 0.0, -1.0]
+        );
         assert_eq!(f32_at(&b, t0 + 12 + 12 + 4), 1.0, "second corner's y");
         assert_eq!(f32_at(&b, t0 + 12 + 24), 1.0, "third corner's x");
         assert_eq!(&b[t0 + 48..t0 + 50], &[0, 0]);

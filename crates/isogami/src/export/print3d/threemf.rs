@@ -72,7 +72,11 @@ pub fn model_xml(mesh: &PrintMesh, meta: &ModelMeta) -> String {
         ("Application", &meta.application),
         ("Description", &meta.description),
     ] {
-        let _ = writeln!(s, "  <metadata name=\"{name}\">{}</metadata>", escape(value));
+        let _ = writeln!(
+            s,
+            "  <metadata name=\"{name}\">{}</metadata>",
+            escape(value)
+        );
     }
     s.push_str("  <resources>\n");
     let _ = writeln!(
@@ -146,7 +150,12 @@ mod tests {
 
     fn tetra() -> PrintMesh {
         PrintMesh {
-            positions: vec![[0.0; 3], [1.5, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -0.25]],
+            positions: vec![
+                [0.0; 3],
+                [1.5, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, -0.25],
+            ],
             triangles: vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
         }
     }
@@ -160,7 +169,10 @@ mod tests {
             assert!(names.iter().any(|n| n == part), "{names:?}");
         }
         let mut model = String::new();
-        zip.by_name(MODEL_PATH).unwrap().read_to_string(&mut model).unwrap();
+        zip.by_name(MODEL_PATH)
+            .unwrap()
+            .read_to_string(&mut model)
+            .unwrap();
         assert!(model.contains("unit=\"millimeter\""));
         assert!(model.contains("<metadata name=\"Title\">isogami sheet &lt;a&amp;b&gt;</metadata>"));
         assert!(model.contains("<metadata name=\"Description\">spec: IH1:0.5:1x1:a; gap_mm: 0.4"));
@@ -170,7 +182,10 @@ mod tests {
         assert!(model.contains("z=\"-0.25\""));
         assert!(model.contains("<triangle v1=\"1\" v2=\"2\" v3=\"3\"/>"));
         let mut rels = String::new();
-        zip.by_name("_rels/.rels").unwrap().read_to_string(&mut rels).unwrap();
+        zip.by_name("_rels/.rels")
+            .unwrap()
+            .read_to_string(&mut rels)
+            .unwrap();
         assert!(rels.contains("Target=\"/3D/3dmodel.model\""));
         // Same input, same bytes (fixed timestamps).
         assert_eq!(threemf_bytes(&tetra(), &meta()).unwrap(), bytes);
