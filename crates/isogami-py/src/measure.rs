@@ -44,10 +44,7 @@ pub fn deformation_gradient<'py>(
 /// The polar decomposition F = RU: returns ``(R, U)``, R a rotation and U symmetric positive
 /// definite. Raises ``MeasureError`` when det F <= 0.
 #[pyfunction]
-pub fn polar<'py>(
-    py: Python<'py>,
-    f: [[f64; 2]; 2],
-) -> PyResult<(Matrix<'py>, Matrix<'py>)> {
+pub fn polar<'py>(py: Python<'py>, f: [[f64; 2]; 2]) -> PyResult<(Matrix<'py>, Matrix<'py>)> {
     let (r, u) = measure::polar(&matrix("F", f)?).map_err(|e| errors::library(e.into()))?;
     Ok((matrix_array(py, rows(&r))?, matrix_array(py, rows(&u))?))
 }

@@ -529,3 +529,97 @@ async fn the_static_site_lists_the_same_formats() {
     let served = get(&app(), "/api/export/formats").await.ok();
     assert_eq!(site["export"], served);
 }
+
+#[tokio::test]
+async fn print_formats_take_the_print_group_and_refuse_a_hinge_below_the_nozzle() {
+    use isogami::export::print3d::PrintSettings;
+    let app = app();
+    let v = get(&app, "/api/export/formats").await.ok();
+    let group = v["settings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|g| g["name"] == "print")
+        .expect("a print group")
+        .clone();
+    let d = PrintSettings::default();
+    let default_of = |name: &str| {
+        group["fields"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|f| f["name"] == name)
+            .unwrap_or_else(|| panic!("no field {name}"))["default"]
+            .clone()
+    };
+    assert_eq!(default_of("hinge_mm"), d.hinge_mm);
+    assert_eq!(default_of("lamella_mm"), d.lamella_mm);
+    assert_eq!(default_of("nozzle_mm"), d.nozzle_mm);
+    for f in Format::ALL {
+        let entry = v["formats"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|e| e["name"] == f.name())
+            .unwrap();
+        let print = entry["settings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|s| s == "print");
+        assert_eq!(print, matches!(f, Format::Stl | Format::ThreeMf), "{f}");
+    }
+
+    // The query's print values reach the library: the STL equals the library's with them.
+    let request = PatchRequest {
+        rows: 2,
+        cols: 2,
+        ..PatchRequest::default()
+    };
+    let options = ExportOptions {
+        print: PrintSettings {
+            thickness_mm: 3.0,
+            hinge_mm: 1.2,
+            lamella_mm: 0.6,
+            gap_mm: 0.5,
+            nozzle_mm: 0.4,
+        },
+        ..ExportOptions::default()
+    };
+    let uri = "/api/export?design=rotating-squares&format=stl&patch=2x2&thickness_mm=3\
+               &hinge_mm=1.2&lamella_mm=0.6&gap_mm=0.5&nozzle_mm=0.4";
+    let (reply, _) = download(&app, uri).await;
+    assert_eq!(reply.status, StatusCode::OK);
+    let ExportFiles::One(expected) = library("rotating-squares", &request, Format::Stl, &options)
+    else {
+        panic!("STL is one file")
+    };
+    assert_eq!(reply.body, expected);
+    let (default_reply, _) = download(
+        &app,
+        "/api/export?design=rotating-squares&format=stl&patch=2x2",
+    )
+    .await;
+    assert_ne!(
+        default_reply.body, reply.body,
+        "the print values changed nothing"
+    );
+
+    // A hinge below the nozzle: the library's message, as a 400.
+    let bad = ExportOptions {
+        print: PrintSettings {
+            hinge_mm: 0.3,
+            ..PrintSettings::default()
+        },
+        ..ExportOptions::default()
+    };
+    let message = bad.validate(Format::Stl).unwrap_err().to_string();
+    let reply = get(
+        &app,
+        "/api/export?design=rotating-squares&format=3mf&hinge_mm=0.3",
+    )
+    .await;
+    assert_error(&reply, StatusCode::BAD_REQUEST, "hinge 0.3");
+    assert_eq!(reply.json()["error"], message.as_str());
+    assert!(message.contains("nozzle"), "{message}");
+}

@@ -3,13 +3,14 @@
 //! serves so the browser builds its form from it.
 //!
 //! A format uses a group when the group's `uses` says so; the browser shows a group's fields
-//! only for formats that use it. Adding a group (e.g. 3D-print settings) is one more entry
+//! only for formats that use it. Adding a group is one more entry
 //! in [`GROUPS`]: a description and a function that applies its query values.
 
 use crate::error::{ApiError, ApiResult};
 use crate::filters::truncate;
 use isogami::export::laser::{LaserSettings, Material};
-use isogami::export::{ExportOptions, Format};
+use isogami::export::print3d::PrintSettings;
+use isogami::export::{ExportOptions, Format, SettingsGroup};
 use serde::Serialize;
 use serde_json::{json, Value};
 
@@ -28,13 +29,26 @@ pub struct Group {
 }
 
 /// Every settings group, in form order.
-pub const GROUPS: &[Group] = &[Group {
-    name: "laser",
-    label: "Laser cutting",
-    uses: Format::uses_laser_settings,
-    fields: laser_fields,
-    apply: apply_laser,
-}];
+pub const GROUPS: &[Group] = &[
+    Group {
+        name: "laser",
+        label: "Laser cutting",
+        uses: Format::uses_laser_settings,
+        fields: laser_fields,
+        apply: apply_laser,
+    },
+    Group {
+        name: "print",
+        label: "3D printing",
+        uses: uses_print_settings,
+        fields: print_fields,
+        apply: apply_print,
+    },
+];
+
+fn uses_print_settings(format: Format) -> bool {
+    format.settings_group() == SettingsGroup::Print
+}
 
 /// The groups `format` uses, by name.
 pub fn groups_of(format: Format) -> Vec<&'static str> {
@@ -45,12 +59,15 @@ pub fn groups_of(format: Format) -> Vec<&'static str> {
         .collect()
 }
 
-/// Every query key some group reads.
+/// Every query key some group reads (a key shared by groups once).
 pub fn group_keys() -> Vec<&'static str> {
-    GROUPS
+    let mut keys: Vec<&'static str> = GROUPS
         .iter()
         .flat_map(|g| (g.fields)().into_iter().map(|f| f.name))
-        .collect()
+        .collect();
+    keys.sort_unstable();
+    keys.dedup();
+    keys
 }
 
 /// One field of a group's form, named as its query key and CLI flag (`hinge_mm` is
@@ -198,6 +215,62 @@ fn laser_fields() -> Vec<Field> {
             help: "engrave each tile's number at its centre",
         },
     ]
+}
+
+fn print_fields() -> Vec<Field> {
+    let d = PrintSettings::default();
+    vec![
+        number(
+            "thickness_mm",
+            "tile thickness",
+            d.thickness_mm,
+            "height of the printed tiles",
+        ),
+        number(
+            "hinge_mm",
+            "hinge width",
+            d.hinge_mm,
+            "width of the lamella hinge at each joint, along the edge (at least the nozzle width)",
+        ),
+        number(
+            "lamella_mm",
+            "lamella thickness",
+            d.lamella_mm,
+            "thickness of the hinges at the bottom face (thinner than the tiles)",
+        ),
+        number(
+            "gap_mm",
+            "gap",
+            d.gap_mm,
+            "clearance between neighbouring tiles; the outline keeps its size",
+        ),
+        number(
+            "nozzle_mm",
+            "nozzle width",
+            d.nozzle_mm,
+            "the printer's extrusion width: a narrower hinge is refused",
+        ),
+    ]
+}
+
+/// The 3D-print settings of a query: the defaults, then every value given; as `isogami
+/// export`'s print flags (`hinge_mm` and `thickness_mm` are shared with the laser group,
+/// as the CLI's flags are).
+fn apply_print(options: &mut ExportOptions, values: &Values<'_>) -> ApiResult<()> {
+    let mut s = PrintSettings::default();
+    for (key, slot) in [
+        ("thickness_mm", &mut s.thickness_mm),
+        ("hinge_mm", &mut s.hinge_mm),
+        ("lamella_mm", &mut s.lamella_mm),
+        ("gap_mm", &mut s.gap_mm),
+        ("nozzle_mm", &mut s.nozzle_mm),
+    ] {
+        if let Some(v) = values.number(key)? {
+            *slot = v;
+        }
+    }
+    options.print = s;
+    Ok(())
 }
 
 /// The query values of one request, each key at most once.
