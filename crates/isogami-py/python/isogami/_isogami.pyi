@@ -1,6 +1,7 @@
 """Type stubs of isogami's native module (isogami._isogami), re-exported by ``isogami``."""
 
 from os import PathLike
+from pathlib import Path
 from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -530,7 +531,7 @@ class Database:
 
     def __init__(self, path: Union[str, PathLike[str]], check: Literal["quick", "full"] = "quick") -> None: ...
     @property
-    def path(self) -> str: ...
+    def path(self) -> Path: ...
     def designs(self, query: Optional[Query] = None, **filters: Any) -> List[Record]: ...
     def dataframe(self, query: Optional[Query] = None, **filters: Any) -> Any:
         """A pandas DataFrame of the matching designs."""
