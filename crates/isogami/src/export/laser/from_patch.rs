@@ -50,7 +50,7 @@ pub fn laser_sheet(patch: &Patch, settings: LaserSettings) -> Result<LaserSheet,
 type Piece = (Vec<Vec<[Real; 2]>>, Vec<JointAt>, usize);
 
 /// The tiles and joints of the largest connected piece of the tile/joint graph (see
-/// [`crate::export::piece`]), tiles renumbered in their order.
+/// `export::piece`), tiles renumbered in their order.
 fn largest_piece(tiles: &[Vec<[Real; 2]>], joints: &[JointAt]) -> Result<Piece, LaserError> {
     let n = tiles.len();
     for (j, joint) in joints.iter().enumerate() {

@@ -2,7 +2,7 @@
 //! the patch's millimetres. [`super::solid`] extrudes and unites them.
 //!
 //! * **Tiles.** Each tile of the largest piece the joints hold together (see
-//!   [`crate::export::piece`]) at the asked state, with every edge it shares with a
+//!   `export::piece`) at the asked state, with every edge it shares with a
 //!   neighbour moved inward by `gap/2` (mitred corners), so neighbours are `gap` apart; edges
 //!   on the patch outline stay, so the sheet keeps the asked size.
 //! * **Hinges.** A joint of tiles A and B at vertex V lies on the edge e they share. Its

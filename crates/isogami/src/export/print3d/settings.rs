@@ -48,7 +48,7 @@ impl Default for PrintSettings {
 impl PrintSettings {
     /// Refuses sizes that are not finite or not above zero, a hinge narrower than the
     /// nozzle and a lamella not thinner than the tiles. (A hinge too wide for its edge and a
-    /// gap that swallows a tile depend on the patch: [`super::print_solid`] refuses them.)
+    /// gap that swallows a tile depend on the patch: [`super::print_sheet`] refuses them.)
     pub fn validate(&self) -> Result<(), PrintError> {
         let sizes = [
             ("thickness_mm", self.thickness_mm),
