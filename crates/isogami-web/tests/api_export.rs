@@ -174,7 +174,7 @@ async fn every_format_downloads_the_librarys_bytes_with_its_type_and_name() {
                 assert_eq!(zip.len(), files.len());
                 for (k, (name, bytes)) in files.iter().enumerate() {
                     let mut entry = zip.by_index(k).unwrap();
-                    assert_eq!(entry.name().unwrap(), *name);
+                    assert_eq!(entry.name(), *name);
                     let mut read = Vec::new();
                     entry.read_to_end(&mut read).unwrap();
                     assert!(read == *bytes, "{format}/{name} differs");
@@ -193,7 +193,7 @@ async fn the_kirigami_sim_zip_holds_its_four_files() {
     .await;
     assert_eq!(reply.status, StatusCode::OK, "{}", reply.text());
     let mut zip = zip::ZipArchive::new(std::io::Cursor::new(&reply.body)).unwrap();
-    let mut names: Vec<String> = zip.file_names().map(|n| n.unwrap().into_owned()).collect();
+    let mut names: Vec<String> = zip.file_names().map(String::from).collect();
     names.sort();
     assert_eq!(
         names,
