@@ -78,6 +78,9 @@ pub enum StoreError {
     /// A user design whose spec is already in the database.
     #[error("design {0} is already in the database")]
     DuplicateSpec(String),
+    /// An exploration request with a setting out of range.
+    #[error(transparent)]
+    InvalidSettings(#[from] isogami::error::SettingsError),
     /// A query with a bad bound, limit or parameter slot.
     #[error("invalid query: {0}")]
     InvalidQuery(#[from] crate::query::QueryError),
