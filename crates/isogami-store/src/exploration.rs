@@ -2,7 +2,8 @@
 //! `explore`, and any binding).
 //!
 //! [`explore_into`] plans the work units ([`ExplorePlan`]), opens the database for writing
-//! (creating it if new; its settings must match), skips the units it already holds, runs the
+//! (creating it if new; its settings must match; a shard's database records which shard it
+//! holds, see [`ShardRecord`](crate::ShardRecord)), skips the units it already holds, runs the
 //! rest on a pool of `jobs` threads and commits each finished unit from the calling thread in
 //! its own transaction (one writer). A unit that fails is reported, not committed, so a rerun
 //! retries it. A killed run keeps every unit it had committed.
@@ -10,6 +11,7 @@
 use crate::error::{StoreError, StoreResult};
 use crate::open::{Check, RunInfo, StoreWriter};
 use crate::records::UnitRecords;
+use crate::shard::record_plan;
 use crate::stats::DbStats;
 use isogami::catalog::{run_unit, CatalogSettings};
 use isogami::cell::CellDims;
@@ -144,6 +146,7 @@ pub fn explore_into(
         settings: &fingerprint,
     };
     let mut store = StoreWriter::open(db, Some(run), Check::Full)?;
+    record_plan(&store, &plan)?;
     let done = store.done_units()?;
     let todo: Vec<WorkUnit> = units
         .iter()

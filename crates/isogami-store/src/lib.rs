@@ -46,6 +46,7 @@ mod read;
 mod records;
 mod rows;
 mod schema;
+mod shard;
 mod stats;
 mod verify;
 mod write;
@@ -64,4 +65,5 @@ pub use records::{
     DesignRecord, DesignSummary, Origin, StageCount, StoredDesign, UnitRecords, WorkUnitRecord,
 };
 pub use schema::SCHEMA_VERSION;
+pub use shard::{check_shard_set, ShardRecord, ShardSetError, ShardStatus};
 pub use stats::{DbStats, FamilyStats};
