@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Shared by the isogami Slurm scripts (sourced, not run): logging, the run's final status, and
 # submitting its jobs. Every job gets the run file OUT/run.env (written by `submit`: N, OUT,
 # DB, ISOGAMI, RETRIES, SCRIPTS, RUN_ENV, EXPLORE_ARGS, SHARD_SBATCH, MERGE_SBATCH) as its
