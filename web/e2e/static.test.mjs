@@ -1,6 +1,7 @@
 // The static site written by `isogami site`, served by a plain file server under a sub-path:
 // it shows the same catalogue as the server (count, filtered count), opens a design from a
-// card with live design shown as unavailable; and the JS query engine of the static site
+// card with live design shown as unavailable and the export panel's command line instead of
+// downloads; and the JS query engine of the static site
 // answers like the server's API on the same database (totals, page order, facet counts).
 
 import { after, before, test } from 'node:test';
@@ -65,6 +66,14 @@ test('the static site shows the same catalogue and opens a design', async () => 
   assert.ok(await byTestId(page, 'param-v0').count() === 0 || (await byTestId(page, 'param-v0').isDisabled()));
   assert.ok(await byTestId(page, 'kerf').isDisabled());
   assert.ok(await byTestId(page, 'download-gif').isHidden());
+  // The export panel offers the command line instead of downloads.
+  const command = byTestId(page, 'export-command');
+  await page.waitForFunction(() => /isogami export/.test(document.querySelector('[data-testid="export-command"]')?.textContent ?? ''));
+  assert.ok((await command.textContent()).startsWith(`isogami export --design '${spec}' --format svg --patch 4x4 `));
+  await byTestId(page, 'export-format').selectOption('kirigami-sim');
+  assert.match(await command.textContent(), / --format kirigami-sim .* --out \S+-4x4\.kirigami-sim$/);
+  assert.match(await byTestId(page, 'export-panel').textContent(), /Downloads need `isogami serve`/);
+  assert.ok(await byTestId(page, 'export-download').isDisabled());
   assert.ok((await screenshot(browser, page, 'static-design')) > 50);
   assert.deepEqual(problems(page), []);
 });

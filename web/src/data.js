@@ -32,6 +32,20 @@ async function asJson(res) {
   throw new ApiError(`${res.status} ${res.statusText} for ${res.url}`, 'http', '', res.status);
 }
 
+/** A file download: the body as a Blob and the file name of its Content-Disposition. Errors
+ * come back as ApiError with the server's message (no file). */
+async function getFile(url, signal) {
+  let res;
+  try {
+    res = await fetch(url, { signal });
+  } catch (e) {
+    if (e.name === 'AbortError') throw e;
+    throw new ApiError(`cannot reach ${url}: ${e.message}`, 'network', 'is `isogami serve` still running?');
+  }
+  if (!res.ok) await asJson(res);
+  return { blob: await res.blob(), disposition: res.headers.get('content-disposition') || '' };
+}
+
 async function getJson(url, options) {
   let res;
   try {
@@ -105,6 +119,16 @@ class ServerData {
   gifUrl(spec) {
     return `./api/gif?spec=${encodeURIComponent(spec)}`;
   }
+
+  /** Export formats, their settings fields, defaults and limits. */
+  exportCatalog() {
+    return (this._export ??= getJson('./api/export/formats'));
+  }
+
+  /** An export (URLSearchParams of GET /api/export) as {blob, disposition}. */
+  exportFile(params, signal) {
+    return getFile(`./api/export?${params}`, signal);
+  }
 }
 
 /** STATIC mode: files written by `isogami site`, queries answered by query.js. */
@@ -173,6 +197,16 @@ class StaticData {
 
   gifUrl() {
     return null;
+  }
+
+  /** The export formats the site was written with (older sites have none). */
+  async exportCatalog() {
+    if (!this.site.export) throw new ApiError('this static site lists no export formats', 'static');
+    return this.site.export;
+  }
+
+  async exportFile() {
+    throw new ApiError('downloads need `isogami serve`', 'static', 'run the command shown, or `isogami serve --db FILE` and download from there');
   }
 }
 

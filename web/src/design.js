@@ -16,6 +16,7 @@ import { createEditor } from './editor.js';
 import { designSearch, parseDesignState } from './url.js';
 import { download, fileStem, frameSvg, trajectoryCsv } from './export.js';
 import { facetLabel } from './schema.js';
+import { createExportPanel } from './export-panel.js';
 
 const $ = (id) => document.getElementById(id);
 const PLAY_SECONDS = 4; // t from 0 to 1 at speed 1
@@ -28,6 +29,7 @@ let bounds = null;
 let editor = null;
 let playing = false;
 let inflight = null;
+let exportPanel = null;
 
 async function main() {
   data = await openData();
@@ -50,6 +52,11 @@ async function main() {
   } catch (e) {
     families = [];
   }
+  exportPanel = createExportPanel($('export-panel'), {
+    data,
+    current: () => (view ? { spec: view.spec, kerf: view.report.kerf, t: state.t } : null),
+    initial: { rows: state.rows, cols: state.cols },
+  });
   editor = createEditor($('editor'), {
     live: data.live,
     reason: 'Live design needs `isogami serve`: this is a static copy of the catalogue. Run `isogami serve --db FILE` to tune designs.',
@@ -172,6 +179,7 @@ function renderFrame() {
   $('t').value = String(state.t);
   $('t-value').textContent = state.t.toFixed(3);
   renderFrameMeasures(frame);
+  exportPanel?.update();
   saveUrl();
 }
 

@@ -35,7 +35,8 @@ enum Command {
     Linkages(commands::linkages::Args),
     /// Explore the design space into the design database (resumable, shardable).
     Explore(commands::explore::Args),
-    /// Export a patch of a design in mm: laser SVG/DXF, FOLD, OBJ, tile tables, kirigami_sim.
+    /// Export a patch of a design in mm: laser SVG/DXF, 3D-print STL/3MF, FOLD, OBJ, tile
+    /// tables, kirigami_sim.
     Export(commands::export::Args),
     /// Serve the material browser over the design database (runs the quick exploration
     /// first when the database does not exist).

@@ -243,3 +243,150 @@ fn database_checks() {
     }
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// Removes one committed work unit with its designs, as if the run had been killed before it.
+fn forget_unit(db: &Path, unit: &str) {
+    let c = rusqlite::Connection::open(db).unwrap();
+    c.execute_batch("BEGIN").unwrap();
+    c.execute(
+        "DELETE FROM design_data WHERE design IN (SELECT id FROM designs WHERE work_unit = ?1)",
+        [unit],
+    )
+    .unwrap();
+    for sql in [
+        "DELETE FROM designs WHERE work_unit = ?1",
+        "DELETE FROM stage_counts WHERE work_unit = ?1",
+        "DELETE FROM work_units WHERE id = ?1",
+    ] {
+        assert!(
+            c.execute(sql, [unit]).unwrap() > 0 || sql.contains("designs"),
+            "{sql}"
+        );
+    }
+    c.execute_batch("COMMIT").unwrap();
+}
+
+fn run(args: &[&str]) -> (Option<i32>, String, String) {
+    let out = bin().args(args).output().unwrap();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn merge_proves_the_shards_complete_and_reruns_add_nothing() {
+    const FEW: &str = "IH83,IH84,IH90,IH91";
+    let d = dir("complete");
+    let p = |name: &str| d.join(name).to_str().unwrap().to_string();
+    let whole = d.join("whole.db");
+    explore_families(FEW, &whole, &[]);
+    for i in 0..3 {
+        explore_families(
+            FEW,
+            &d.join(format!("s{i}.db")),
+            &["--shard", &format!("{i}/3"), "--jobs", "1"],
+        );
+    }
+    let (s0, s1, s2, merged) = (p("s0.db"), p("s1.db"), p("s2.db"), p("merged.db"));
+
+    // Each shard can be checked on its own.
+    let (code, out, _) = run(&["db", "check-shard", "--db", &s1, "--shard", "1/3"]);
+    assert_eq!(code, Some(0));
+    assert!(
+        out.contains("shard 1/3 complete (1 of 1 work units)"),
+        "{out}"
+    );
+    let (_, out, _) = run(&["db", "stats", "--db", &s1]);
+    assert!(
+        out.contains("shard 1/3 (1 of a 4-unit run) complete: 1 of 1 work units"),
+        "{out}"
+    );
+    let (code, _, err) = run(&["db", "check-shard", "--db", &s1, "--shard", "2/3"]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("holds shard 1/3, not 2/3"), "{err}");
+    let (code, _, err) = run(&["db", "check-shard", "--db", &p("nope.db"), "--shard", "0/3"]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("no such database"), "{err}");
+    let (code, _, err) = run(&[
+        "db",
+        "check-shard",
+        "--db",
+        &whole.to_string_lossy(),
+        "--shard",
+        "0/3",
+    ]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("not a shard database"), "{err}");
+
+    // A missing shard: refused in one line naming it, the target not even created.
+    let (code, _, err) = run(&["merge", "--into", &merged, &s0, &s2]);
+    assert_eq!(code, Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("shard 1/3 is missing"), "{err}");
+    assert!(!Path::new(&merged).exists());
+
+    // An incomplete shard (a unit lost): refused naming the file and the unit.
+    let partial = p("s1-partial.db");
+    std::fs::copy(&s1, &partial).unwrap();
+    forget_unit(Path::new(&partial), "IH84/1x1");
+    let (code, _, err) = run(&["merge", "--into", &merged, &s0, &partial, &s2]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        err.contains(&format!(
+            "{partial}: shard 1/3 is incomplete (0 of 1 work units; IH84/1x1 missing)"
+        )),
+        "{err}"
+    );
+    assert!(!Path::new(&merged).exists());
+    let (code, _, err) = run(&["db", "check-shard", "--db", &partial, "--shard", "1/3"]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("shard 1/3 is incomplete"), "{err}");
+    // Told otherwise, the merge takes what is there.
+    let (code, _, err) = run(&[
+        "merge",
+        "--allow-incomplete",
+        "--into",
+        &p("part.db"),
+        &s0,
+        &s2,
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+
+    // Rerunning the shard runs only the lost unit; the merge then equals one run.
+    let out = explore_families(FEW, Path::new(&partial), &["--shard", "1/3"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("1 work units run, 0 already in"), "{text}");
+    let (code, _, err) = run(&["merge", "--into", &merged, &s0, &partial, &s2]);
+    assert_eq!(code, Some(0), "{err}");
+    assert_eq!(content(Path::new(&merged)), content(&whole));
+
+    // Rerunning a complete shard, or merging the same shards again, adds no rows.
+    let before = content(Path::new(&s1));
+    let out = explore_families(FEW, Path::new(&s1), &["--shard", "1/3"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("0 work units run, 1 already in"), "{text}");
+    assert_eq!(content(Path::new(&s1)), before);
+    let (code, out, err) = run(&["merge", "--into", &merged, &s0, &s1, &s2]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(
+        out.contains("0 work units added (1 already present)"),
+        "{out}"
+    );
+    assert_eq!(content(Path::new(&merged)), content(&whole));
+    // A shard run into a file of another shard is refused.
+    let (code, _, err) = run(&[
+        "explore",
+        "--quick",
+        "--families",
+        FEW,
+        "--shard",
+        "2/3",
+        "--db",
+        &s1,
+    ]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("holds shard 1/3"), "{err}");
+    std::fs::remove_dir_all(&d).unwrap();
+}

@@ -57,6 +57,17 @@ pub enum StoreError {
     /// The file was made with other settings than the run that opens it.
     #[error("database was made with other settings ({0}); use a new file or the same settings")]
     SettingsMismatch(String),
+    /// An exploration into a database planned for another shard or run.
+    #[error(
+        "the database holds {found}, not {wanted}: give explore the same --shard, families and \
+         cells as the run that made it, or use a new file"
+    )]
+    OtherShard {
+        /// What the database holds, e.g. `shard 1/4 (5 of a 20-unit run)`.
+        found: String,
+        /// What the run plans.
+        wanted: String,
+    },
     /// A stored report or linkage analysis is intact but does not match this build's types.
     #[error("stored {what} of {spec} cannot be read by this build: {message}")]
     StoredJson {
@@ -78,6 +89,9 @@ pub enum StoreError {
     /// A user design whose spec is already in the database.
     #[error("design {0} is already in the database")]
     DuplicateSpec(String),
+    /// An exploration request with a setting out of range.
+    #[error(transparent)]
+    InvalidSettings(#[from] isogami::error::SettingsError),
     /// A query with a bad bound, limit or parameter slot.
     #[error("invalid query: {0}")]
     InvalidQuery(#[from] crate::query::QueryError),

@@ -28,11 +28,14 @@
 //!
 //! Plain records in and out; this crate does not know how designs are found or deployed. It
 //! builds its records from the library's plain data types (`CatalogEntry`,
-//! `DeploymentReport`, `LinkageAnalysis`).
+//! `DeploymentReport`, `LinkageAnalysis`). It also holds the exploration driver
+//! ([`explore_into`]): the library plans and runs work units, this crate schedules them on a
+//! thread pool and commits each one, so every front end runs an exploration the same way.
 
 mod checksum;
 mod dictionary;
 mod error;
+mod exploration;
 mod file;
 mod from_catalog;
 mod lock;
@@ -43,12 +46,16 @@ mod read;
 mod records;
 mod rows;
 mod schema;
+mod shard;
 mod stats;
 mod verify;
 mod write;
 
 pub use dictionary::{FieldDoc, DICTIONARY};
 pub use error::{StoreError, StoreResult};
+pub use exploration::{
+    explore_into, ExploreEvent, ExploreOutcome, ExploreRequest, UnitFailure, MAX_JOBS,
+};
 pub use file::sidecar_paths;
 pub use from_catalog::POISSON_OPEN_FRACTION;
 pub use merge::MergeReport;
@@ -58,4 +65,5 @@ pub use records::{
     DesignRecord, DesignSummary, Origin, StageCount, StoredDesign, UnitRecords, WorkUnitRecord,
 };
 pub use schema::SCHEMA_VERSION;
+pub use shard::{check_shard_set, ShardRecord, ShardSetError, ShardStatus};
 pub use stats::{DbStats, FamilyStats};

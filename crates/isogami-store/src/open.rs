@@ -249,7 +249,12 @@ impl Store {
     fn check_file(&self, check: Check) -> StoreResult<()> {
         integrity(&self.conn, check)?;
         identify(&self.conn)?;
-        for key in ["schema_version", "settings", "tool_version"] {
+        for key in [
+            "schema_version",
+            "settings",
+            "tool_version",
+            crate::shard::SHARD_KEY,
+        ] {
             meta(&self.conn, key)?;
         }
         if check == Check::Full {

@@ -1,7 +1,10 @@
 //! The schema, version 2: tables, indexes and the marks that identify an isogami file.
 //!
 //! - `meta`: schema version, tool version and the settings of the run, each row with a
-//!   checksum.
+//!   checksum; a shard database made by `explore --shard` also has the key `shard` (JSON: its
+//!   index, the shard count, the whole run's unit count and digest, its own units). Databases
+//!   without that key (whole runs, or shards made before it existed) read as before, so it
+//!   needed no new schema version.
 //! - `work_units` and `stage_counts`: one row per finished work unit (checksum over the unit
 //!   and its stage rows) and its per-stage counts.
 //! - `designs`: one row per design with every column a catalogue filters, sorts, facets or

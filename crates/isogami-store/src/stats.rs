@@ -3,6 +3,7 @@
 use crate::error::StoreResult;
 use crate::open::Store;
 use crate::records::StageCount;
+use crate::shard::ShardStatus;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -40,6 +41,9 @@ pub struct DbStats {
     pub stages: Vec<StageCount>,
     /// Per family.
     pub families: BTreeMap<String, FamilyStats>,
+    /// For a database made by `explore --shard`: its shard and how much of it is done.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shard: Option<ShardStatus>,
 }
 
 /// Adds a unit's stages into running totals, keeping first-seen order.
@@ -110,6 +114,7 @@ impl Store {
             by_linkage,
             stages,
             families,
+            shard: self.shard_status()?,
         })
     }
 }

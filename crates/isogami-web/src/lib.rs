@@ -9,6 +9,7 @@
 //! |---|---|
 //! | [`assets`] | the built front end, embedded at compile time |
 //! | [`error`] | API errors: status, kind, one-line message, hint |
+//! | [`export`] | fabrication and interchange exports as downloads |
 //! | [`filters`] | query strings → store queries |
 //! | [`live`] | deployments of posted designs, bounded in time and cancelled with the client |
 //! | [`view`] | the design view: report, geometry, linkages, notices |
@@ -19,6 +20,7 @@
 
 pub mod assets;
 pub mod error;
+pub mod export;
 pub mod filters;
 pub mod live;
 pub mod routes;

@@ -1,5 +1,6 @@
 //! Deployments of posted designs: one library call (`isogami::api::deploy`), bounded in
 //! time and cancelled when the client goes away, its failures explained in the user's terms.
+//! [`run_bounded`] is that bound for any job (exports use it too).
 
 use crate::error::{ApiError, ApiResult};
 use axum::http::StatusCode;
@@ -73,6 +74,52 @@ impl Drop for CancelOnDrop {
     }
 }
 
+/// What a bounded job asks at each step: go on while the client is there and time is left.
+#[derive(Debug, Clone)]
+pub struct Deadline {
+    cancelled: Arc<AtomicBool>,
+    started: Instant,
+    timeout: Duration,
+}
+
+impl Deadline {
+    /// Whether the job may go on (the library's progress callbacks return this).
+    pub fn keep_going(&self) -> bool {
+        !self.cancelled.load(Ordering::Relaxed) && self.started.elapsed() < self.timeout
+    }
+}
+
+/// Runs `job` on the blocking pool with a [`Deadline`] of `timeout` that also ends when the
+/// caller's future is dropped (the client went away). The job stops itself by reading it.
+pub async fn run_bounded<T, F>(timeout: Duration, job: F) -> ApiResult<T>
+where
+    T: Send + 'static,
+    F: FnOnce(&Deadline) -> T + Send + 'static,
+{
+    let deadline = Deadline {
+        cancelled: Arc::new(AtomicBool::new(false)),
+        started: Instant::now(),
+        timeout,
+    };
+    let _guard = CancelOnDrop(deadline.cancelled.clone());
+    tokio::task::spawn_blocking(move || job(&deadline))
+        .await
+        .map_err(|e| ApiError::internal(format!("simulation task failed: {e}")))
+}
+
+/// 422 `timeout`: a simulation stopped at the server's time limit.
+pub fn timed_out(timeout: Duration) -> ApiError {
+    ApiError::new(
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "timeout",
+        format!(
+            "the deployment did not finish within {:.1} s",
+            timeout.as_secs_f64()
+        ),
+        "try a smaller cell or a wider kerf, or run `isogami deploy` from the command line",
+    )
+}
+
 /// Deploys on the blocking pool, stopping after `timeout` or when the caller's future is
 /// dropped.
 pub async fn deploy_bounded(
@@ -80,27 +127,13 @@ pub async fn deploy_bounded(
     request: DeployRequest,
     timeout: Duration,
 ) -> ApiResult<Deployment> {
-    let cancelled = Arc::new(AtomicBool::new(false));
-    let _guard = CancelOnDrop(cancelled.clone());
-    let started = Instant::now();
-    let run = tokio::task::spawn_blocking(move || {
-        deploy(&design, &request, &mut |_| {
-            !cancelled.load(Ordering::Relaxed) && started.elapsed() < timeout
-        })
+    let run = run_bounded(timeout, move |deadline| {
+        deploy(&design, &request, &mut |_| deadline.keep_going())
     })
-    .await
-    .map_err(|e| ApiError::internal(format!("simulation task failed: {e}")))?;
+    .await?;
     run.map_err(|e| {
         if e.is_cancelled() {
-            ApiError::new(
-                StatusCode::UNPROCESSABLE_ENTITY,
-                "timeout",
-                format!(
-                    "the deployment did not finish within {:.1} s",
-                    timeout.as_secs_f64()
-                ),
-                "try a smaller cell or a wider kerf, or run `isogami deploy` from the command line",
-            )
+            timed_out(timeout)
         } else {
             explain(&e)
         }

@@ -1,6 +1,7 @@
 //! `isogami site`: the catalogue as a static site that works from any static file host.
 //!
-//! The embedded front end plus `data/site.json` (stats, families, dictionary; its presence
+//! The embedded front end plus `data/site.json` (stats, families, dictionary, export formats
+//! for the CLI command the design page composes; its presence
 //! switches the pages to static mode), `data/designs.json` (every catalogue row),
 //! `data/design/<slug>.json` (each design view) and `thumbs/<slug>.svg`. The site is built
 //! in a temporary folder beside the target and moved into place at the end, so an
@@ -164,6 +165,7 @@ pub fn write_site(
                 "stats": stats_json,
                 "families": families,
                 "dictionary": DICTIONARY,
+                "export": crate::export::catalog(),
                 "tool_version": env!("CARGO_PKG_VERSION"),
             }),
         )?;

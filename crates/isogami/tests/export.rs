@@ -12,5 +12,7 @@ mod kirigami_sim;
 mod obj;
 #[path = "export/patch.rs"]
 mod patch;
+#[path = "export/print3d.rs"]
+mod print3d;
 #[path = "export/tile_table.rs"]
 mod tile_table;

@@ -1,7 +1,8 @@
 //! `isogami merge` and `isogami db stats`.
 
 use crate::output::{emit, print_json, CliResult};
-use isogami_store::{Check, DbStats, Store, StoreError, StoreWriter};
+use isogami::explore::Shard;
+use isogami_store::{check_shard_set, Check, DbStats, Store, StoreError, StoreWriter};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -15,17 +16,35 @@ pub struct MergeArgs {
     /// Shard databases to merge.
     #[arg(required = true)]
     shards: Vec<PathBuf>,
+    /// Merge shard databases even when some shard of their run is missing or incomplete
+    /// (by default such a merge is refused and nothing is written).
+    #[arg(long)]
+    allow_incomplete: bool,
 }
 
 /// Merges shard databases; units already present are skipped. Every shard is opened and
 /// fully checked before the target is touched, so a damaged or foreign shard stops the merge
-/// with nothing written.
+/// with nothing written. Databases made by `explore --shard` must be every shard of one run,
+/// each complete, unless `--allow-incomplete`.
 pub fn merge(args: MergeArgs) -> CliResult {
     let shards = args
         .shards
         .iter()
         .map(|s| Store::open_read(s, Check::Full).map_err(|e| at(s, e)))
         .collect::<Result<Vec<_>, _>>()?;
+    if !args.allow_incomplete {
+        let inputs: Vec<(&Path, &Store)> = args
+            .shards
+            .iter()
+            .map(PathBuf::as_path)
+            .zip(&shards)
+            .collect();
+        check_shard_set(&inputs)
+            .map_err(|e| format!("checking the shards: {e}"))?
+            .map_err(|e| {
+                format!("{e} (nothing merged; --allow-incomplete merges what is there)")
+            })?;
+    }
     let mut store =
         StoreWriter::open(&args.into, None, Check::Full).map_err(|e| at(&args.into, e))?;
     let mut o = String::new();
@@ -68,6 +87,19 @@ pub enum DbCommand {
         #[arg(long)]
         json: bool,
     },
+    /// Check that a database made by `explore --shard I/N` holds every work unit of its shard
+    /// (exit 0), or say in one line why not (exit 2): missing, not that shard, incomplete.
+    CheckShard {
+        /// The shard database.
+        #[arg(long)]
+        db: PathBuf,
+        /// The shard it must hold, I/N.
+        #[arg(long)]
+        shard: String,
+        /// Print the shard's status as JSON (before failing, when it is readable).
+        #[arg(long)]
+        json: bool,
+    },
 }
 
 /// Runs a `db` subcommand.
@@ -83,7 +115,52 @@ pub fn run(cmd: DbCommand) -> CliResult {
                 emit(&stats_table(&stats))
             }
         }
+        DbCommand::CheckShard { db, shard, json } => check_shard(&db, &shard, json),
     }
+}
+
+/// `db check-shard`.
+fn check_shard(db: &Path, shard: &str, json: bool) -> CliResult {
+    let wanted: Shard = shard
+        .parse()
+        .map_err(|_| format!("--shard '{shard}': expected I/N with 0 <= I < N, e.g. 0/4"))?;
+    let store = Store::open_read(db, Check::Full).map_err(|e| at(db, e))?;
+    let status = store
+        .shard_status()
+        .map_err(|e| at(db, e))?
+        .ok_or_else(|| {
+            format!(
+                "{}: not a shard database (made without --shard, or by an older isogami)",
+                db.display()
+            )
+        })?;
+    if json {
+        print_json(&status)?;
+    }
+    let r = &status.record;
+    if (r.index, r.count) != (wanted.index(), wanted.count()) {
+        return Err(format!(
+            "{}: holds shard {}/{}, not {wanted}",
+            db.display(),
+            r.index,
+            r.count
+        ));
+    }
+    if !status.complete() {
+        return Err(format!(
+            "{}: shard {wanted} is incomplete ({})",
+            db.display(),
+            status.progress()
+        ));
+    }
+    if !json {
+        emit(&format!(
+            "{}: shard {wanted} complete ({})\n",
+            db.display(),
+            status.progress()
+        ))?;
+    }
+    Ok(())
 }
 
 /// The per-stage and per-family report.
@@ -102,6 +179,14 @@ pub fn stats_table(s: &DbStats) -> String {
         s.schema_version,
         s.tool_version.as_deref().unwrap_or("?")
     );
+    if let Some(shard) = &s.shard {
+        let state = if shard.complete() {
+            "complete"
+        } else {
+            "incomplete"
+        };
+        let _ = writeln!(o, "{} {state}: {}", shard.record, shard.progress());
+    }
     let _ = writeln!(
         o,
         "\n{:<18} {:>12} {:>12} {:>9}",

@@ -1,17 +1,16 @@
-//! `isogami explore`: runs work units (family × supercell) in parallel and commits each to
-//! the design database in its own transaction, skipping units already there.
+//! `isogami explore`: arguments, the progress bar and the report. The driver (planning,
+//! skipping committed units, the thread pool, one transaction per unit) is
+//! `isogami_store::explore_into`.
 
 use crate::output::{emit, print_json, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
-use isogami::catalog::{run_unit, CatalogSettings};
+use isogami::catalog::CatalogSettings;
 use isogami::cell::CellDims;
-use isogami::explore::cells_to_explore;
+use isogami::explore::Shard;
 use isogami::tiling::Family;
-use isogami_store::{Check, RunInfo, StoreWriter, UnitRecords};
-use rayon::prelude::*;
+use isogami_store::{explore_into, ExploreEvent, ExploreRequest, MAX_JOBS};
 use std::path::PathBuf;
-use std::sync::mpsc;
-use std::time::Instant;
+use std::sync::atomic::AtomicBool;
 
 /// Arguments of `explore`.
 #[derive(Debug, clap::Args)]
@@ -66,30 +65,9 @@ impl Args {
     }
 }
 
-/// One unit of work.
-#[derive(Debug, Clone, Copy)]
-struct Unit {
-    family: Family,
-    dims: CellDims,
-}
-
-impl Unit {
-    fn id(&self) -> String {
-        format!("{}/{}", self.family, self.dims)
-    }
-}
-
-fn parse_shard(text: &str) -> Result<(usize, usize), String> {
-    let bad = || format!("--shard '{text}': expected I/N with 0 <= I < N, e.g. 0/4");
-    let (i, n) = text.split_once('/').ok_or_else(bad)?;
-    let (i, n): (usize, usize) = (
-        i.trim().parse().map_err(|_| bad())?,
-        n.trim().parse().map_err(|_| bad())?,
-    );
-    if n == 0 || i >= n || n > 100_000 {
-        return Err(bad());
-    }
-    Ok((i, n))
+fn parse_shard(text: &str) -> Result<Shard, String> {
+    text.parse::<Shard>()
+        .map_err(|_| format!("--shard '{text}': expected I/N with 0 <= I < N, e.g. 0/4"))
 }
 
 fn parse_families(text: &str) -> Result<Vec<Family>, String> {
@@ -112,18 +90,17 @@ fn settings_of(args: &Args) -> Result<CatalogSettings, String> {
         ..CatalogSettings::default()
     };
     if args.quick {
-        s.topology.max_dims = 1;
-        s.topology.max_edges = 12;
-        s.samples = s.samples.min(4);
+        s = s.quick();
     }
     s.validate().map_err(|e| e.to_string())?;
     Ok(s)
 }
 
-/// The deterministic, ordered list of work units.
-fn units_of(args: &Args, settings: &CatalogSettings) -> Result<Vec<Unit>, String> {
+/// The request of these arguments (parsed and checked, nothing run).
+fn request_of(args: &Args) -> Result<ExploreRequest, String> {
+    let settings = settings_of(args)?;
     let families = parse_families(&args.families)?;
-    let wanted: Option<Vec<CellDims>> = match &args.cells {
+    let cells: Option<Vec<CellDims>> = match &args.cells {
         Some(list) => Some(
             list.split(',')
                 .map(|c| c.trim().parse::<CellDims>().map_err(|e| e.to_string()))
@@ -131,115 +108,64 @@ fn units_of(args: &Args, settings: &CatalogSettings) -> Result<Vec<Unit>, String
         ),
         None => None,
     };
-    let mut units = Vec::new();
-    for family in families {
-        for (dims, _) in cells_to_explore(family, &settings.topology) {
-            if wanted.as_ref().is_none_or(|w| w.contains(&dims)) {
-                units.push(Unit { family, dims });
-            }
-        }
+    let shard = args.shard.as_deref().map(parse_shard).transpose()?;
+    let jobs = args
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    if jobs == 0 || jobs > MAX_JOBS {
+        return Err(format!("--jobs must lie in 1..={MAX_JOBS}, got {jobs}"));
     }
-    Ok(units)
+    Ok(ExploreRequest {
+        settings,
+        families,
+        cells,
+        shard,
+        jobs,
+    })
 }
 
 /// Explores and prints the per-family, per-stage report.
 pub fn run(args: Args) -> CliResult {
-    let settings = settings_of(&args)?;
-    let mut units = units_of(&args, &settings)?;
-    if let Some(shard) = &args.shard {
-        let (i, n) = parse_shard(shard)?;
-        units = units
-            .into_iter()
-            .enumerate()
-            .filter(|(k, _)| k % n == i)
-            .map(|(_, u)| u)
-            .collect();
-    }
-    let jobs = args
-        .jobs
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    if jobs == 0 || jobs > 1024 {
-        return Err(format!("--jobs must lie in 1..=1024, got {jobs}"));
-    }
-    let fingerprint = settings.fingerprint();
-    let run = RunInfo {
-        tool_version: env!("CARGO_PKG_VERSION"),
-        settings: &fingerprint,
-    };
-    let mut store = StoreWriter::open(&args.db, Some(run), Check::Full)
-        .map_err(|e| format!("{}: {e}", args.db.display()))?;
-    let done = store
-        .done_units()
-        .map_err(|e| format!("{}: {e}", args.db.display()))?;
-    let total = units.len();
-    let todo: Vec<Unit> = units
-        .into_iter()
-        .filter(|u| !done.contains(&u.id()))
-        .collect();
-    let skipped = total - todo.len();
-
-    let bar = ProgressBar::new(todo.len() as u64);
+    let request = request_of(&args)?;
+    let bar = ProgressBar::new(0);
     bar.set_style(
         ProgressStyle::with_template(
             "{bar:30} {pos}/{len} work units, {elapsed} (eta {eta}) {msg}",
         )
         .expect("valid template"),
     );
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(jobs)
-        .build()
-        .map_err(|e| format!("thread pool: {e}"))?;
-    let (tx, rx) = mpsc::channel();
-    let mut failures = Vec::new();
-    let mut committed = 0usize;
-    std::thread::scope(|scope| -> Result<(), String> {
-        let todo = &todo;
-        scope.spawn(move || {
-            pool.install(|| {
-                todo.par_iter().for_each_with(tx, |tx, unit| {
-                    let start = Instant::now();
-                    let outcome = run_unit(unit.family, unit.dims, &settings);
-                    let _ = tx.send((*unit, outcome, start.elapsed().as_secs_f64()));
-                })
-            })
-        });
-        for (unit, outcome, seconds) in rx {
+    let mut on_event = |event: &ExploreEvent<'_>| match *event {
+        ExploreEvent::Started { to_run, .. } => {
+            bar.set_length(to_run as u64);
+            bar.reset_elapsed();
+        }
+        ExploreEvent::UnitFinished { unit, .. } => {
             bar.set_message(unit.id());
-            match outcome {
-                Ok(o) => match UnitRecords::from_outcome(&o, seconds) {
-                    Ok(records) => {
-                        store
-                            .commit_unit(&records)
-                            .map_err(|e| format!("{}: {e}", args.db.display()))?;
-                        committed += 1;
-                    }
-                    Err(e) => failures.push(format!("{}: {e}", unit.id())),
-                },
-                Err(e) => failures.push(format!("{}: {e}", unit.id())),
-            }
             bar.inc(1);
         }
-        Ok(())
-    })?;
-    bar.finish_and_clear();
-    let stats = store
-        .stats()
+    };
+    let never = AtomicBool::new(false);
+    let outcome = explore_into(&args.db, &request, &mut on_event, &never)
         .map_err(|e| format!("{}: {e}", args.db.display()))?;
+    bar.finish_and_clear();
+    let failures = &outcome.failures;
     if args.json {
-        print_json(&stats)?;
+        print_json(&outcome.stats)?;
     } else {
         let mut o = String::new();
         outln!(
             o,
-            "{committed} work units run, {skipped} already in {}, {} failed",
+            "{} work units run, {} already in {}, {} failed",
+            outcome.committed,
+            outcome.skipped,
             args.db.display(),
             failures.len()
         );
-        o.push_str(&crate::commands::db::stats_table(&stats));
+        o.push_str(&crate::commands::db::stats_table(&outcome.stats));
         emit(&o)?;
     }
-    for f in &failures {
-        eprintln!("warning: work unit {f}");
+    for f in failures {
+        eprintln!("warning: work unit {}: {}", f.unit, f.message);
     }
     if failures.is_empty() {
         Ok(())

@@ -10,7 +10,8 @@ use crate::output::{write_atomic, CliResult};
 use isogami::api::resolve_design;
 use isogami::contact::ContactSettings;
 use isogami::export::{
-    export_design, ExportFiles, ExportOptions, Format, PatchRequest, Scale, State, MAX_PATCH,
+    export_design, ExportFiles, ExportOptions, Format, PatchRequest, Scale, SettingsGroup, State,
+    MAX_PATCH,
 };
 use std::path::{Path, PathBuf};
 
@@ -56,15 +57,25 @@ pub struct Args {
     frames: usize,
     #[command(flatten)]
     laser: super::laser_args::LaserArgs,
+    #[command(flatten)]
+    print: super::print_args::PrintArgs,
 }
 
 /// Builds the patch and writes the file(s).
 pub fn run(args: Args) -> CliResult {
     let request = request(&args)?;
-    let options = ExportOptions {
-        laser: args.laser.settings()?,
-        ..ExportOptions::default()
-    };
+    // Only the format's own settings group is read (and checked); the others' flags are
+    // ignored.
+    let mut options = ExportOptions::default();
+    match args.format.settings_group() {
+        SettingsGroup::Laser => options.laser = args.laser.settings()?,
+        SettingsGroup::Print => {
+            options.print = args
+                .print
+                .settings(args.laser.hinge_mm, args.laser.thickness_mm)?
+        }
+        SettingsGroup::None => {}
+    }
     options.validate(args.format).map_err(|e| e.to_string())?;
     let design = resolve_design(&args.design).map_err(|e| e.to_string())?;
     let (patch, files) = export_design(&design, &request, args.format, &options, &mut |_| true)

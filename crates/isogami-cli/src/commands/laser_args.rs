@@ -1,5 +1,7 @@
 //! The laser flags of `isogami export` (formats svg and dxf): a material preset, then any
 //! value overridden, checked by the library before anything is deployed or written.
+//! `--hinge-mm` and `--thickness-mm` are shared with the 3D-print formats
+//! ([`super::print_args`]), whose defaults differ.
 
 use isogami::export::laser::{LaserSettings, Material};
 
@@ -10,15 +12,18 @@ pub struct LaserArgs {
     /// 2 mm) or pla (0.8, 0.15, 2 mm). Without it: hinge 1.5, kerf 0.2, thickness 2.
     #[arg(long)]
     material: Option<String>,
-    /// Width of the bridge of material left at each joint, mm.
+    /// Hinge width at each joint, mm: the bridge of uncut material for svg/dxf [default: 1.5
+    /// or the preset's], the lamella's width along the edge for stl/3mf [default: 0.8, at
+    /// least --nozzle-mm].
     #[arg(long, allow_hyphen_values = true)]
-    hinge_mm: Option<f64>,
+    pub(crate) hinge_mm: Option<f64>,
     /// Width of the laser's cut, mm: cut paths are compensated by half of it.
     #[arg(long, allow_hyphen_values = true)]
     kerf_mm: Option<f64>,
-    /// Sheet thickness, mm (written in the metadata).
+    /// Sheet thickness, mm: written in the metadata of svg/dxf [default: 2 or the preset's];
+    /// the height of the printed tiles for stl/3mf [default: 2].
     #[arg(long, allow_hyphen_values = true)]
-    thickness_mm: Option<f64>,
+    pub(crate) thickness_mm: Option<f64>,
     /// Empty margin round the sheet, mm [default: 5].
     #[arg(long, allow_hyphen_values = true)]
     margin_mm: Option<f64>,

@@ -10,4 +10,5 @@ pub mod export;
 pub mod families;
 pub mod laser_args;
 pub mod linkages;
+pub mod print_args;
 pub mod serve;

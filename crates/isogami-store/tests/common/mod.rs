@@ -12,11 +12,7 @@ use std::sync::OnceLock;
 
 /// The quick exploration's settings.
 pub fn quick_settings() -> CatalogSettings {
-    let mut s = CatalogSettings::default();
-    s.topology.max_dims = 1;
-    s.topology.max_edges = 12;
-    s.samples = 4;
-    s
+    CatalogSettings::default().quick()
 }
 
 /// Real outcomes of two small work units (IH83 and IH90 on their minimal cells), computed

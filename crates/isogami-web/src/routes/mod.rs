@@ -11,12 +11,15 @@
 //! | `GET /api/design?spec=` | the design view of a stored design |
 //! | `GET /api/thumbnail?spec=` | its thumbnail (SVG) |
 //! | `GET /api/gif?spec=[&kerf=]` | its deployment as an animated GIF |
+//! | `GET /api/export/formats` | export formats, their settings fields, defaults and limits |
+//! | `GET /api/export?design=&format=&…` | a design's export as a download |
 //! | `POST /api/deploy` | a live deployment of a posted design |
 //! | `POST /api/designs` | save a posted design as a user design |
 
 mod assets;
 mod catalogue;
 mod design;
+mod export;
 
 use crate::error::ApiError;
 use crate::state::AppState;
@@ -38,6 +41,8 @@ pub fn router(state: AppState) -> Router {
         .route("/thumbnail", get(design::thumbnail))
         .route("/gif", get(design::gif))
         .route("/deploy", post(design::deploy_live))
+        .route("/export", get(export::export))
+        .route("/export/formats", get(export::formats))
         .fallback(|| async { ApiError::no_endpoint() })
         .method_not_allowed_fallback(|| async { ApiError::method_not_allowed() });
     Router::new()

@@ -15,6 +15,8 @@
 //!    one design per motion.
 //! 5. [`pipeline`] — the stages strung together with counts and timings per stage, and the
 //!    list of cells (a×b up to 4×4 with at most 16 unique edges) to explore per family.
+//! 6. [`plan`] — the run's deterministic list of work units (family × cell) and the slice of
+//!    it that shard I of N takes.
 //!
 //! Plain data in and out, deterministic, single-threaded, no I/O. Deployment of the kept
 //! designs, the expansion threshold and shape sampling (§4.2) are later stages.
@@ -23,6 +25,7 @@ pub mod dedup;
 mod error;
 pub mod expand;
 pub mod pipeline;
+pub mod plan;
 pub mod reduced;
 pub mod separate;
 
@@ -35,5 +38,6 @@ pub use pipeline::{
     cells_to_explore, duplicates_across, enumerate_topologies, DesignDetails, StageTimings,
     TopologyOptions, TopologyReport,
 };
+pub use plan::{ExplorePlan, Shard, WorkUnit, MAX_SHARDS};
 pub use reduced::{MaskVerdict, ReducedGraph, ReducedResult};
 pub use separate::{edge_rates, separation, EdgeRate, Separation, SeparationRule};

@@ -81,6 +81,9 @@ pub enum ExportError {
     /// A laser sheet cannot be laid out (hinge or kerf too wide, bad settings).
     #[error(transparent)]
     Laser(#[from] super::laser::LaserError),
+    /// A printable sheet cannot be made (bad print settings, hinge or gap too wide).
+    #[error(transparent)]
+    Print(#[from] super::print3d::PrintError),
     /// The pipeline failed (design, deployment, settings).
     #[error(transparent)]
     Library(#[from] crate::Error),

@@ -13,16 +13,19 @@ use super::kirigami_sim::{kirigami_sim_files, KIRIGAMI_SIM_FILES};
 use super::laser::{laser_dxf, laser_sheet, laser_svg, LaserSettings};
 use super::obj::obj_text;
 use super::patch::{patch_at_with, Patch, PatchRequest};
+use super::print3d::{print_sheet, PrintSettings};
 use super::tile_table::{tile_csv, tile_table};
 use crate::deploy::Progress;
 use crate::topology::Design;
 
-/// Settings of the formats beyond the patch: the laser layout, and the creator string
-/// written into the files' metadata.
+/// Settings of the formats beyond the patch: the laser layout, the 3D-print solid, and the
+/// creator string written into the files' metadata.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ExportOptions {
     /// Laser layout (SVG, DXF); ignored by the other formats.
     pub laser: LaserSettings,
+    /// 3D-print solid (STL, 3MF); ignored by the other formats.
+    pub print: PrintSettings,
     /// Who made the file (metadata), e.g. `isogami 0.1.0`.
     pub creator: String,
 }
@@ -31,17 +34,21 @@ impl Default for ExportOptions {
     fn default() -> Self {
         ExportOptions {
             laser: LaserSettings::default(),
+            print: PrintSettings::default(),
             creator: concat!("isogami ", env!("CARGO_PKG_VERSION")).to_string(),
         }
     }
 }
 
 impl ExportOptions {
-    /// Checks the settings `format` uses (a bad laser value is refused even before the
-    /// deployment runs).
+    /// Checks the settings `format` uses (a bad laser or print value is refused even before
+    /// the deployment runs).
     pub fn validate(&self, format: Format) -> Result<(), ExportError> {
         if format.uses_laser_settings() {
             self.laser.validate()?;
+        }
+        if format.uses_print_settings() {
+            self.print.validate()?;
         }
         Ok(())
     }
@@ -76,6 +83,10 @@ pub fn export_files(
                 reason: e.to_string(),
             },
         )? + "\n"),
+        Format::Stl => ExportFiles::One(print_sheet(patch, &options.print)?.stl()),
+        Format::ThreeMf => {
+            ExportFiles::One(print_sheet(patch, &options.print)?.threemf(&options.creator)?)
+        }
         Format::KirigamiSim => ExportFiles::Folder(
             KIRIGAMI_SIM_FILES
                 .into_iter()

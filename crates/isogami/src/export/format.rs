@@ -25,11 +25,39 @@ pub enum Format {
     /// kirigami_sim's text files (vertices, constraints, hull tiles, hull vertices): a
     /// folder of files.
     KirigamiSim,
+    /// 3D printing: binary STL of the sheet as one solid (mm; STL has no units).
+    Stl,
+    /// 3D printing: 3MF package of the sheet as one solid, in millimetres, with metadata.
+    ThreeMf,
+}
+
+/// Which group of settings a format is laid out with, so front ends show the right fields.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SettingsGroup {
+    /// [`LaserSettings`](super::laser::LaserSettings): hinge, kerf, thickness, colours...
+    Laser,
+    /// [`PrintSettings`](super::print3d::PrintSettings): thickness, gap, hinge, lamella,
+    /// nozzle.
+    Print,
+    /// Only the patch request.
+    None,
+}
+
+impl SettingsGroup {
+    /// `laser`, `print` or `none`.
+    pub fn name(self) -> &'static str {
+        match self {
+            SettingsGroup::Laser => "laser",
+            SettingsGroup::Print => "print",
+            SettingsGroup::None => "none",
+        }
+    }
 }
 
 impl Format {
     /// Every format, in the order front ends list them.
-    pub const ALL: [Format; 7] = [
+    pub const ALL: [Format; 9] = [
         Format::Svg,
         Format::Dxf,
         Format::Fold,
@@ -37,6 +65,8 @@ impl Format {
         Format::TilesCsv,
         Format::TilesJson,
         Format::KirigamiSim,
+        Format::Stl,
+        Format::ThreeMf,
     ];
 
     /// The name used on the command line, in URLs and in Python (`tiles-csv`).
@@ -49,6 +79,8 @@ impl Format {
             Format::TilesCsv => "tiles-csv",
             Format::TilesJson => "tiles-json",
             Format::KirigamiSim => "kirigami-sim",
+            Format::Stl => "stl",
+            Format::ThreeMf => "3mf",
         }
     }
 
@@ -62,6 +94,10 @@ impl Format {
             Format::TilesCsv => "tile table (CSV): polygon, pose, rotation, neighbours",
             Format::TilesJson => "tile table (JSON): polygon, pose, rotation, neighbours",
             Format::KirigamiSim => "the spring simulator kirigami_sim's input files",
+            Format::Stl => "3D printing: binary STL (mm) of the sheet with lamella hinges",
+            Format::ThreeMf => {
+                "3D printing: 3MF (mm, with metadata) of the sheet with lamella hinges"
+            }
         }
     }
 
@@ -76,6 +112,8 @@ impl Format {
             Format::TilesCsv => Some("csv"),
             Format::TilesJson => Some("json"),
             Format::KirigamiSim => None,
+            Format::Stl => Some("stl"),
+            Format::ThreeMf => Some("3mf"),
         }
     }
 
@@ -88,12 +126,32 @@ impl Format {
             Format::Obj => "model/obj",
             Format::TilesCsv => "text/csv",
             Format::KirigamiSim => "text/plain",
+            Format::Stl => "model/stl",
+            Format::ThreeMf => "model/3mf",
+        }
+    }
+
+    /// The settings group the format's files are laid out with.
+    pub fn settings_group(self) -> SettingsGroup {
+        match self {
+            Format::Svg | Format::Dxf => SettingsGroup::Laser,
+            Format::Stl | Format::ThreeMf => SettingsGroup::Print,
+            Format::Fold
+            | Format::Obj
+            | Format::TilesCsv
+            | Format::TilesJson
+            | Format::KirigamiSim => SettingsGroup::None,
         }
     }
 
     /// Whether the format's files are laid out with the laser settings.
     pub fn uses_laser_settings(self) -> bool {
-        matches!(self, Format::Svg | Format::Dxf)
+        self.settings_group() == SettingsGroup::Laser
+    }
+
+    /// Whether the format's files are built with the 3D-print settings.
+    pub fn uses_print_settings(self) -> bool {
+        self.settings_group() == SettingsGroup::Print
     }
 }
 
@@ -138,6 +196,18 @@ mod tests {
                 1
             );
         }
+    }
+
+    #[test]
+    fn each_format_has_one_settings_group() {
+        for f in Format::ALL {
+            let g = f.settings_group();
+            assert_eq!(f.uses_laser_settings(), g == SettingsGroup::Laser, "{f}");
+            assert_eq!(f.uses_print_settings(), g == SettingsGroup::Print, "{f}");
+        }
+        assert_eq!(Format::Stl.settings_group().name(), "print");
+        assert_eq!("3MF".parse::<Format>().unwrap(), Format::ThreeMf);
+        assert_eq!(Format::ThreeMf.extension(), Some("3mf"));
     }
 
     #[test]

@@ -14,6 +14,7 @@
 //! | tile table (CSV, JSON) | [`tile_table`] | rows; CSV text |
 //! | kirigami_sim's text files | [`kirigami_sim`] | four texts |
 //! | laser cutting: SVG, DXF (closed sheet, bridges, kerf) | [`laser`] | texts |
+//! | 3D printing: STL, 3MF (one solid, lamella hinges) | [`print3d`] | bytes |
 //!
 //! The library does no I/O: each format returns a `String` (or bytes), the CLI writes it.
 //! Front ends call one entry point, [`export_design`] (or [`export_files`] for a patch they
@@ -28,11 +29,13 @@ pub mod laser;
 pub mod obj;
 mod outline;
 pub mod patch;
+pub(crate) mod piece;
+pub mod print3d;
 pub mod tile_table;
 
 pub use error::ExportError;
 pub use files::{export_design, export_files, ExportFiles, ExportOptions};
-pub use format::Format;
+pub use format::{Format, SettingsGroup};
 pub use patch::{
     patch_at, patch_at_with, Patch, PatchJoint, PatchRequest, PatchState, PatchTile, Scale, State,
     MAX_PATCH, MAX_PATCH_FRAMES,

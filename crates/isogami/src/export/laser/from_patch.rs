@@ -49,53 +49,31 @@ pub fn laser_sheet(patch: &Patch, settings: LaserSettings) -> Result<LaserSheet,
 
 type Piece = (Vec<Vec<[Real; 2]>>, Vec<JointAt>, usize);
 
-/// The tiles and joints of the largest connected piece of the tile/joint graph (the first
-/// such piece on a tie), tiles renumbered in their order.
+/// The tiles and joints of the largest connected piece of the tile/joint graph (see
+/// `export::piece`), tiles renumbered in their order.
 fn largest_piece(tiles: &[Vec<[Real; 2]>], joints: &[JointAt]) -> Result<Piece, LaserError> {
     let n = tiles.len();
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn find(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
     for (j, joint) in joints.iter().enumerate() {
-        for &t in &joint.tiles {
-            if t >= n {
-                return Err(LaserError::NoSuchTile {
-                    joint: j,
-                    tile: t,
-                    tiles: n,
-                });
-            }
+        if let Some(&t) = joint.tiles.iter().find(|&&t| t >= n) {
+            return Err(LaserError::NoSuchTile {
+                joint: j,
+                tile: t,
+                tiles: n,
+            });
         }
-        let (a, b) = (
-            find(&mut parent, joint.tiles[0]),
-            find(&mut parent, joint.tiles[1]),
-        );
-        parent[a] = b;
     }
-    let root: Vec<usize> = (0..n).map(|i| find(&mut parent, i)).collect();
-    let mut size = vec![0usize; n];
-    for &r in &root {
-        size[r] += 1;
-    }
-    let Some(best) = (0..n).max_by(|&a, &b| size[a].cmp(&size[b]).then(b.cmp(&a))) else {
+    let ids = crate::export::piece::largest_piece(n, joints.iter().map(|j| j.tiles));
+    if ids.is_empty() {
         return Err(LaserError::NoTiles);
-    };
-    let mut index = vec![usize::MAX; n];
-    let mut kept = Vec::new();
-    for t in 0..n {
-        if root[t] == root[best] {
-            index[t] = kept.len();
-            kept.push(tiles[t].clone());
-        }
     }
+    let mut index = vec![usize::MAX; n];
+    for (k, &t) in ids.iter().enumerate() {
+        index[t] = k;
+    }
+    let kept: Vec<Vec<[Real; 2]>> = ids.iter().map(|&t| tiles[t].clone()).collect();
     let joints = joints
         .iter()
-        .filter(|j| root[j.tiles[0]] == root[best])
+        .filter(|j| index[j.tiles[0]] != usize::MAX)
         .map(|j| JointAt {
             tiles: j.tiles.map(|t| index[t]),
             point: j.point,

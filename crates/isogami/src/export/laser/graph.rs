@@ -12,7 +12,7 @@ use std::collections::HashMap;
 
 /// One edge of the patch, oriented as its first tile traverses it (that tile on its left).
 #[derive(Debug, Clone)]
-pub(super) struct Edge {
+pub(crate) struct Edge {
     /// Vertex ids of its ends.
     pub v: [usize; 2],
     /// Tile on the left.
@@ -25,13 +25,15 @@ pub(super) struct Edge {
 
 /// Vertices, edges and vertex stars of a patch.
 #[derive(Debug, Clone)]
-pub(super) struct PatchGraph {
+pub(crate) struct PatchGraph {
     /// Vertex positions (mm).
     pub points: Vec<Vec2>,
     /// Edges, each once.
     pub edges: Vec<Edge>,
     /// Per vertex, the ids of the edges that end there.
     pub star: Vec<Vec<usize>>,
+    /// Per tile, the id of each of its edges (edge k runs from vertex k to k + 1).
+    pub tile_edges: Vec<Vec<usize>>,
 }
 
 impl PatchGraph {
@@ -54,8 +56,10 @@ impl PatchGraph {
             .collect();
         let mut edges: Vec<Edge> = Vec::new();
         let mut by_ends: HashMap<(usize, usize), usize> = HashMap::new();
+        let mut tile_edges: Vec<Vec<usize>> = Vec::with_capacity(tiles.len());
         for (tile, verts) in tile_vertices.iter().enumerate() {
             let n = verts.len();
+            let mut ids_of_tile = Vec::with_capacity(n);
             for k in 0..n {
                 let (a, b) = (verts[k], verts[(k + 1) % n]);
                 if a == b {
@@ -68,6 +72,7 @@ impl PatchGraph {
                 match by_ends.get(&key) {
                     None => {
                         by_ends.insert(key, edges.len());
+                        ids_of_tile.push(edges.len());
                         edges.push(Edge {
                             v: [a, b],
                             left: tile,
@@ -83,9 +88,11 @@ impl PatchGraph {
                             });
                         }
                         edge.right = Some(tile);
+                        ids_of_tile.push(e);
                     }
                 }
             }
+            tile_edges.push(ids_of_tile);
         }
         let mut star = vec![Vec::new(); ids.points.len()];
         for (e, edge) in edges.iter().enumerate() {
@@ -127,6 +134,7 @@ impl PatchGraph {
             points: ids.points,
             edges,
             star,
+            tile_edges,
         })
     }
 
@@ -249,6 +257,10 @@ mod tests {
         assert_eq!(shared.len(), 1);
         let e = shared[0];
         let end = e.joint.iter().position(|&j| j).unwrap();
+        // Edge 1 of tile 0 (its right side) is edge 3 of tile 1 (its left side).
+        assert_eq!(g.tile_edges[0][1], g.tile_edges[1][3]);
+        assert_eq!(g.edges[g.tile_edges[0][1]].right, Some(1));
+        assert_eq!(g.tile_edges.iter().flatten().count(), 8);
         assert!((g.point(e.v[end]) - Vec2::new(1.0, 1.0)).norm() < 1e-12);
     }
 

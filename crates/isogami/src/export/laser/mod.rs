@@ -12,7 +12,7 @@ pub mod cuts;
 mod dxf;
 mod error;
 mod from_patch;
-mod graph;
+pub(crate) mod graph;
 pub mod material;
 mod outline;
 mod place;

@@ -1,0 +1,232 @@
+//! Running an exploration into a database: the one driver every front end calls (the CLI's
+//! `explore`, and any binding).
+//!
+//! [`explore_into`] plans the work units ([`ExplorePlan`]), opens the database for writing
+//! (creating it if new; its settings must match; a shard's database records which shard it
+//! holds, see [`ShardRecord`](crate::ShardRecord)), skips the units it already holds, runs the
+//! rest on a pool of `jobs` threads and commits each finished unit from the calling thread in
+//! its own transaction (one writer). A unit that fails is reported, not committed, so a rerun
+//! retries it. A killed run keeps every unit it had committed.
+
+use crate::error::{StoreError, StoreResult};
+use crate::open::{Check, RunInfo, StoreWriter};
+use crate::records::UnitRecords;
+use crate::shard::record_plan;
+use crate::stats::DbStats;
+use isogami::catalog::{run_unit, CatalogSettings};
+use isogami::cell::CellDims;
+use isogami::error::{Requirement, SettingsError};
+use isogami::explore::{ExplorePlan, Shard, WorkUnit};
+use isogami::tiling::Family;
+use rayon::prelude::*;
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc;
+use std::time::Instant;
+
+/// The most worker threads a run takes.
+pub const MAX_JOBS: usize = 1024;
+
+/// What to explore, and with how many threads. Plain data.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExploreRequest {
+    /// Settings of every work unit (stored with the database; a resumed run must match).
+    pub settings: CatalogSettings,
+    /// Families, in the order their units are planned (callers sort them).
+    pub families: Vec<Family>,
+    /// Only these supercells (of those the settings allow); `None` for all.
+    pub cells: Option<Vec<CellDims>>,
+    /// Run only this slice of the plan; `None` for all of it.
+    pub shard: Option<Shard>,
+    /// Worker threads, 1..=[`MAX_JOBS`].
+    pub jobs: usize,
+}
+
+impl ExploreRequest {
+    /// The plan this request runs.
+    pub fn plan(&self) -> ExplorePlan {
+        ExplorePlan::new(
+            &self.families,
+            self.cells.as_deref(),
+            &self.settings.topology,
+            self.shard,
+        )
+    }
+}
+
+/// What [`explore_into`] tells its progress callback, always on the calling thread.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ExploreEvent<'a> {
+    /// The database is open: `planned` units in this run's slice, `skipped` of them already
+    /// in the database, `to_run` left to run.
+    Started {
+        /// Units of this run (this shard's slice).
+        planned: usize,
+        /// Of these, units already committed.
+        skipped: usize,
+        /// Units left to run.
+        to_run: usize,
+    },
+    /// A unit finished (committed when `ok`, else reported as a failure).
+    UnitFinished {
+        /// The unit.
+        unit: &'a WorkUnit,
+        /// Whether it was committed.
+        ok: bool,
+        /// Units finished so far in this run, this one included.
+        finished: usize,
+        /// Units this run had to run.
+        to_run: usize,
+    },
+}
+
+/// A unit that failed, with the library's message.
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
+pub struct UnitFailure {
+    /// Unit id, e.g. `IH28/2x1`.
+    pub unit: String,
+    /// Why (one line).
+    pub message: String,
+}
+
+/// What a run did.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct ExploreOutcome {
+    /// Units in this run's slice of the plan.
+    pub planned: usize,
+    /// Units run and committed now.
+    pub committed: usize,
+    /// Units already in the database, not run again.
+    pub skipped: usize,
+    /// Units that failed (not committed; a rerun retries them).
+    pub failures: Vec<UnitFailure>,
+    /// Units not started because the run was cancelled.
+    pub not_run: usize,
+    /// Whether the cancellation flag stopped the run early.
+    pub cancelled: bool,
+    /// The database afterwards.
+    pub stats: DbStats,
+}
+
+fn check_request(request: &ExploreRequest) -> StoreResult<()> {
+    request.settings.validate()?;
+    if request.jobs == 0 || request.jobs > MAX_JOBS {
+        return Err(SettingsError::new(
+            "jobs",
+            request.jobs,
+            Requirement::CountIn {
+                low: 1,
+                high: MAX_JOBS as u64,
+            },
+        )
+        .into());
+    }
+    Ok(())
+}
+
+/// Runs `request` into the database at `db`; see the module documentation.
+///
+/// `progress` is called on the calling thread: once when the database is open, then after
+/// every finished unit. Setting `cancel` stops the run between units: units already running
+/// finish and are committed, units not started are left for a rerun (counted in
+/// [`ExploreOutcome::not_run`]). Returns an error only when the database cannot be opened or
+/// written (or the request is invalid); failed units are listed in the outcome.
+pub fn explore_into(
+    db: &Path,
+    request: &ExploreRequest,
+    progress: &mut dyn FnMut(&ExploreEvent<'_>),
+    cancel: &AtomicBool,
+) -> StoreResult<ExploreOutcome> {
+    check_request(request)?;
+    let plan = request.plan();
+    let units = plan.units();
+    let fingerprint = request.settings.fingerprint();
+    let run = RunInfo {
+        tool_version: env!("CARGO_PKG_VERSION"),
+        settings: &fingerprint,
+    };
+    let mut store = StoreWriter::open(db, Some(run), Check::Full)?;
+    record_plan(&store, &plan)?;
+    let done = store.done_units()?;
+    let todo: Vec<WorkUnit> = units
+        .iter()
+        .filter(|u| !done.contains(&u.id()))
+        .copied()
+        .collect();
+    let planned = units.len();
+    let skipped = planned - todo.len();
+    let to_run = todo.len();
+    progress(&ExploreEvent::Started {
+        planned,
+        skipped,
+        to_run,
+    });
+
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(request.jobs)
+        .build()
+        .map_err(|e| StoreError::Io(std::io::Error::other(format!("thread pool: {e}"))))?;
+    let settings = &request.settings;
+    let (tx, rx) = mpsc::channel();
+    let mut failures = Vec::new();
+    let mut committed = 0usize;
+    let mut finished = 0usize;
+    // Set when a commit fails: the workers start nothing more.
+    let stop = AtomicBool::new(false);
+    std::thread::scope(|scope| -> StoreResult<()> {
+        let todo = &todo;
+        let stop = &stop;
+        scope.spawn(move || {
+            pool.install(|| {
+                todo.par_iter().for_each_with(tx, |tx, unit| {
+                    if cancel.load(Ordering::Relaxed) || stop.load(Ordering::Relaxed) {
+                        return;
+                    }
+                    let start = Instant::now();
+                    let outcome = run_unit(unit.family, unit.dims, settings);
+                    let _ = tx.send((unit, outcome, start.elapsed().as_secs_f64()));
+                })
+            })
+        });
+        for (unit, outcome, seconds) in rx {
+            let records = outcome
+                .map_err(|e| e.to_string())
+                .and_then(|o| UnitRecords::from_outcome(&o, seconds).map_err(|e| e.to_string()));
+            let ok = match records {
+                Ok(records) => {
+                    if let Err(e) = store.commit_unit(&records) {
+                        stop.store(true, Ordering::Relaxed);
+                        return Err(e);
+                    }
+                    committed += 1;
+                    true
+                }
+                Err(message) => {
+                    failures.push(UnitFailure {
+                        unit: unit.id(),
+                        message,
+                    });
+                    false
+                }
+            };
+            finished += 1;
+            progress(&ExploreEvent::UnitFinished {
+                unit,
+                ok,
+                finished,
+                to_run,
+            });
+        }
+        Ok(())
+    })?;
+    let stats = store.stats()?;
+    Ok(ExploreOutcome {
+        planned,
+        committed,
+        skipped,
+        failures,
+        not_run: to_run - finished,
+        cancelled: cancel.load(Ordering::Relaxed) && finished < to_run,
+        stats,
+    })
+}

@@ -1,0 +1,235 @@
+//! The query string of `GET /api/export` → what to export: the design text, the format, the
+//! patch request and the format options. Keys are named as `isogami export`'s flags with
+//! underscores (`edge_mm` for `--edge-mm`); every key is checked, an unknown or repeated one
+//! is refused, and the library's own validation runs before anything is deployed.
+
+use super::groups::{group_keys, Values, GROUPS};
+use crate::error::{ApiError, ApiResult};
+use crate::filters::truncate;
+use isogami::contact::ContactSettings;
+use isogami::export::{ExportOptions, Format, PatchRequest, Scale, State, MAX_PATCH};
+
+/// Longest design text (a spec, a name or design JSON), as for `POST /api/deploy`.
+pub const MAX_DESIGN: usize = 16 * 1024;
+
+/// Most cells × frames one export may hold on the server: every frame places every tile of
+/// the patch, and a FOLD file writes them all (a 40×40 patch of a 12-tile cell with 100
+/// frames would be about half a gigabyte). The limit lets the largest patch through at the
+/// default frame count; the CLI has no such limit.
+pub const MAX_CELL_FRAMES: usize = MAX_PATCH * MAX_PATCH * 11;
+
+/// Keys of the request itself (the settings groups add theirs).
+pub const REQUEST_KEYS: [&str; 8] = [
+    "design", "format", "patch", "edge_mm", "width_mm", "t", "kerf", "frames",
+];
+
+/// A parsed export request.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExportQuery {
+    /// The design as given (name, spec or JSON): read by the library when it runs.
+    pub design: String,
+    /// The format.
+    pub format: Format,
+    /// The patch, checked by [`PatchRequest::validate`].
+    pub request: PatchRequest,
+    /// The format options, checked by [`ExportOptions::validate`] for this format.
+    pub options: ExportOptions,
+}
+
+/// Reads and checks the query pairs.
+pub fn parse_export(pairs: &[(String, String)]) -> ApiResult<ExportQuery> {
+    let groups = group_keys();
+    for (k, (key, _)) in pairs.iter().enumerate() {
+        if !REQUEST_KEYS.contains(&key.as_str()) && !groups.contains(&key.as_str()) {
+            return Err(ApiError::bad_parameter(format!(
+                "unknown parameter {:?}",
+                truncate(key)
+            )));
+        }
+        if pairs[..k].iter().any(|(other, _)| other == key) {
+            return Err(ApiError::bad_parameter(format!(
+                "parameter {key} given twice"
+            )));
+        }
+    }
+    let values = Values(pairs);
+    let design = values
+        .get("design")
+        .filter(|d| !d.is_empty())
+        .ok_or_else(|| ApiError::bad_parameter("missing parameter design"))?;
+    if design.len() > MAX_DESIGN {
+        return Err(ApiError::bad_parameter("design text longer than 16 KiB"));
+    }
+    let format: Format = values
+        .get("format")
+        .ok_or_else(|| ApiError::bad_parameter("missing parameter format"))?
+        .parse()
+        .map_err(|e: isogami::export::ExportError| ApiError::bad_parameter(e.to_string()))?;
+
+    let defaults = PatchRequest::default();
+    let (rows, cols) = match values.get("patch") {
+        Some(text) => parse_patch(text)?,
+        None => (defaults.rows, defaults.cols),
+    };
+    let scale = match (values.number("edge_mm")?, values.number("width_mm")?) {
+        (Some(_), Some(_)) => {
+            return Err(ApiError::bad_parameter(
+                "give edge_mm or width_mm, not both",
+            ))
+        }
+        (_, Some(w)) => Scale::WidthMm(w),
+        (Some(e), None) => Scale::EdgeMm(e),
+        (None, None) => defaults.scale,
+    };
+    let state = match values.get("t") {
+        None => defaults.state,
+        Some("open") => State::Open,
+        Some(text) => State::T(text.parse::<f64>().map_err(|_| {
+            ApiError::bad_parameter(format!(
+                "t {:?}: expected a number in [0, 1] or 'open'",
+                truncate(text)
+            ))
+        })?),
+    };
+    let kerf = values
+        .number("kerf")?
+        .unwrap_or(ContactSettings::default().kerf);
+    let frames = match values.get("frames") {
+        None => defaults.frames,
+        Some(text) => text.parse::<usize>().map_err(|_| {
+            ApiError::bad_parameter(format!(
+                "frames {:?}: expected a whole number",
+                truncate(text)
+            ))
+        })?,
+    };
+    let request = PatchRequest {
+        rows,
+        cols,
+        scale,
+        state,
+        kerf,
+        frames,
+    };
+    request
+        .validate()
+        .map_err(|e| ApiError::bad_parameter(e.to_string()))?;
+    if rows * cols * frames > MAX_CELL_FRAMES {
+        return Err(ApiError::bad_parameter(format!(
+            "patch {rows}x{cols} with {frames} frames: at most {MAX_CELL_FRAMES} cells × frames \
+             on the server (fewer frames or a smaller patch, or `isogami export`)"
+        )));
+    }
+
+    let mut options = ExportOptions::default();
+    for group in GROUPS {
+        (group.apply)(&mut options, &values)?;
+    }
+    options
+        .validate(format)
+        .map_err(|e| ApiError::bad_parameter(e.to_string()))?;
+    Ok(ExportQuery {
+        design: design.to_string(),
+        format,
+        request,
+        options,
+    })
+}
+
+/// `ROWSxCOLS`, as `--patch`.
+fn parse_patch(text: &str) -> ApiResult<(usize, usize)> {
+    let bad = || {
+        ApiError::bad_parameter(format!(
+            "patch {:?}: expected ROWSxCOLS, each 1..={MAX_PATCH}, e.g. 6x6",
+            truncate(text)
+        ))
+    };
+    let (r, c) = text.split_once(['x', 'X']).ok_or_else(bad)?;
+    let r = r.trim().parse::<usize>().map_err(|_| bad())?;
+    let c = c.trim().parse::<usize>().map_err(|_| bad())?;
+    Ok((r, c))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::filters::pairs;
+
+    fn parsed(q: &str) -> ApiResult<ExportQuery> {
+        parse_export(&pairs(Some(q)))
+    }
+
+    #[test]
+    fn every_cli_flag_has_its_key() {
+        let q = parsed(
+            "design=rotating-squares&format=SVG&patch=2x3&width_mm=120&t=open&kerf=0.02&frames=5\
+             &material=card&hinge_mm=0.9&margin_mm=0&labels=true&cut_colour=%23ff00ff",
+        )
+        .unwrap();
+        assert_eq!(q.format, Format::Svg);
+        assert_eq!((q.request.rows, q.request.cols), (2, 3));
+        assert_eq!(q.request.scale, Scale::WidthMm(120.0));
+        assert_eq!(q.request.state, State::Open);
+        assert_eq!((q.request.kerf, q.request.frames), (0.02, 5));
+        let l = &q.options.laser;
+        // The preset's kerf and thickness, the hinge given.
+        let card = Material::Card.numbers();
+        assert_eq!(
+            (l.hinge_mm, l.kerf_mm, l.thickness_mm),
+            (0.9, card.kerf_mm, card.thickness_mm)
+        );
+        assert_eq!((l.margin_mm, l.labels), (0.0, true));
+        assert_eq!(l.colours.cut, "#ff00ff");
+    }
+
+    use isogami::export::laser::Material;
+
+    #[test]
+    fn absent_keys_are_the_library_defaults() {
+        let q = parsed("design=rotating-squares&format=fold").unwrap();
+        assert_eq!(q.request, PatchRequest::default());
+        assert_eq!(q.options, ExportOptions::default());
+    }
+
+    #[test]
+    fn bad_values_are_refused_naming_the_key() {
+        for (q, needle) in [
+            ("format=svg", "missing parameter design"),
+            ("design=x", "missing parameter format"),
+            ("design=x&format=stl2", "unknown export format"),
+            ("design=x&format=svg&patch=41x41", "at most 40"),
+            ("design=x&format=svg&patch=0x2", "at least 1"),
+            ("design=x&format=svg&patch=6", "ROWSxCOLS"),
+            ("design=x&format=svg&t=1.5", "[0, 1]"),
+            ("design=x&format=svg&t=later", "'open'"),
+            ("design=x&format=svg&edge_mm=-2", "edge length -2 mm"),
+            ("design=x&format=svg&width_mm=0", "patch width 0 mm"),
+            ("design=x&format=svg&edge_mm=1&width_mm=1", "not both"),
+            ("design=x&format=svg&frames=1", "frames"),
+            ("design=x&format=svg&hinge_mm=-1", "hinge_mm"),
+            ("design=x&format=svg&kerf_mm=abc", "kerf_mm"),
+            ("design=x&format=svg&margin_mm=NaN", "margin_mm"),
+            ("design=x&format=svg&material=wood", "material"),
+            ("design=x&format=svg&labels=maybe", "labels"),
+            ("design=x&format=svg&cut_colour=red", "cut colour"),
+            ("design=x&format=svg&colour=red", "unknown parameter"),
+            ("design=x&format=svg&format=dxf", "twice"),
+            (
+                "design=x&format=fold&patch=40x40&frames=12",
+                "cells × frames",
+            ),
+        ] {
+            let e = parsed(q).unwrap_err();
+            assert_eq!(e.status, 400, "{q}");
+            assert!(e.message.contains(needle), "{q}: {}", e.message);
+        }
+        // The largest patch at the default frame count is allowed.
+        assert!(parsed("design=x&format=fold&patch=40x40").is_ok());
+        assert_eq!(
+            PatchRequest::default().frames * MAX_PATCH * MAX_PATCH,
+            MAX_CELL_FRAMES
+        );
+        // Laser values are only judged for the formats laid out with them.
+        assert!(parsed("design=x&format=fold&hinge_mm=-1").is_ok());
+    }
+}

@@ -1,0 +1,439 @@
+//! The plan of a printed sheet: the footprint of every tile and of every lamella hinge, in
+//! the patch's millimetres. [`super::solid`] extrudes and unites them.
+//!
+//! * **Tiles.** Each tile of the largest piece the joints hold together (see
+//!   `export::piece`) at the asked state, with every edge it shares with a
+//!   neighbour moved inward by `gap/2` (mitred corners), so neighbours are `gap` apart; edges
+//!   on the patch outline stay, so the sheet keeps the asked size.
+//! * **Hinges.** A joint of tiles A and B at vertex V lies on the edge e they share. Its
+//!   lamella is a slab across the gap over the span `[s0, s0 + hinge]` measured from V along
+//!   e, reaching `w = gap/2 + gap` to either side of e, i.e. one gap deep into both tiles.
+//!   `s0` is the least distance at which the slab keeps `c = gap/2` from the other edges of
+//!   A and B at V (nothing from an outline edge, whose far side is empty): a slab corner at
+//!   distance `s` along e and `w` across it is `s·sin φ − w·cos φ` from the line of an edge
+//!   at angle φ < 180° to e, and the neck keeps c from V itself, so
+//!   `s0 = max(c, (c + w·cos φ)/sin φ)` (a reflex corner of A or B wraps round the slab and
+//!   sets nothing). A tile beyond that edge is another c away: the gap. The far end keeps the same clearance at
+//!   the edge's other end (and leaves room for the other end's hinge if it has one). So a
+//!   slab joins exactly its two tiles and stays a full gap from every other tile, and its
+//!   neck in the gap is `hinge × gap`. At an opened state the slab is the convex hull of
+//!   its two halves, each placed on its own tile's edge.
+//!
+//! Every slab is then checked against every other tile and slab at the state: closer than
+//! the gap (or overlapping another slab) is refused, never printed fused.
+
+use super::error::PrintError;
+use super::offset::inset_edges;
+use super::settings::PrintSettings;
+use crate::export::laser::graph::PatchGraph;
+use crate::export::laser::JointAt;
+use crate::export::piece::largest_piece;
+use crate::export::Patch;
+use crate::geometry::{interiors_overlap, segment_distance, signed_area};
+use crate::math::{cross, perp, Real, Vec2};
+
+/// A lamella hinge: its footprint and the two tiles it joins.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HingeSlab {
+    /// Patch tile ids of the joint's two tiles.
+    pub tiles: [usize; 2],
+    /// Footprint, counter-clockwise, mm.
+    pub polygon: Vec<[Real; 2]>,
+}
+
+/// Footprints of a printed sheet.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PrintLayout {
+    /// Patch tile ids of the printed tiles (ascending).
+    pub tile_ids: Vec<usize>,
+    /// Their footprints (gap taken off shared edges), counter-clockwise, mm.
+    pub tiles: Vec<Vec<[Real; 2]>>,
+    /// One slab per joint between printed tiles.
+    pub hinges: Vec<HingeSlab>,
+    /// Tiles of the patch left off (not held to the largest piece by joints).
+    pub dropped: usize,
+}
+
+/// The layout of `patch` at its state with `settings` (validated by the caller).
+pub fn print_layout(patch: &Patch, settings: &PrintSettings) -> Result<PrintLayout, PrintError> {
+    let bad = |reason: String| PrintError::BadPatch { reason };
+    let n = patch.tiles.len();
+    if patch.closed_polygons_mm.len() != n {
+        return Err(bad("closed polygons and tiles differ in number".into()));
+    }
+    for (j, joint) in patch.joints.iter().enumerate() {
+        if joint.a >= n || joint.b >= n {
+            return Err(bad(format!("joint {j} names a tile outside the patch")));
+        }
+    }
+    let ids = largest_piece(n, patch.joints.iter().map(|j| [j.a, j.b]));
+    let mut index = vec![usize::MAX; n];
+    for (k, &t) in ids.iter().enumerate() {
+        index[t] = k;
+    }
+    let closed: Vec<Vec<[Real; 2]>> = ids
+        .iter()
+        .map(|&t| patch.closed_polygons_mm[t].clone())
+        .collect();
+    let joints: Vec<&crate::export::PatchJoint> = patch
+        .joints
+        .iter()
+        .filter(|j| index[j.a] != usize::MAX)
+        .collect();
+    let mut joint_at = Vec::with_capacity(joints.len());
+    for (j, joint) in joints.iter().enumerate() {
+        let point = closed[index[joint.a]]
+            .get(joint.vertex_a)
+            .ok_or_else(|| bad(format!("joint {j} names a vertex its tile lacks")))?;
+        joint_at.push(JointAt {
+            tiles: [index[joint.a], index[joint.b]],
+            point: *point,
+        });
+    }
+    let graph = PatchGraph::new(&closed, &joint_at).map_err(|e| bad(e.to_string()))?;
+    let c = 0.5 * settings.gap_mm;
+    let shared = |t: usize, k: usize| graph.edges[graph.tile_edges[t][k]].right.is_some();
+
+    let mut tiles = Vec::with_capacity(ids.len());
+    for (k, &id) in ids.iter().enumerate() {
+        let poly = to_vec(&patch.tiles[id].polygon_mm);
+        let d: Vec<Real> = (0..poly.len())
+            .map(|e| if shared(k, e) { c } else { 0.0 })
+            .collect();
+        let inset = inset_edges(&poly, &d).map_err(|p| PrintError::GapTooWide {
+            gap_mm: settings.gap_mm,
+            tile: id,
+            problem: p.to_string(),
+        })?;
+        tiles.push(inset);
+    }
+
+    let geo = Geometry {
+        graph: &graph,
+        closed: closed.iter().map(|p| to_vec(p)).collect(),
+        state: ids
+            .iter()
+            .map(|&id| to_vec(&patch.tiles[id].polygon_mm))
+            .collect(),
+        c,
+        w: c + settings.gap_mm,
+        hinge: settings.hinge_mm,
+    };
+    let mut hinges = Vec::with_capacity(joints.len());
+    for joint in &joints {
+        let (a, b) = (index[joint.a], index[joint.b]);
+        let slab = geo.slab(a, joint.vertex_a, b, joint.vertex_b, [joint.a, joint.b])?;
+        hinges.push((slab, [a, b]));
+    }
+    check_clearances(&tiles, &hinges, &ids, settings.gap_mm)?;
+    Ok(PrintLayout {
+        tile_ids: ids.clone(),
+        tiles: tiles.iter().map(|p| from_vec(p)).collect(),
+        hinges: hinges
+            .into_iter()
+            .map(|(p, [a, b])| HingeSlab {
+                tiles: [ids[a], ids[b]],
+                polygon: from_vec(&p),
+            })
+            .collect(),
+        dropped: n - ids.len(),
+    })
+}
+
+/// What the slab placement needs: the edge graph of the closed printed tiles, the closed and
+/// state polygons (by printed index), the clearance c = gap/2, the slab's half-width w
+/// across its edge, and the hinge width.
+struct Geometry<'a> {
+    graph: &'a PatchGraph,
+    closed: Vec<Vec<Vec2>>,
+    state: Vec<Vec<Vec2>>,
+    c: Real,
+    w: Real,
+    hinge: Real,
+}
+
+/// The edge a tile shares with its joint partner at vertex `v`: `forward` when it is edge
+/// `v` (from v to v + 1), else edge `v - 1` (ending at v).
+#[derive(Clone, Copy)]
+struct Side {
+    tile: usize,
+    vertex: usize,
+    forward: bool,
+}
+
+impl Side {
+    fn len(&self, g: &Geometry<'_>) -> usize {
+        g.closed[self.tile].len()
+    }
+
+    /// Index of the shared edge.
+    fn edge(&self, g: &Geometry<'_>) -> usize {
+        let n = self.len(g);
+        if self.forward {
+            self.vertex
+        } else {
+            (self.vertex + n - 1) % n
+        }
+    }
+
+    /// Index of the other end of the shared edge.
+    fn far(&self, g: &Geometry<'_>) -> usize {
+        let n = self.len(g);
+        if self.forward {
+            (self.vertex + 1) % n
+        } else {
+            (self.vertex + n - 1) % n
+        }
+    }
+}
+
+impl Geometry<'_> {
+    /// Which of tile `t`'s edges at vertex `v` it shares with tile `other`.
+    fn side(&self, t: usize, v: usize, other: usize) -> Option<Side> {
+        let n = self.closed[t].len();
+        if v >= n {
+            return None;
+        }
+        let with_other = |k: usize| {
+            let e = &self.graph.edges[self.graph.tile_edges[t][k]];
+            e.right.is_some() && (e.left == other || e.right == Some(other))
+        };
+        if with_other(v) {
+            Some(Side {
+                tile: t,
+                vertex: v,
+                forward: true,
+            })
+        } else if with_other((v + n - 1) % n) {
+            Some(Side {
+                tile: t,
+                vertex: v,
+                forward: false,
+            })
+        } else {
+            None
+        }
+    }
+
+    /// Least distance from vertex `v` of tile `t` (closed) along the edge to `toward` at
+    /// which a slab of half-width w keeps clear of the tile's other edge at `v`.
+    fn start(&self, t: usize, v: usize, toward: usize) -> Real {
+        let poly = &self.closed[t];
+        let n = poly.len();
+        let (prev, next) = ((v + n - 1) % n, (v + 1) % n);
+        // Reflex corner: the tile wraps round the slab, the other edge is not in the way.
+        if cross(&(poly[v] - poly[prev]), &(poly[next] - poly[v])) < 0.0 {
+            return 0.0;
+        }
+        let (other, other_edge) = if toward == next {
+            (prev, prev)
+        } else {
+            (next, v)
+        };
+        let d = (poly[toward] - poly[v]).normalize();
+        let f = (poly[other] - poly[v]).normalize();
+        let shared = self.graph.edges[self.graph.tile_edges[t][other_edge]]
+            .right
+            .is_some();
+        let c = if shared { self.c } else { 0.0 };
+        let (cos, sin) = (d.dot(&f), cross(&d, &f).abs());
+        let need = c + self.w * cos;
+        let corner = if need <= 0.0 {
+            0.0
+        } else if sin < 1e-9 {
+            Real::INFINITY
+        } else {
+            need / sin
+        };
+        // Where another tile lies beyond the other edge, the neck also keeps c from V, so it
+        // stays a full gap from that tile's corner.
+        corner.max(c)
+    }
+
+    /// The slab of the joint of printed tiles `a` (at its vertex `va`) and `b` (at `vb`);
+    /// `ids` are their patch ids, for messages.
+    fn slab(
+        &self,
+        a: usize,
+        va: usize,
+        b: usize,
+        vb: usize,
+        ids: [usize; 2],
+    ) -> Result<Vec<Vec2>, PrintError> {
+        let (Some(sa), Some(sb)) = (self.side(a, va, b), self.side(b, vb, a)) else {
+            return Err(PrintError::BadPatch {
+                reason: format!("the joint of tiles {ids:?} is not on an edge they share"),
+            });
+        };
+        let pa = &self.closed[a];
+        let (fa, fb) = (sa.far(self), sb.far(self));
+        let len = (pa[fa] - pa[va]).norm();
+        let s0 = self.start(a, va, fa).max(self.start(b, vb, fb));
+        let s_end = self.start(a, fa, va).max(self.start(b, fb, vb));
+        let edge = &self.graph.edges[self.graph.tile_edges[a][sa.edge(self)]];
+        let both_ends = edge.joint[0] && edge.joint[1];
+        let needed = s0 + self.hinge + s_end + if both_ends { self.hinge } else { 0.0 };
+        if needed.is_nan() || needed > len {
+            return Err(PrintError::HingeTooWide {
+                hinge_mm: self.hinge,
+                edge_mm: len,
+                needed_mm: needed,
+                tiles: ids,
+            });
+        }
+        // The two halves at the state, each on its own tile's copy of the edge.
+        let half = |side: Side| -> [Vec2; 2] {
+            let p = &self.state[side.tile];
+            let v = p[side.vertex];
+            let d = (p[side.far(self)] - v).normalize();
+            // Inward normal: left of the edge's own (counter-clockwise) direction.
+            let inward = if side.forward { perp(&d) } else { -perp(&d) };
+            [
+                v + d * s0 + inward * self.w,
+                v + d * (s0 + self.hinge) + inward * self.w,
+            ]
+        };
+        let [a0, a1] = half(sa);
+        let [b0, b1] = half(sb);
+        Ok(convex_hull(&[a0, a1, b0, b1]))
+    }
+}
+
+/// Refuses a slab closer than `gap` to a printed tile other than its two, or overlapping
+/// another slab (closer than `gap` when that slab joins other tiles).
+fn check_clearances(
+    tiles: &[Vec<Vec2>],
+    hinges: &[(Vec<Vec2>, [usize; 2])],
+    ids: &[usize],
+    gap: Real,
+) -> Result<(), PrintError> {
+    let tol = 1e-9 * (1.0 + gap);
+    let tile_boxes: Vec<[Real; 4]> = tiles.iter().map(|p| bbox(p)).collect();
+    let hinge_boxes: Vec<[Real; 4]> = hinges.iter().map(|(p, _)| bbox(p)).collect();
+    for (h, (slab, pair)) in hinges.iter().enumerate() {
+        let near = |b: &[Real; 4]| boxes_within(&hinge_boxes[h], b, gap);
+        let clash = |other: String| PrintError::HingeClash {
+            tiles: pair.map(|t| ids[t]),
+            other,
+        };
+        for (t, tile) in tiles.iter().enumerate() {
+            if pair.contains(&t) || !near(&tile_boxes[t]) {
+                continue;
+            }
+            if polygon_distance(slab, tile) < gap - tol {
+                return Err(clash(format!("tile {}", ids[t])));
+            }
+        }
+        for (k, (other, other_pair)) in hinges.iter().enumerate().skip(h + 1) {
+            if !near(&hinge_boxes[k]) {
+                continue;
+            }
+            let same_pair = other_pair == pair || *other_pair == [pair[1], pair[0]];
+            let limit = if same_pair { tol } else { gap - tol };
+            if polygon_distance(slab, other) < limit {
+                let named = other_pair.map(|t| ids[t]);
+                return Err(clash(format!("the hinge between tiles {named:?}")));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Distance between two simple polygons (zero when their interiors overlap).
+fn polygon_distance(p: &[Vec2], q: &[Vec2]) -> Real {
+    if interiors_overlap(p, q, 0.0) {
+        return 0.0;
+    }
+    let mut best = Real::INFINITY;
+    for i in 0..p.len() {
+        let (a, b) = (p[i], p[(i + 1) % p.len()]);
+        for j in 0..q.len() {
+            best = best.min(segment_distance(&a, &b, &q[j], &q[(j + 1) % q.len()]));
+        }
+    }
+    best
+}
+
+/// [min x, min y, max x, max y].
+fn bbox(p: &[Vec2]) -> [Real; 4] {
+    p.iter().fold(
+        [
+            Real::INFINITY,
+            Real::INFINITY,
+            Real::NEG_INFINITY,
+            Real::NEG_INFINITY,
+        ],
+        |b, v| [b[0].min(v.x), b[1].min(v.y), b[2].max(v.x), b[3].max(v.y)],
+    )
+}
+
+fn boxes_within(a: &[Real; 4], b: &[Real; 4], d: Real) -> bool {
+    a[0] <= b[2] + d && b[0] <= a[2] + d && a[1] <= b[3] + d && b[1] <= a[3] + d
+}
+
+/// Counter-clockwise convex hull (Andrew's monotone chain) of a few points.
+fn convex_hull(points: &[Vec2]) -> Vec<Vec2> {
+    let mut pts = points.to_vec();
+    pts.sort_by(|p, q| p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y)));
+    let mut hull: Vec<Vec2> = Vec::with_capacity(2 * pts.len());
+    for pass in 0..2 {
+        let start = hull.len();
+        for p in &pts {
+            while hull.len() >= start + 2
+                && cross(
+                    &(hull[hull.len() - 1] - hull[hull.len() - 2]),
+                    &(p - hull[hull.len() - 2]),
+                ) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(*p);
+        }
+        hull.pop();
+        if pass == 0 {
+            pts.reverse();
+        }
+    }
+    debug_assert!(hull.len() < 3 || signed_area(&hull) > 0.0);
+    hull
+}
+
+fn to_vec(poly: &[[Real; 2]]) -> Vec<Vec2> {
+    poly.iter().map(|p| Vec2::new(p[0], p[1])).collect()
+}
+
+fn from_vec(poly: &[Vec2]) -> Vec<[Real; 2]> {
+    poly.iter().map(|p| [p.x, p.y]).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::vec2;
+
+    #[test]
+    fn the_hull_of_a_rectangle_is_counter_clockwise() {
+        let h = convex_hull(&[
+            vec2(0.0, 1.0),
+            vec2(2.0, 0.0),
+            vec2(0.0, 0.0),
+            vec2(2.0, 1.0),
+        ]);
+        assert_eq!(h.len(), 4);
+        assert!((signed_area(&h) - 2.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn distances_between_polygons() {
+        let sq = |x: Real| {
+            vec![
+                vec2(x, 0.0),
+                vec2(x + 1.0, 0.0),
+                vec2(x + 1.0, 1.0),
+                vec2(x, 1.0),
+            ]
+        };
+        assert!((polygon_distance(&sq(0.0), &sq(1.5)) - 0.5).abs() < 1e-12);
+        assert_eq!(polygon_distance(&sq(0.0), &sq(0.5)), 0.0);
+    }
+}

@@ -1,0 +1,246 @@
+// The design page's "Export / make it" panel: a form built from the export catalogue (the
+// formats with their descriptions, and for each settings group its fields, shown only for
+// the formats that use it), the patch rows × columns, the scale (mean edge or patch width in
+// mm) and the state (closed, the slider's t, open). It exports what is on screen: the
+// design page tells it the current spec, kerf and t. Download fetches GET /api/export and
+// saves the answer under the server's file name; an error is shown in the panel and nothing
+// is saved. Under the form, the `isogami export …` command that writes the same file; on a
+// static site that command is the way to make the file.
+
+import { h } from './dom.js';
+import { attachmentName, cliCommand, exportFileName, exportParams, formatOf } from './export-request.js';
+
+/** Bytes as "12.3 kB". */
+function size(n) {
+  if (n < 1000) return `${n} B`;
+  if (n < 1e6) return `${(n / 1000).toFixed(1)} kB`;
+  return `${(n / 1e6).toFixed(1)} MB`;
+}
+
+/** Draws the panel into `container`. `current()` gives {spec, kerf, t} of what is on screen
+ * (null before a design is shown); `initial` the rows and columns to start with. */
+export function createExportPanel(container, { data, current, initial }) {
+  let catalog = null;
+  let inflight = null;
+  const settings = {}; // group → field name → text (or boolean for flags) the user set
+  const el = {};
+
+  const form = () => {
+    const now = current();
+    if (!now || !catalog) return null;
+    return {
+      spec: now.spec,
+      kerf: now.kerf,
+      t: now.t,
+      format: el.format.value,
+      rows: Number(el.rows.value),
+      cols: Number(el.cols.value),
+      scale: el.scale.value,
+      mm: el.mm.value.trim() === '' ? catalog.defaults.edge_mm : Number(el.mm.value),
+      state: container.querySelector('input[name="export-state"]:checked')?.value ?? 'closed',
+      settings,
+    };
+  };
+
+  function update() {
+    if (!catalog) return;
+    const f = form();
+    const format = formatOf(catalog, el.format.value);
+    el.description.textContent = format.description;
+    for (const [name, box] of Object.entries(el.groups)) box.hidden = !format.settings.includes(name);
+    const now = current();
+    el.currentT.textContent = now ? Number(now.t).toFixed(3) : '–';
+    const command = f ? cliCommand(f, catalog) : '';
+    if (el.command.textContent !== command) el.command.textContent = command;
+  }
+
+  function numberInput(id, attrs) {
+    return h('input', { id, type: 'number', inputmode: 'decimal', ...attrs, oninput: update, onchange: update });
+  }
+
+  function settingInput(group, field) {
+    const id = `export-${group.name}-${field.name}`;
+    const values = (settings[group.name] ??= {});
+    const set = (value) => {
+      if (value === '' || value === null) delete values[field.name];
+      else values[field.name] = value;
+      update();
+    };
+    let input;
+    if (field.kind === 'choice') {
+      input = h(
+        'select',
+        { id, testid: id, onchange: (e) => choose(group, field, e.target.value, set) },
+        h('option', { value: '' }, 'none (defaults)'),
+        field.choices.map((c) => h('option', { value: c.value }, c.label)),
+      );
+    } else if (field.kind === 'flag') {
+      input = h('input', { id, testid: id, type: 'checkbox', checked: field.default === true, onchange: (e) => set(e.target.checked) });
+      return h('div', { class: 'export-field flag' }, input, h('label', { for: id, title: field.help }, field.label));
+    } else if (field.kind === 'colour') {
+      input = h('input', {
+        id, testid: id, type: 'text', size: 8, placeholder: field.default, pattern: '#[0-9a-fA-F]{6}', spellcheck: 'false',
+        oninput: (e) => set(e.target.value.trim()),
+      });
+    } else {
+      input = h('input', {
+        id, testid: id, type: 'number', inputmode: 'decimal', step: 'any', min: 0, placeholder: String(field.default),
+        oninput: (e) => set(e.target.value.trim()),
+      });
+    }
+    const unit = field.unit ? h('span', { class: 'unit' }, field.unit) : null;
+    return h('div', { class: 'export-field' }, h('label', { for: id, title: field.help }, field.label), input, unit);
+  }
+
+  /** A preset choice: its values become the placeholders of the fields it sets. */
+  function choose(group, field, value, set) {
+    const choice = field.choices.find((c) => c.value === value);
+    for (const other of group.fields) {
+      if (other.kind !== 'number') continue;
+      const input = container.querySelector(`#export-${group.name}-${other.name}`);
+      if (input) input.placeholder = String(choice?.sets?.[other.name] ?? other.default);
+    }
+    set(value);
+  }
+
+  async function download() {
+    const f = form();
+    if (!f) return;
+    if (inflight) inflight.abort();
+    const controller = new AbortController();
+    inflight = controller;
+    el.error.replaceChildren();
+    el.error.hidden = true;
+    el.button.disabled = true;
+    el.status.textContent = 'exporting…';
+    try {
+      const { blob, disposition } = await data.exportFile(exportParams(f, catalog), controller.signal);
+      const name = attachmentName(disposition) ?? exportFileName(f.spec, f.rows, f.cols, formatOf(catalog, f.format));
+      const url = URL.createObjectURL(blob);
+      const a = h('a', { href: url, download: name, hidden: true });
+      document.body.append(a);
+      a.click();
+      a.remove();
+      setTimeout(() => URL.revokeObjectURL(url), 10000);
+      el.status.textContent = `saved ${name} (${size(blob.size)})`;
+    } catch (e) {
+      if (e.name === 'AbortError') return;
+      el.status.textContent = '';
+      el.error.replaceChildren(h('strong', {}, e.message), e.hint ? h('p', { class: 'hint' }, e.hint) : null);
+      el.error.dataset.kind = e.kind || 'error';
+      el.error.hidden = false;
+    } finally {
+      if (inflight === controller) {
+        inflight = null;
+        el.button.disabled = !data.live;
+      }
+    }
+  }
+
+  async function copyCommand() {
+    try {
+      await navigator.clipboard.writeText(el.command.textContent);
+      el.copyStatus.textContent = 'copied';
+    } catch {
+      const range = document.createRange();
+      range.selectNodeContents(el.command);
+      getSelection().removeAllRanges();
+      getSelection().addRange(range);
+      el.copyStatus.textContent = 'selected: press Ctrl+C';
+    }
+  }
+
+  function render() {
+    const max = catalog.limits.max_patch;
+    el.format = h(
+      'select',
+      { id: 'export-format', testid: 'export-format', onchange: update },
+      catalog.formats.map((f) => h('option', { value: f.name, title: f.description }, `${f.name} — ${f.description}`)),
+    );
+    el.description = h('p', { class: 'help', id: 'export-format-help', testid: 'export-format-help' });
+    el.format.setAttribute('aria-describedby', 'export-format-help');
+    el.rows = numberInput('export-rows', { testid: 'export-rows', min: 1, max, step: 1, value: initial.rows, required: true });
+    el.cols = numberInput('export-cols', { testid: 'export-cols', min: 1, max, step: 1, value: initial.cols, required: true });
+    el.scale = h(
+      'select',
+      { id: 'export-scale', testid: 'export-scale', onchange: update },
+      h('option', { value: 'edge' }, 'mean edge length'),
+      h('option', { value: 'width' }, 'patch width'),
+    );
+    el.mm = numberInput('export-mm', { testid: 'export-mm', min: 0, step: 'any', value: catalog.defaults.edge_mm, required: true });
+    el.currentT = h('span', { testid: 'export-current-t' });
+    const radio = (value, ...label) =>
+      h(
+        'label',
+        { class: 'radio' },
+        h('input', { type: 'radio', name: 'export-state', value, testid: `export-state-${value}`, checked: value === 'current', onchange: update }),
+        ' ',
+        ...label,
+      );
+    el.groups = {};
+    const groups = catalog.settings.map((g) => {
+      const box = h('fieldset', { class: 'export-group', testid: `export-group-${g.name}` }, h('legend', {}, g.label), g.fields.map((f) => settingInput(g, f)));
+      el.groups[g.name] = box;
+      return box;
+    });
+    el.button = h('button', { type: 'button', testid: 'export-download', onclick: download, disabled: !data.live }, 'Download');
+    el.status = h('span', { class: 'muted', testid: 'export-status', 'aria-live': 'polite' });
+    el.error = h('div', { class: 'notice notice-error', role: 'alert', testid: 'export-error', hidden: true });
+    el.command = h('code', { id: 'export-command', testid: 'export-command' });
+    el.copyStatus = h('span', { class: 'muted', 'aria-live': 'polite' });
+    container.replaceChildren(
+      h('div', { class: 'export-field wide' }, h('label', { for: 'export-format' }, 'format'), el.format),
+      el.description,
+      h(
+        'div',
+        { class: 'export-row' },
+        h('label', { for: 'export-rows' }, 'rows'),
+        el.rows,
+        h('span', { 'aria-hidden': 'true' }, '×'),
+        h('label', { for: 'export-cols' }, 'columns'),
+        el.cols,
+      ),
+      h(
+        'div',
+        { class: 'export-row' },
+        h('label', { for: 'export-scale' }, 'scale by'),
+        el.scale,
+        h('label', { for: 'export-mm' }, 'length'),
+        el.mm,
+        h('span', { class: 'unit' }, 'mm'),
+      ),
+      h(
+        'fieldset',
+        { class: 'export-state' },
+        h('legend', {}, 'state'),
+        radio('closed', 'closed (t = 0)'),
+        radio('current', 'the slider’s t = ', el.currentT),
+        radio('open', 'open (contact limit)'),
+      ),
+      ...groups,
+      h('p', {}, el.button, ' ', el.status),
+      el.error,
+      h('p', { class: 'help' }, data.live ? 'The same file from the command line:' : 'Downloads need `isogami serve`. On this static site, make the file with:'),
+      h('pre', { class: 'command' }, el.command),
+      h('p', {}, h('button', { type: 'button', testid: 'export-copy-command', onclick: copyCommand }, 'Copy command'), ' ', el.copyStatus),
+    );
+  }
+
+  async function start() {
+    try {
+      catalog = await data.exportCatalog();
+    } catch (e) {
+      container.replaceChildren(h('p', { class: 'notice', testid: 'export-unavailable' }, `Export: ${e.message}. ${e.hint || ''}`));
+      return;
+    }
+    render();
+    update();
+  }
+
+  const ready = start();
+  return {
+    /** Redraws the command after the design, its kerf or t changed. */
+    update,
+    ready,
+  };
+}
