@@ -1,5 +1,5 @@
 //! `isogami.export`: a patch of a design in millimetres in any of the library's export formats
-//! (laser SVG/DXF, FOLD, OBJ, tile tables, kirigami_sim files, ...), through the library's one
+//! (laser SVG/DXF, 3D-print STL/3MF, FOLD, OBJ, tile tables, kirigami_sim files, ...), through the library's one
 //! export entry point. Formats are listed and parsed by the library, so a format it gains
 //! appears here at once. Returns the file contents; Python writes them where it likes.
 
@@ -7,8 +7,10 @@ use crate::convert::{design_of, type_name};
 use crate::errors;
 use crate::progress::Watch;
 use isogami::export::laser::{LaserSettings, Material};
+use isogami::export::print3d::PrintSettings;
 use isogami::export::{
-    export_design, ExportError, ExportFiles, ExportOptions, Format, PatchRequest, Scale, State,
+    export_design, ExportError, ExportFiles, ExportOptions, Format, PatchRequest, Scale,
+    SettingsGroup, State,
 };
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
@@ -69,10 +71,10 @@ fn state_of(obj: &Bound<'_, PyAny>) -> PyResult<State> {
     })
 }
 
-/// The laser settings: a material preset (or the defaults), then every value given.
-#[allow(clippy::too_many_arguments)]
-fn laser_settings(
-    material: Option<&str>,
+/// The export settings a caller gave, by name; None where not given.
+#[derive(Default)]
+struct Given {
+    material: Option<String>,
     hinge_mm: Option<f64>,
     kerf_mm: Option<f64>,
     thickness_mm: Option<f64>,
@@ -80,44 +82,142 @@ fn laser_settings(
     stroke_mm: Option<f64>,
     colours: [Option<String>; 3],
     labels: bool,
-) -> PyResult<LaserSettings> {
-    let mut s = match material {
-        None => LaserSettings::default(),
-        Some(name) => {
-            let m = Material::from_name(name.trim()).ok_or_else(|| {
-                let names: Vec<&str> = Material::ALL.iter().map(|m| m.name()).collect();
-                errors::ExportError::new_err(format!(
-                    "material '{}': expected one of {}",
-                    name.escape_debug(),
-                    names.join(", ")
-                ))
-            })?;
-            LaserSettings::for_material(m)
+    gap_mm: Option<f64>,
+    lamella_mm: Option<f64>,
+    nozzle_mm: Option<f64>,
+}
+
+impl Given {
+    /// Names of the given settings that only the laser group reads.
+    fn laser_only(&self) -> Vec<&'static str> {
+        let [cut, score, engrave] = &self.colours;
+        [
+            ("material", self.material.is_some()),
+            ("kerf_mm", self.kerf_mm.is_some()),
+            ("margin_mm", self.margin_mm.is_some()),
+            ("stroke_mm", self.stroke_mm.is_some()),
+            ("cut_colour", cut.is_some()),
+            ("score_colour", score.is_some()),
+            ("engrave_colour", engrave.is_some()),
+            ("labels", self.labels),
+        ]
+        .into_iter()
+        .filter_map(|(n, given)| given.then_some(n))
+        .collect()
+    }
+
+    /// Names of the given settings that only the 3D-print group reads.
+    fn print_only(&self) -> Vec<&'static str> {
+        [
+            ("gap_mm", self.gap_mm.is_some()),
+            ("lamella_mm", self.lamella_mm.is_some()),
+            ("nozzle_mm", self.nozzle_mm.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(n, given)| given.then_some(n))
+        .collect()
+    }
+
+    /// Names of the settings both groups read.
+    fn shared(&self) -> Vec<&'static str> {
+        [
+            ("hinge_mm", self.hinge_mm.is_some()),
+            ("thickness_mm", self.thickness_mm.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(n, given)| given.then_some(n))
+        .collect()
+    }
+
+    /// The options of `format`: the defaults, then its own group's settings as the CLI
+    /// reads them. A setting of another group is refused rather than ignored.
+    fn options(self, format: Format) -> PyResult<ExportOptions> {
+        let group = format.settings_group();
+        let foreign: Vec<&str> = match group {
+            SettingsGroup::Laser => self.print_only(),
+            SettingsGroup::Print => self.laser_only(),
+            SettingsGroup::None => {
+                let mut all = self.laser_only();
+                all.extend(self.print_only());
+                all.extend(self.shared());
+                all
+            }
+        };
+        if !foreign.is_empty() {
+            return Err(PyTypeError::new_err(format!(
+                "{} does not apply to format {} (its settings group is {})",
+                foreign.join(", "),
+                format.name(),
+                group.name()
+            )));
         }
-    };
-    for (slot, v) in [
-        (&mut s.hinge_mm, hinge_mm),
-        (&mut s.kerf_mm, kerf_mm),
-        (&mut s.thickness_mm, thickness_mm),
-        (&mut s.margin_mm, margin_mm),
-        (&mut s.stroke_mm, stroke_mm),
-    ] {
+        let mut options = ExportOptions::default();
+        match group {
+            SettingsGroup::Laser => options.laser = self.laser()?,
+            SettingsGroup::Print => options.print = self.print(),
+            SettingsGroup::None => {}
+        }
+        Ok(options)
+    }
+
+    /// The laser settings: a material preset (or the defaults), then every value given.
+    fn laser(self) -> PyResult<LaserSettings> {
+        let mut s = match &self.material {
+            None => LaserSettings::default(),
+            Some(name) => {
+                let m = Material::from_name(name.trim()).ok_or_else(|| {
+                    let names: Vec<&str> = Material::ALL.iter().map(|m| m.name()).collect();
+                    errors::ExportError::new_err(format!(
+                        "material '{}': expected one of {}",
+                        name.escape_debug(),
+                        names.join(", ")
+                    ))
+                })?;
+                LaserSettings::for_material(m)
+            }
+        };
+        set_all([
+            (&mut s.hinge_mm, self.hinge_mm),
+            (&mut s.kerf_mm, self.kerf_mm),
+            (&mut s.thickness_mm, self.thickness_mm),
+            (&mut s.margin_mm, self.margin_mm),
+            (&mut s.stroke_mm, self.stroke_mm),
+        ]);
+        let [cut, score, engrave] = self.colours;
+        for (slot, v) in [
+            (&mut s.colours.cut, cut),
+            (&mut s.colours.score, score),
+            (&mut s.colours.engrave, engrave),
+        ] {
+            if let Some(v) = v {
+                *slot = v.trim().to_string();
+            }
+        }
+        s.labels = self.labels;
+        Ok(s)
+    }
+
+    /// The 3D-print settings: the defaults, then every value given.
+    fn print(self) -> PrintSettings {
+        let mut s = PrintSettings::default();
+        set_all([
+            (&mut s.hinge_mm, self.hinge_mm),
+            (&mut s.thickness_mm, self.thickness_mm),
+            (&mut s.gap_mm, self.gap_mm),
+            (&mut s.lamella_mm, self.lamella_mm),
+            (&mut s.nozzle_mm, self.nozzle_mm),
+        ]);
+        s
+    }
+}
+
+/// Overwrites each slot with its value where one was given.
+fn set_all<const N: usize>(pairs: [(&mut f64, Option<f64>); N]) {
+    for (slot, v) in pairs {
         if let Some(v) = v {
             *slot = v;
         }
     }
-    let [cut, score, engrave] = colours;
-    for (slot, v) in [
-        (&mut s.colours.cut, cut),
-        (&mut s.colours.score, score),
-        (&mut s.colours.engrave, engrave),
-    ] {
-        if let Some(v) = v {
-            *slot = v.trim().to_string();
-        }
-    }
-    s.labels = labels;
-    Ok(s)
 }
 
 /// Writes an R×C patch of ``design`` in millimetres in ``format`` and returns the file
@@ -130,10 +230,13 @@ fn laser_settings(
 /// (largest area ratio); ``kerf`` is the deployment's cut width relative to the mean edge
 /// (default 0.01); ``frames`` the states animated formats keep (2..100, default 11).
 ///
-/// Laser formats (svg, dxf): ``material`` (``"card"``, ``"felt"``, ``"pla"``) sets hinge,
-/// kerf and thickness, then ``hinge_mm``, ``kerf_mm``, ``thickness_mm``, ``margin_mm``,
-/// ``stroke_mm``, ``cut_colour``, ``score_colour``, ``engrave_colour`` and ``labels``
-/// override single values. ``creator`` is written into the files' metadata.
+/// Each format reads one group of settings (``export_formats()`` names it); a setting of
+/// another group raises ``TypeError``. Laser formats (svg, dxf): ``material`` (``"card"``,
+/// ``"felt"``, ``"pla"``) sets hinge, kerf and thickness, then ``hinge_mm``, ``kerf_mm``,
+/// ``thickness_mm``, ``margin_mm``, ``stroke_mm``, ``cut_colour``, ``score_colour``,
+/// ``engrave_colour`` and ``labels`` override single values. 3D-print formats (stl, 3mf):
+/// ``thickness_mm`` (2), ``hinge_mm`` (0.8), ``gap_mm`` (0.4), ``lamella_mm`` (0.4),
+/// ``nozzle_mm`` (0.4). ``creator`` is written into the files' metadata.
 ///
 /// Every value is checked before the deployment runs (``ExportError``, ``SettingsError``);
 /// ``progress`` and ``timeout`` as for ``deploy``; the GIL is released while it runs.
@@ -142,7 +245,7 @@ fn laser_settings(
     design, format, *, patch=None, edge_mm=None, width_mm=None, t=None, kerf=None, frames=None,
     material=None, hinge_mm=None, kerf_mm=None, thickness_mm=None, margin_mm=None,
     stroke_mm=None, cut_colour=None, score_colour=None, engrave_colour=None, labels=false,
-    creator=None, progress=None, timeout=None
+    gap_mm=None, lamella_mm=None, nozzle_mm=None, creator=None, progress=None, timeout=None
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn export<'py>(
@@ -165,6 +268,9 @@ pub fn export<'py>(
     score_colour: Option<String>,
     engrave_colour: Option<String>,
     labels: bool,
+    gap_mm: Option<f64>,
+    lamella_mm: Option<f64>,
+    nozzle_mm: Option<f64>,
     creator: Option<String>,
     progress: Option<Bound<'py, PyAny>>,
     timeout: Option<f64>,
@@ -197,20 +303,20 @@ pub fn export<'py>(
         kerf: kerf.unwrap_or(defaults.kerf),
         frames: frames.unwrap_or(defaults.frames),
     };
-    let laser = laser_settings(
-        material,
+    let given = Given {
+        material: material.map(str::to_string),
         hinge_mm,
         kerf_mm,
         thickness_mm,
         margin_mm,
         stroke_mm,
-        [cut_colour, score_colour, engrave_colour],
+        colours: [cut_colour, score_colour, engrave_colour],
         labels,
-    )?;
-    let mut options = ExportOptions {
-        laser,
-        ..ExportOptions::default()
+        gap_mm,
+        lamella_mm,
+        nozzle_mm,
     };
+    let mut options = given.options(format)?;
     if let Some(c) = creator {
         options.creator = c;
     }
@@ -241,7 +347,8 @@ pub fn export<'py>(
 }
 
 /// The export formats: a list of dicts with ``name`` (what ``export`` takes),
-/// ``description``, ``extension`` (None for a folder of files) and ``media_type``.
+/// ``description``, ``extension`` (None for a folder of files), ``media_type`` and
+/// ``settings``, the group of settings it reads (``"laser"``, ``"print"`` or ``"none"``).
 #[pyfunction]
 pub fn export_formats(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
     Format::ALL
@@ -252,6 +359,7 @@ pub fn export_formats(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
             d.set_item("description", f.description())?;
             d.set_item("extension", f.extension())?;
             d.set_item("media_type", f.media_type())?;
+            d.set_item("settings", f.settings_group().name())?;
             Ok(d)
         })
         .collect()

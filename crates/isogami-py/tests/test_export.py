@@ -23,8 +23,11 @@ def test_formats_are_the_library_list():
     formats = isogami.export_formats()
     names = [f["name"] for f in formats]
     assert len(names) == len(set(names)) >= 7
-    for expected in ["svg", "dxf", "fold", "obj", "tiles-csv", "tiles-json", "kirigami-sim"]:
+    for expected in ["svg", "dxf", "stl", "3mf", "fold", "obj", "tiles-csv", "tiles-json", "kirigami-sim"]:
         assert expected in names
+    groups = {f["name"]: f["settings"] for f in formats}
+    assert groups["svg"] == groups["dxf"] == "laser" and groups["stl"] == groups["3mf"] == "print"
+    assert groups["fold"] == groups["obj"] == "none"
     for f in formats:
         assert f["description"] and f["media_type"]
         assert f["extension"] is None or f["extension"].isalnum()
@@ -50,6 +53,9 @@ def test_every_format_equals_the_cli(cli_raw, tmp_path, fmt):
         (["--format", "dxf", "--material", "card", "--kerf-mm", "0.15", "--margin-mm", "8", "--edge-mm", "30"],
          dict(format="dxf", material="card", kerf_mm=0.15, margin_mm=8.0, edge_mm=30.0)),
         (["--format", "tiles-csv", "--t", "1"], dict(format="tiles-csv", t=1.0)),
+        (["--format", "stl", "--thickness-mm", "3", "--hinge-mm", "1.2", "--gap-mm", "0.5", "--lamella-mm", "0.6", "--nozzle-mm", "0.45"],
+         dict(format="stl", thickness_mm=3.0, hinge_mm=1.2, gap_mm=0.5, lamella_mm=0.6, nozzle_mm=0.45)),
+        (["--format", "3mf", "--t", "open", "--edge-mm", "15"], dict(format="3mf", t="open", edge_mm=15.0)),
     ],
 )
 def test_settings_equal_the_cli(cli_raw, tmp_path, flags, kwargs):
@@ -92,6 +98,13 @@ def test_exported_files_read_back():
         (dict(format="svg", material="wood"), isogami.ExportError, "material 'wood'"),
         (dict(format="svg", hinge_mm=-1.0), isogami.ExportError, "hinge"),
         (dict(format="svg", cut_colour="black!"), isogami.ExportError, "colour"),
+        (dict(format="stl", hinge_mm=0.2), isogami.ExportError, "nozzle"),
+        (dict(format="stl", lamella_mm=5.0), isogami.ExportError, "lamella"),
+        (dict(format="3mf", gap_mm=float("nan")), isogami.ExportError, "gap_mm"),
+        (dict(format="stl", material="card"), TypeError, "material does not apply to format stl"),
+        (dict(format="svg", gap_mm=0.3), TypeError, "gap_mm does not apply to format svg"),
+        (dict(format="obj", hinge_mm=1.0), TypeError, "hinge_mm does not apply"),
+        (dict(format="fold", labels=True), TypeError, "labels does not apply"),
         (dict(format="obj", kerf=0.9), isogami.SettingsError, "kerf"),
         (dict(format="obj", edge_mm=10.0, width_mm=100.0), TypeError, "not both"),
         (dict(format="obj", t=[0.5]), TypeError, "t must be"),

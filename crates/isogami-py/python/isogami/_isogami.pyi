@@ -575,6 +575,9 @@ def export(
     score_colour: Optional[str] = None,
     engrave_colour: Optional[str] = None,
     labels: bool = False,
+    gap_mm: Optional[float] = None,
+    lamella_mm: Optional[float] = None,
+    nozzle_mm: Optional[float] = None,
     creator: Optional[str] = None,
     progress: Optional[Progress] = None,
     timeout: Optional[float] = None,
@@ -582,4 +585,4 @@ def export(
     """A patch of a design in mm in one export format (bytes, or {name: bytes} for a folder)."""
 
 def export_formats() -> List[Dict[str, Optional[str]]]:
-    """The export formats: name, description, extension, media_type."""
+    """The export formats: name, description, extension, media_type, settings group."""
