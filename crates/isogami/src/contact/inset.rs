@@ -55,11 +55,10 @@ impl std::fmt::Display for InsetProblem {
 
 impl std::error::Error for InsetProblem {}
 
-/// The polygon `poly` (counter-clockwise, possibly non-convex, collinear consecutive edges
-/// allowed) with every edge moved inward by `h > 0`. Vertex k of the result belongs to
-/// vertex k of the input. Fails when the result is not a simple counter-clockwise polygon
-/// whose edges keep their directions.
-pub fn inset_polygon(poly: &[Vec2], h: Real) -> Result<Vec<Vec2>, InsetProblem> {
+/// The inward unit normal of every edge k (vertex k → k+1) of `poly`, the left side of a
+/// counter-clockwise traversal, after checking that `poly` has at least three finite
+/// vertices, is counter-clockwise and has no zero-length edge.
+pub(crate) fn inward_normals(poly: &[Vec2]) -> Result<Vec<Vec2>, InsetProblem> {
     let n = poly.len();
     if n < 3 {
         return Err(InsetProblem::TooFewVertices(n));
@@ -73,7 +72,6 @@ pub fn inset_polygon(poly: &[Vec2], h: Real) -> Result<Vec<Vec2>, InsetProblem> 
     if signed_area(poly) <= 0.0 {
         return Err(InsetProblem::Clockwise);
     }
-    // Inward unit normal of edge k (vertex k → k+1): the left side of a CCW traversal.
     let mut normals = Vec::with_capacity(n);
     for k in 0..n {
         let e = poly[(k + 1) % n] - poly[k];
@@ -83,6 +81,16 @@ pub fn inset_polygon(poly: &[Vec2], h: Real) -> Result<Vec<Vec2>, InsetProblem> 
         }
         normals.push(perp(&e) / len);
     }
+    Ok(normals)
+}
+
+/// The polygon `poly` (counter-clockwise, possibly non-convex, collinear consecutive edges
+/// allowed) with every edge moved inward by `h > 0`. Vertex k of the result belongs to
+/// vertex k of the input. Fails when the result is not a simple counter-clockwise polygon
+/// whose edges keep their directions.
+pub fn inset_polygon(poly: &[Vec2], h: Real) -> Result<Vec<Vec2>, InsetProblem> {
+    let n = poly.len();
+    let normals = inward_normals(poly)?;
     // The point at distance h inside both lines through vertex k: v + h·m with m·n₁ = m·n₂ = 1,
     // m = (n₁ + n₂) / (1 + n₁·n₂). Collinear edges give m = n with no special case.
     let mut out = Vec::with_capacity(n);

@@ -59,7 +59,7 @@ mod derivatives;
 mod distance;
 mod energy;
 mod error;
-mod inset;
+pub(crate) mod inset;
 mod lattice;
 mod local;
 mod model;

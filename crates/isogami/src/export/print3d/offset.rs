@@ -4,6 +4,7 @@
 //! edges move by different distances the polygon takes a small square step instead of a
 //! far-away mitre point.
 
+use crate::contact::inset::inward_normals;
 use crate::contact::InsetProblem;
 use crate::geometry::{is_simple_problem, signed_area};
 use crate::math::{cross, perp, Real, Vec2};
@@ -19,28 +20,7 @@ const STEP_SIN: Real = 1e-3;
 /// moved edges keep their direction.
 pub fn inset_edges(poly: &[Vec2], d: &[Real]) -> Result<Vec<Vec2>, InsetProblem> {
     let n = poly.len();
-    if n < 3 {
-        return Err(InsetProblem::TooFewVertices(n));
-    }
-    if let Some(v) = poly
-        .iter()
-        .position(|v| !(v.x.is_finite() && v.y.is_finite()))
-    {
-        return Err(InsetProblem::NonFiniteVertex(v));
-    }
-    if signed_area(poly) <= 0.0 {
-        return Err(InsetProblem::Clockwise);
-    }
-    let mut normals = Vec::with_capacity(n);
-    for k in 0..n {
-        let e = poly[(k + 1) % n] - poly[k];
-        let len = e.norm();
-        if len.is_nan() || len <= 0.0 {
-            return Err(InsetProblem::ZeroEdge(k));
-        }
-        // Inward: the left side of a counter-clockwise traversal.
-        normals.push(perp(&e) / len);
-    }
+    let normals = inward_normals(poly)?;
     // Per output vertex: the input edges of the segments before and after it (`None` for
     // the short segment of a step).
     let mut out: Vec<(Vec2, Option<usize>, Option<usize>)> = Vec::with_capacity(n + 2);
