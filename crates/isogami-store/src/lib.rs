@@ -30,6 +30,7 @@
 //! builds its records from the library's plain data types (`CatalogEntry`,
 //! `DeploymentReport`, `LinkageAnalysis`).
 
+mod candidates;
 mod checksum;
 mod dictionary;
 mod error;
