@@ -50,7 +50,10 @@ impl Store {
         while let Some(row) = rows.next()? {
             let stored = typed(record_from_row(row)?)?;
             let design: Design = stored.summary.spec.parse().map_err(|e| {
-                StoreError::Damaged(format!("stored spec {} does not read: {e}", stored.summary.spec))
+                StoreError::Damaged(format!(
+                    "stored spec {} does not read: {e}",
+                    stored.summary.spec
+                ))
             })?;
             out.push(Candidate {
                 design,

@@ -16,6 +16,13 @@ use isogami::topology::Design;
 /// so that stored ranges and the inverse design's Poisson targets agree).
 pub use isogami::deploy::POISSON_OPEN_FRACTION;
 
+fn invalid(spec: &str, problem: impl Into<String>) -> StoreError {
+    StoreError::InvalidRecord {
+        spec: spec.to_string(),
+        problem: problem.into(),
+    }
+}
+
 /// The `kind` tag of the report's end reason, e.g. `contact_limit`.
 fn end_reason_kind(spec: &str, report: &DeploymentReport) -> StoreResult<String> {
     let value = serde_json::to_value(&report.end_reason)

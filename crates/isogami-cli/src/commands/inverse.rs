@@ -27,11 +27,15 @@ pub struct Args {
     #[arg(long, default_value_t = 3)]
     top: usize,
     /// Evaluations (deployments) per refined design; 0 screens only.
-    #[arg(long, default_value_t = 60)]
+    #[arg(long, default_value_t = 80)]
     budget: usize,
-    /// How many of the best pre-screened designs to re-deploy (default 4 × top).
+    /// How many of the best pre-screened designs to re-deploy (default 8 × top).
     #[arg(long)]
     confirm: Option<usize>,
+    /// How many screened designs (two shapes per topology at most) get a first refinement
+    /// of a quarter of the budget before the best TOP topologies go on (default 8 × top).
+    #[arg(long)]
+    triage: Option<usize>,
     /// Fresh shape samples around each of the best topologies before refining.
     #[arg(long, default_value_t = 0)]
     samples: usize,
@@ -68,8 +72,9 @@ fn request_of(args: &Args) -> Result<InverseRequest, String> {
     r.top = args.top;
     r.budget = args.budget;
     r.confirm = args.confirm.unwrap_or(0);
-    if args.confirm == Some(0) {
-        return Err("--confirm must be at least 1".into());
+    r.triage = args.triage.unwrap_or(0);
+    if args.confirm == Some(0) || args.triage == Some(0) {
+        return Err("--confirm and --triage must be at least 1".into());
     }
     r.samples = args.samples;
     if let Some(k) = args.kerf {
@@ -147,13 +152,14 @@ fn table(result: &InverseResult, saved: &[Saved]) -> String {
     outln!(t, "target: {}", result.target);
     outln!(
         t,
-        "{} candidates, {} pass the constraints, {} pre-scored, {} re-deployed ({} valid), {} fresh samples; {} deployments in {:.1} s",
+        "{} candidates, {} pass the constraints, {} pre-scored, {} re-deployed ({} valid), {} fresh samples, {} triaged; {} deployments in {:.1} s",
         result.candidates,
         result.admitted,
         result.prescored,
         result.confirmed,
         result.confirmed_valid,
         result.sampled,
+        result.triaged,
         result.evaluations,
         result.seconds
     );
@@ -167,7 +173,11 @@ fn table(result: &InverseResult, saved: &[Saved]) -> String {
             r.topology,
             r.before.objective,
             r.after.objective,
-            if r.improved { "improved" } else { "not improved" },
+            if r.improved {
+                "improved"
+            } else {
+                "not improved"
+            },
             r.evaluations,
             r.invalid_evaluations
         );

@@ -72,7 +72,9 @@ pub fn assess(
     settings: &CatalogSettings,
     progress: crate::deploy::Progress<'_>,
 ) -> Result<Assessment> {
-    let dof = api::analyze(design, settings.topology.mobility)?.mobility.dof;
+    let dof = api::analyze(design, settings.topology.mobility)?
+        .mobility
+        .dof;
     if dof != 1 {
         return Ok(Assessment::Rejected(Rejection::Mobility { dof }));
     }

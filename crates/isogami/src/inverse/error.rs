@@ -57,7 +57,9 @@ pub enum InverseError {
         requirement: Requirement,
     },
     /// An expansion path whose points are not in increasing t.
-    #[error("target: path points must have strictly increasing t in [0, 1] (point {index} has t = {t})")]
+    #[error(
+        "target: path points must have strictly increasing t in [0, 1] (point {index} has t = {t})"
+    )]
     PathOrder {
         /// 0-based point index.
         index: usize,

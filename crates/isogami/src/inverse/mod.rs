@@ -11,7 +11,12 @@
 //!   invalid with a typed reason.
 //! - [`screen`]: stage 1 — pre-screen candidates on their stored reports, re-deploy the best,
 //!   optionally sample fresh shapes, keep the best k of different topologies.
-//! - [`refine`]: stage 2 — Nelder–Mead (argmin) on the shape parameters (and the kerf).
+//! - [`refine`]: stage 2 — Nelder–Mead (argmin) on the shape parameters (and the kerf):
+//!   every screened design (up to two shapes per topology) first gets a quarter of the budget
+//!   (triage), then the k topologies with the best triaged points go on from each of their
+//!   starting shapes with the rest, so a topology whose screened design starts further from
+//!   the target but can reach it is not lost to screening order, and a start that runs into
+//!   a poorer basin does not hide its sibling.
 //! - [`inverse_design`]: the one entry point; every returned design is re-deployed and
 //!   checked at the end.
 //!
@@ -46,8 +51,7 @@ pub use error::InverseError;
 pub use evaluate::{Evaluation, Evaluator, Invalidity, Outcome};
 pub use objective::{goal_value, score, Score, Unmet};
 pub use request::{
-    InverseProgress, InverseRequest, InverseResult, Measures, RefinedDesign, Scored, Source,
-    Stage,
+    InverseProgress, InverseRequest, InverseResult, Measures, RefinedDesign, Scored, Source, Stage,
 };
 pub use screen::Candidate;
 pub use target::{Constraints, Goal, PathPoint, Target, Term};
@@ -117,24 +121,107 @@ fn run(
             screened: counts.confirmed,
         }));
     }
-    monitor.stage(Stage::Refine, screened.len() * request.budget);
-    let refined = screened
+    // Triage: every screened design gets a short refinement; the best `top` topologies go on
+    // from their best triaged point with the rest of the budget (successive halving in two
+    // rounds).
+    let first_budget = |s: &Screened| triage_budget(request, &s.evaluation);
+    monitor.stage(Stage::Triage, screened.iter().map(first_budget).sum());
+    let first = screened
         .par_iter()
-        .map(|s| refine::refine(&s.evaluation, request.budget, request.refine_kerf, ev, monitor))
+        .map(|s| {
+            refine::refine(
+                &s.evaluation,
+                first_budget(s),
+                request.refine_kerf,
+                ev,
+                monitor,
+            )
+        })
         .collect::<Result<Vec<_>, _>>()?;
-    monitor.stage(Stage::Verify, refined.len());
-    let mut results = screened
+    let mut order: Vec<usize> = (0..screened.len()).collect();
+    let objective = |i: usize| first[i].best.objective().unwrap_or(f64::INFINITY);
+    order.sort_by(|&a, &b| objective(a).total_cmp(&objective(b)));
+    // The `top` topologies with the best triaged points go on, from every one of their
+    // starting shapes (two basins of one topology are both followed).
+    let mut kept: Vec<&str> = Vec::new();
+    for &i in &order {
+        let t = screened[i].topology.as_str();
+        if kept.len() < request.top && !kept.contains(&t) {
+            kept.push(t);
+        }
+    }
+    let going: Vec<usize> = order
+        .iter()
+        .copied()
+        .filter(|&i| kept.contains(&screened[i].topology.as_str()))
+        .collect();
+    let planned_more = going
+        .iter()
+        .map(|&i| request.budget - first_budget(&screened[i]))
+        .sum();
+    monitor.stage(Stage::Refine, planned_more);
+    let more = going
         .par_iter()
-        .zip(refined)
-        .map(|(s, r)| finish(s, r, ev, monitor))
+        .map(|&i| {
+            let rest = request.budget - first_budget(&screened[i]);
+            refine::refine(&first[i].best, rest, request.refine_kerf, ev, monitor)
+        })
+        .collect::<Result<Vec<_>, Stopped>>()?;
+    // Per kept topology: its best start (as screened), its best refined point, and every
+    // evaluation spent on it.
+    let mut per_topology = Vec::new();
+    for t in &kept {
+        let starts: Vec<usize> = (0..going.len())
+            .filter(|&g| screened[going[g]].topology == *t)
+            .collect();
+        let screened_best = going
+            .iter()
+            .copied()
+            .filter(|&i| screened[i].topology == *t)
+            .min_by(|&a, &b| {
+                let v = |i: usize| screened[i].evaluation.objective().unwrap_or(f64::INFINITY);
+                v(a).total_cmp(&v(b))
+            })
+            .expect("a kept topology has a start");
+        let best = starts
+            .iter()
+            .map(|&g| &more[g].best)
+            .min_by(|a, b| {
+                let v = |e: &Evaluation| e.objective().unwrap_or(f64::INFINITY);
+                v(a).total_cmp(&v(b))
+            })
+            .expect("a kept topology has a start")
+            .clone();
+        let evaluations = starts
+            .iter()
+            .map(|&g| first[going[g]].evaluations + more[g].evaluations)
+            .sum();
+        let invalid = starts
+            .iter()
+            .map(|&g| first[going[g]].invalid + more[g].invalid)
+            .sum();
+        per_topology.push((
+            screened_best,
+            refine::Refined {
+                best,
+                evaluations,
+                invalid,
+            },
+        ));
+    }
+    let triage_evaluations: usize = first.iter().map(|r| r.evaluations).sum();
+    let more_evaluations: usize = more.iter().map(|r| r.evaluations).sum();
+    monitor.stage(Stage::Verify, per_topology.len());
+    let mut results = per_topology
+        .into_par_iter()
+        .map(|(i, r)| finish(&screened[i], r, ev, monitor))
         .collect::<Result<Vec<_>, _>>()?;
     results.sort_by(|a, b| a.after.objective.total_cmp(&b.after.objective));
     for (i, r) in results.iter_mut().enumerate() {
         r.rank = i + 1;
     }
-    let evaluations = counts.confirmed
-        + counts.sampled
-        + results.iter().map(|r| r.evaluations + 1).sum::<usize>();
+    let evaluations =
+        counts.confirmed + counts.sampled + triage_evaluations + more_evaluations + results.len();
     Ok(Ok(InverseResult {
         target: request.target.to_string(),
         kerf: request.effective_kerf(),
@@ -144,10 +231,18 @@ fn run(
         confirmed: counts.confirmed,
         confirmed_valid: counts.confirmed_valid,
         sampled: counts.sampled,
+        triaged: screened.len(),
         evaluations,
         seconds: 0.0,
         results,
     }))
+}
+
+/// Evaluations of the first (triage) refinement of one design: a quarter of the budget, at
+/// least two simplices' worth (2 (n + 1) for n unknowns), never more than the budget.
+fn triage_budget(request: &InverseRequest, start: &Evaluation) -> usize {
+    let n = start.design.params.len() + usize::from(request.refine_kerf);
+    (request.budget / 4).max(2 * (n + 1)).min(request.budget)
 }
 
 /// Scored form of a valid evaluation.

@@ -35,7 +35,10 @@ impl fmt::Display for Unmet {
             Unmet::NoFrames => f.write_str("the deployment has no frames"),
             Unmet::NeverOpens => f.write_str("the sheet never opens"),
             Unmet::NoContactLimit { end_reason } => {
-                write!(f, "the deployment ends by '{end_reason}', not at a contact limit")
+                write!(
+                    f,
+                    "the deployment ends by '{end_reason}', not at a contact limit"
+                )
             }
             Unmet::NotFinite => f.write_str("a goal value is not finite"),
         }
@@ -49,6 +52,10 @@ pub struct Score {
     pub objective: Real,
     /// Each goal's value, in the target's order (unweighted).
     pub terms: Vec<Real>,
+    /// When every goal is a match (lock, lock-f, path): the stacked residuals √weight · rᵢ
+    /// with ‖rᵢ‖ the goal's value, for least-squares refinement. None otherwise.
+    #[serde(skip)]
+    pub residual: Option<Vec<Real>>,
 }
 
 /// U of F given as rows.
@@ -98,15 +105,65 @@ fn end_state(report: &DeploymentReport) -> Result<&FrameReport, Unmet> {
     report.frames.last().ok_or(Unmet::NoFrames)
 }
 
+/// The entries of a symmetric 2×2 matrix whose Euclidean norm is its Frobenius norm.
+fn sym_entries(m: &Mat2) -> [Real; 3] {
+    let off = 0.5 * (m[(0, 1)] + m[(1, 0)]);
+    [m[(0, 0)], std::f64::consts::SQRT_2 * off, m[(1, 1)]]
+}
+
+/// The residual vector of a matching goal (its Euclidean norm is [`goal_value`]); `None` for
+/// goals that are not matches (extreme expansion, Poisson-like ratio held over the motion).
+pub fn goal_residual(goal: &Goal, report: &DeploymentReport) -> Result<Option<Vec<Real>>, Unmet> {
+    let r = match goal {
+        Goal::LockF { f } => {
+            let want = stretch(f).ok_or(Unmet::NotFinite)?;
+            sym_entries(&(end_state(report)?.measures.u_matrix() - want)).to_vec()
+        }
+        Goal::Lock {
+            min,
+            max,
+            angle_deg,
+        } => {
+            let end = &end_state(report)?.measures;
+            match angle_deg {
+                Some(a) => {
+                    let r = rotation(a.to_radians());
+                    let want = r * Mat2::new(1.0 + max, 0.0, 0.0, 1.0 + min) * r.transpose();
+                    sym_entries(&(end.u_matrix() - want)).to_vec()
+                }
+                None => vec![end.min_expansion - min, end.max_expansion - max],
+            }
+        }
+        Goal::Path { points } => {
+            if report.frames.is_empty() {
+                return Err(Unmet::NoFrames);
+            }
+            let k = 1.0 / (points.len() as Real).sqrt();
+            points
+                .iter()
+                .flat_map(|p| {
+                    let (lo, hi) = expansions_at(&report.frames, p.t);
+                    [k * (lo - p.min), k * (hi - p.max)]
+                })
+                .collect()
+        }
+        _ => return Ok(None),
+    };
+    if r.iter().all(|v| v.is_finite()) {
+        Ok(Some(r))
+    } else {
+        Err(Unmet::NotFinite)
+    }
+}
+
 /// The value of one goal on a deployment (see [`Goal`]).
 pub fn goal_value(goal: &Goal, report: &DeploymentReport) -> Result<Real, Unmet> {
     let frames = &report.frames;
     if frames.is_empty() {
         return Err(Unmet::NoFrames);
     }
-    let max_over = |f: &dyn Fn(&FrameReport) -> Real| {
-        frames.iter().map(f).fold(Real::NEG_INFINITY, Real::max)
-    };
+    let max_over =
+        |f: &dyn Fn(&FrameReport) -> Real| frames.iter().map(f).fold(Real::NEG_INFINITY, Real::max);
     let value = match goal {
         Goal::Area => -(max_over(&|f| f.measures.area_ratio) - 1.0),
         Goal::Uniform => -max_over(&|f| f.measures.min_expansion),
@@ -159,11 +216,21 @@ pub fn score(target: &Target, report: &DeploymentReport) -> Result<Score, Unmet>
         .zip(&terms)
         .map(|(t, v)| t.weight * v)
         .sum::<Real>();
-    if objective.is_finite() {
-        Ok(Score { objective, terms })
-    } else {
-        Err(Unmet::NotFinite)
+    if !objective.is_finite() {
+        return Err(Unmet::NotFinite);
     }
+    let mut residual = Some(Vec::new());
+    for t in &target.terms {
+        match (goal_residual(&t.goal, report)?, residual.as_mut()) {
+            (Some(r), Some(all)) => all.extend(r.iter().map(|v| t.weight.sqrt() * v)),
+            _ => residual = None,
+        }
+    }
+    Ok(Score {
+        objective,
+        terms,
+        residual,
+    })
 }
 
 #[cfg(test)]
@@ -183,7 +250,11 @@ mod tests {
         let r = rotating_squares();
         let value = |g: Goal| goal_value(&g, &r).unwrap();
         // Largest area ratio (cos φ + sin φ)² = 2 at φ = 45°.
-        assert!((value(Goal::Area) + 1.0).abs() < 2e-3, "{}", value(Goal::Area));
+        assert!(
+            (value(Goal::Area) + 1.0).abs() < 2e-3,
+            "{}",
+            value(Goal::Area)
+        );
         // Isotropic: ε(θ) is the same in every direction, √2 − 1 at best.
         let best = 2f64.sqrt() - 1.0;
         for a in [0.0, 30.0, 90.0] {
@@ -218,7 +289,11 @@ mod tests {
                 max: f.measures.max_expansion,
             })
             .collect();
-        assert!(value(Goal::Path { points: points.clone() }) < 1e-12);
+        assert!(
+            value(Goal::Path {
+                points: points.clone()
+            }) < 1e-12
+        );
         let shifted = points
             .iter()
             .map(|p| PathPoint {
@@ -228,6 +303,60 @@ mod tests {
             })
             .collect();
         assert!((value(Goal::Path { points: shifted }) - 0.05).abs() < 1e-12);
+    }
+
+    #[test]
+    fn residuals_have_the_goal_values_as_norms() {
+        let r = rotating_squares();
+        let mid = &r.frames[r.frames.len() / 3].measures;
+        let goals = [
+            Goal::LockF {
+                f: [[1.1, 0.05], [-0.02, 1.3]],
+            },
+            Goal::Lock {
+                min: 0.1,
+                max: 0.25,
+                angle_deg: Some(30.0),
+            },
+            Goal::Lock {
+                min: 0.1,
+                max: 0.25,
+                angle_deg: None,
+            },
+            Goal::Path {
+                points: vec![
+                    PathPoint {
+                        t: 0.3,
+                        min: mid.min_expansion + 0.01,
+                        max: 0.2,
+                    },
+                    PathPoint {
+                        t: 0.9,
+                        min: 0.0,
+                        max: 0.1,
+                    },
+                ],
+            },
+        ];
+        for g in &goals {
+            let res = goal_residual(g, &r).unwrap().expect("a matching goal");
+            let norm = res.iter().map(|v| v * v).sum::<Real>().sqrt();
+            let value = goal_value(g, &r).unwrap();
+            assert!((norm - value).abs() < 1e-12, "{g}: {norm} vs {value}");
+            assert!(value > 1e-3, "{g}: a real mismatch");
+        }
+        assert_eq!(goal_residual(&Goal::Area, &r).unwrap(), None);
+        let t = Target::parse("lock(0.1,0.25) + 4*lock-f(1.1,0.05,-0.02,1.3)").unwrap();
+        let s = score(&t, &r).unwrap();
+        let res = s.residual.expect("all goals match");
+        assert_eq!(res.len(), 2 + 3);
+        let stacked = res.iter().map(|v| v * v).sum::<Real>();
+        let want = s.terms[0].powi(2) + 4.0 * s.terms[1].powi(2);
+        assert!((stacked - want).abs() < 1e-12);
+        assert!(score(&Target::parse("lock(0.1,0.2) + area").unwrap(), &r)
+            .unwrap()
+            .residual
+            .is_none());
     }
 
     #[test]

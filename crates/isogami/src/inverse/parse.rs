@@ -22,7 +22,8 @@ use crate::math::Real;
 use crate::topology::quote_input;
 use std::fmt;
 
-const GOALS: &str = "area, expansion(deg), uniform, isotropic, zero-poisson, poisson(nu), ratio(r), \
+const GOALS: &str =
+    "area, expansion(deg), uniform, isotropic, zero-poisson, poisson(nu), ratio(r), \
                      lock(min,max[,deg]), lock-f(a,b,c,d), path(t:min:max,...)";
 const CONSTRAINTS: &str = "families, cells, tiles, rotation, kerf, hinge";
 
@@ -71,12 +72,13 @@ fn call(text: &str) -> Result<(String, Option<&str>), InverseError> {
         None => Ok((t.to_ascii_lowercase(), None)),
         Some(open) => {
             let name = t[..open].trim().to_ascii_lowercase();
-            let inner = t[open + 1..].strip_suffix(')').ok_or_else(|| {
-                InverseError::UnknownGoal {
-                    name: quote_input(t),
-                    known: GOALS,
-                }
-            })?;
+            let inner =
+                t[open + 1..]
+                    .strip_suffix(')')
+                    .ok_or_else(|| InverseError::UnknownGoal {
+                        name: quote_input(t),
+                        known: GOALS,
+                    })?;
             Ok((name, Some(inner)))
         }
     }
@@ -230,7 +232,11 @@ fn constraint(text: &str, c: &mut Constraints) -> Result<(), InverseError> {
             }
             c.families = value
                 .split(',')
-                .map(|f| f.trim().parse().map_err(|e: crate::tiling::TilingError| bad(&e.to_string())))
+                .map(|f| {
+                    f.trim()
+                        .parse()
+                        .map_err(|e: crate::tiling::TilingError| bad(&e.to_string()))
+                })
                 .collect::<Result<_, _>>()?;
         }
         "cells" | "cell" => {
@@ -239,7 +245,11 @@ fn constraint(text: &str, c: &mut Constraints) -> Result<(), InverseError> {
             }
             c.cells = value
                 .split(',')
-                .map(|d| d.trim().parse().map_err(|e: crate::cell::CellError| bad(&e.to_string())))
+                .map(|d| {
+                    d.trim()
+                        .parse()
+                        .map_err(|e: crate::cell::CellError| bad(&e.to_string()))
+                })
                 .collect::<Result<_, _>>()?;
         }
         "tiles" => {
@@ -333,7 +343,11 @@ impl fmt::Display for Constraints {
             write!(f, "; families={}", join(names))?;
         }
         if !self.cells.is_empty() {
-            write!(f, "; cells={}", join(self.cells.iter().map(|x| x.to_string()).collect()))?;
+            write!(
+                f,
+                "; cells={}",
+                join(self.cells.iter().map(|x| x.to_string()).collect())
+            )?;
         }
         if let Some(n) = self.min_tiles {
             write!(f, "; tiles>={n}")?;
@@ -425,7 +439,10 @@ mod tests {
         let c = &t.constraints;
         assert_eq!(c.families.len(), 2);
         assert_eq!(c.families[0].number(), 28);
-        assert_eq!(c.cells, vec![CellDims::MINIMAL, CellDims::new(2, 1).unwrap()]);
+        assert_eq!(
+            c.cells,
+            vec![CellDims::MINIMAL, CellDims::new(2, 1).unwrap()]
+        );
         assert_eq!((c.min_tiles, c.max_tiles), (Some(2), Some(8)));
         assert_eq!(c.min_rotation_deg, Some(10.0));
         assert_eq!(c.min_kerf, Some(0.02));
@@ -456,7 +473,10 @@ mod tests {
             ("expansion(a)", "expansion 'a' is not a number"),
             ("expansion(1,2)", "expansion takes one angle"),
             ("area(3)", "area takes no arguments"),
-            ("lock(0.3,0.1)", "lock min expansion 0.3 must be at most 0.1"),
+            (
+                "lock(0.3,0.1)",
+                "lock min expansion 0.3 must be at most 0.1",
+            ),
             ("lock(-2,0.1)", "lock min expansion -2 must lie in (-1, 10]"),
             ("lock-f(1,0,0,-1)", "det F -1 must be a finite number above"),
             ("poisson(-3)", "Poisson-like ratio -3 must lie in [-1, 100]"),
@@ -475,8 +495,14 @@ mod tests {
             ("area; hinge>=0", "min hinge 0 must lie in (0, 1]"),
             ("area; rotation", "expected KEY=VALUE"),
             ("{\"terms\": []}", "no goal"),
-            ("{\"terms\": [{\"goal\": {\"kind\": \"area\"}, \"w\": 1}]}", "unknown field `w`"),
-            ("{\"terms\": [{\"goal\": {\"kind\": \"fly\"}}]}", "unknown variant `fly`"),
+            (
+                "{\"terms\": [{\"goal\": {\"kind\": \"area\"}, \"w\": 1}]}",
+                "unknown field `w`",
+            ),
+            (
+                "{\"terms\": [{\"goal\": {\"kind\": \"fly\"}}]}",
+                "unknown variant `fly`",
+            ),
             ("{", "target JSON"),
         ];
         for (text, want) in cases {

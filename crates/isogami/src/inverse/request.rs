@@ -31,8 +31,12 @@ pub struct InverseRequest {
     pub top: usize,
     /// Evaluations (deployments) per refined design; 0 screens only.
     pub budget: usize,
-    /// How many of the best pre-screened designs to re-deploy (M); 0 means 4 · `top`.
+    /// How many of the best pre-screened designs to re-deploy (M); 0 means 8 · `top`.
     pub confirm: usize,
+    /// How many screened designs (at most two shapes per topology) get a short first
+    /// refinement (a quarter of `budget`) before the best `top` topologies are refined
+    /// further; 0 means 8 · `top`.
+    pub triage: usize,
     /// Fresh shape samples around each of the `top` best screened topologies (0: none).
     pub samples: usize,
     /// Half-width of the fresh sample grid, relative to each parameter's scale
@@ -49,15 +53,16 @@ pub struct InverseRequest {
 }
 
 impl InverseRequest {
-    /// A request for `target` with the defaults: top 3, budget 60, confirm 12, no fresh
-    /// samples (span 0.15 when asked), the catalogue's kerf and settings.
+    /// A request for `target` with the defaults: top 3, budget 80, confirm 24, triage 24, no
+    /// fresh samples (span 0.15 when asked), the catalogue's kerf and settings.
     pub fn new(target: Target) -> InverseRequest {
         let settings = CatalogSettings::default();
         InverseRequest {
             target,
             top: 3,
-            budget: 60,
+            budget: 80,
             confirm: 0,
+            triage: 0,
             samples: 0,
             sample_span: 0.15,
             kerf: settings.deploy.contact.kerf,
@@ -86,6 +91,7 @@ impl InverseRequest {
         count("top", self.top, 1, MAX_TOP)?;
         count("budget", self.budget, 0, MAX_BUDGET)?;
         count("confirm", self.confirm, 0, MAX_CONFIRM)?;
+        count("triage", self.triage, 0, MAX_CONFIRM)?;
         count("samples", self.samples, 0, MAX_CONFIRM)?;
         if !(self.sample_span.is_finite() && self.sample_span > 0.0 && self.sample_span <= 1.0) {
             return Err(InverseError::OutOfRange {
@@ -126,9 +132,18 @@ impl InverseRequest {
     /// M: how many pre-screened designs are re-deployed.
     pub fn confirm_count(&self) -> usize {
         if self.confirm == 0 {
-            4 * self.top
+            8 * self.top
         } else {
             self.confirm
+        }
+    }
+
+    /// How many screened designs are triaged (never fewer than `top`).
+    pub fn triage_count(&self) -> usize {
+        if self.triage == 0 {
+            8 * self.top
+        } else {
+            self.triage.max(self.top)
         }
     }
 }
@@ -141,7 +156,9 @@ pub enum Stage {
     Confirm,
     /// Deploying fresh shape samples of the best topologies.
     Sample,
-    /// Refining the shape parameters of the best k.
+    /// A short refinement of every screened design.
+    Triage,
+    /// Refining the shapes of the best k topologies further.
     Refine,
     /// Re-deploying and checking every refined design.
     Verify,
@@ -153,6 +170,7 @@ impl Stage {
         match self {
             Stage::Confirm => "confirm",
             Stage::Sample => "sample",
+            Stage::Triage => "triage",
             Stage::Refine => "refine",
             Stage::Verify => "verify",
         }
@@ -257,7 +275,12 @@ pub struct Scored {
 }
 
 impl Scored {
-    pub(crate) fn new(design: &Design, kerf: Real, score: &Score, report: &DeploymentReport) -> Scored {
+    pub(crate) fn new(
+        design: &Design,
+        kerf: Real,
+        score: &Score,
+        report: &DeploymentReport,
+    ) -> Scored {
         Scored {
             spec: design.to_string(),
             design: design.clone(),
@@ -287,7 +310,7 @@ pub struct RefinedDesign {
     pub before: Scored,
     /// The refined design (equal to `before` when refinement found nothing better).
     pub after: Scored,
-    /// Evaluations spent refining it.
+    /// Evaluations spent refining it (triage and refinement, every starting shape).
     pub evaluations: usize,
     /// Of those, how many points were invalid.
     pub invalid_evaluations: usize,
@@ -314,6 +337,8 @@ pub struct InverseResult {
     pub confirmed_valid: usize,
     /// Fresh shape samples deployed.
     pub sampled: usize,
+    /// Designs given a first, short refinement.
+    pub triaged: usize,
     /// Deployments in total (confirm, sample, refine, verify).
     pub evaluations: usize,
     /// Wall time, seconds.

@@ -12,8 +12,10 @@
 //! 4. **Fresh samples** (optional). For the best k confirmed topologies, shape parameters on
 //!    a local grid around the confirmed design (each parameter at −span, 0, +span times its
 //!    scale max(|default|, 0.25); the points that move fewest parameters first) are evaluated.
-//! 5. **Selection.** Among every valid evaluation, the best of each topology; the k best
-//!    topologies are kept.
+//! 5. **Selection.** Among every valid evaluation, the best two shapes of each topology, best
+//!    first, go on to refinement (as many as the request triages): two starting shapes per
+//!    topology, because a local search from the shape that scores best may end in another
+//!    basin than one from a shape that scores worse.
 
 use super::evaluate::{Evaluation, Evaluator, Stopped};
 use super::monitor::Monitor;
@@ -139,14 +141,25 @@ fn samples_around(around: &Design, count: usize, span: Real) -> Vec<Design> {
         .collect()
 }
 
-/// The best valid design of each topology, best first, at most `k`.
-fn best_per_topology(mut pool: Vec<Screened>, k: usize) -> Vec<Screened> {
+/// The best `per` valid designs of each topology (distinct shapes), best first, at most `k`
+/// in all.
+fn best_per_topology(mut pool: Vec<Screened>, per: usize, k: usize) -> Vec<Screened> {
     pool.retain(|s| s.evaluation.is_valid());
     // Stable: ties keep the earlier (better pre-screened, or candidate before sample).
     pool.sort_by(|a, b| a.objective().total_cmp(&b.objective()));
-    let mut seen = std::collections::HashSet::new();
+    let mut count: HashMap<String, usize> = HashMap::new();
+    let mut shapes = std::collections::HashSet::new();
     pool.into_iter()
-        .filter(|s| seen.insert(s.topology.clone()))
+        .filter(|s| {
+            let n = count.entry(s.topology.clone()).or_default();
+            let fresh = shapes.insert(s.evaluation.design.to_string());
+            if fresh && *n < per {
+                *n += 1;
+                true
+            } else {
+                false
+            }
+        })
         .take(k)
         .collect()
 }
@@ -197,7 +210,7 @@ pub(crate) fn screen(
     counts.confirmed_valid = pool.iter().filter(|s| s.evaluation.is_valid()).count();
 
     if request.samples > 0 {
-        let best = best_per_topology(pool.clone(), request.top);
+        let best = best_per_topology(pool.clone(), 1, request.top);
         let jobs: Vec<(Design, String, Source)> = best
             .iter()
             .flat_map(|s| {
@@ -210,7 +223,10 @@ pub(crate) fn screen(
         counts.sampled = jobs.len();
         pool.extend(evaluate_all(ev, kerf, jobs, monitor)?);
     }
-    Ok((best_per_topology(pool, request.top), counts))
+    Ok((
+        best_per_topology(pool, PER_TOPOLOGY, request.triage_count()),
+        counts,
+    ))
 }
 
 #[cfg(test)]
@@ -241,7 +257,12 @@ mod tests {
         assert_eq!(s.len(), 4.min(3usize.pow(d.params.len() as u32) - 1));
         for x in &s {
             assert_eq!((x.family, x.dims, &x.joints), (d.family, d.dims, &d.joints));
-            let moved = x.params.iter().zip(&d.params).filter(|(a, b)| a != b).count();
+            let moved = x
+                .params
+                .iter()
+                .zip(&d.params)
+                .filter(|(a, b)| a != b)
+                .count();
             assert_eq!(moved, 1, "first samples move one parameter");
         }
     }

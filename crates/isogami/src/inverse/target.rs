@@ -249,7 +249,11 @@ impl Goal {
                     expansion("path min expansion", p.min)?;
                     expansion("path max expansion", p.max)?;
                     if p.min > p.max {
-                        return Err(range("path min expansion", p.min, Requirement::AtMost(p.max)));
+                        return Err(range(
+                            "path min expansion",
+                            p.min,
+                            Requirement::AtMost(p.max),
+                        ));
                     }
                 }
                 Ok(())
