@@ -38,6 +38,9 @@ enum Command {
     /// Export a patch of a design in mm: laser SVG/DXF, 3D-print STL/3MF, FOLD, OBJ, tile
     /// tables, kirigami_sim.
     Export(commands::export::Args),
+    /// Inverse design: screen the database for a target behaviour and refine the best
+    /// designs' tile shapes.
+    Inverse(commands::inverse::Args),
     /// Serve the material browser over the design database (runs the quick exploration
     /// first when the database does not exist).
     Serve(commands::serve::ServeArgs),
@@ -67,6 +70,7 @@ fn main() -> ExitCode {
         Command::Explore(a) => commands::explore::run(a),
         Command::Linkages(a) => commands::linkages::run(a),
         Command::Export(a) => commands::export::run(a),
+        Command::Inverse(a) => commands::inverse::run(a),
         Command::Serve(a) => commands::serve::serve(a),
         Command::Site(a) => commands::serve::site(a),
         Command::Merge(a) => commands::db::merge(a),

@@ -9,37 +9,18 @@ use crate::schema::PARAM_SLOTS;
 use isogami::catalog::{CatalogEntry, UnitOutcome};
 use isogami::deploy::DeploymentReport;
 use isogami::linkage::LinkageAnalysis;
-use isogami::measure::effective_poisson_ratio;
 use isogami::topology::Design;
 
 /// Frames count as open for the Poisson-like ratio when their largest principal expansion
-/// reaches this fraction of the largest one of the whole deployment: below it both
-/// expansions are so small that their ratio is dominated by solver noise.
-pub const POISSON_OPEN_FRACTION: f64 = 0.05;
+/// reaches this fraction of the largest one of the whole deployment (the library's constant,
+/// so that stored ranges and the inverse design's Poisson targets agree).
+pub use isogami::deploy::POISSON_OPEN_FRACTION;
 
 fn invalid(spec: &str, problem: impl Into<String>) -> StoreError {
     StoreError::InvalidRecord {
         spec: spec.to_string(),
         problem: problem.into(),
     }
-}
-
-/// Smallest and largest −ε_min/ε_max over the frames that have opened (see
-/// [`POISSON_OPEN_FRACTION`]); None when no frame has.
-fn poisson_range(report: &DeploymentReport) -> Option<(f64, f64)> {
-    let open = POISSON_OPEN_FRACTION * report.max_expansion;
-    if report.max_expansion.is_nan() || report.max_expansion <= 0.0 {
-        return None;
-    }
-    report
-        .frames
-        .iter()
-        .filter(|f| f.measures.max_expansion >= open)
-        .filter_map(|f| effective_poisson_ratio(f.measures.min_expansion, f.measures.max_expansion))
-        .fold(None, |acc, r| match acc {
-            None => Some((r, r)),
-            Some((lo, hi)) => Some((f64::min(lo, r), f64::max(hi, r))),
-        })
 }
 
 /// The `kind` tag of the report's end reason, e.g. `contact_limit`.
@@ -85,7 +66,7 @@ impl DesignRecord {
         let info = design.family.info();
         let tile_count =
             info.aspect_count * usize::from(design.dims.a()) * usize::from(design.dims.b());
-        let (poisson_min, poisson_max) = match poisson_range(report) {
+        let (poisson_min, poisson_max) = match report.poisson_range() {
             Some((lo, hi)) => (Some(lo), Some(hi)),
             None => (None, None),
         };

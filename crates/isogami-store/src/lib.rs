@@ -32,6 +32,7 @@
 //! ([`explore_into`]): the library plans and runs work units, this crate schedules them on a
 //! thread pool and commits each one, so every front end runs an exploration the same way.
 
+mod candidates;
 mod checksum;
 mod dictionary;
 mod error;

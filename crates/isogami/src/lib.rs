@@ -9,7 +9,8 @@
 //! and writes it in fabrication and interchange formats (as text). The library does no I/O: front ends read and write.
 //!
 //! Front ends call the entry points of [`api`]: one function per job (resolve a design,
-//! analyse, deploy, linkages, compare), plain data in and out.
+//! analyse, deploy, linkages, compare), plain data in and out. [`inverse`] goes the other
+//! way: from a target behaviour to designs that have it.
 
 pub mod api;
 pub mod catalog;
@@ -20,6 +21,7 @@ pub mod error;
 pub mod explore;
 pub mod export;
 pub mod geometry;
+pub mod inverse;
 pub mod kinematics;
 pub mod linkage;
 pub mod math;

@@ -16,7 +16,7 @@
 //!
 //! The caller never writes SQL: columns come from these enums, values are bound parameters.
 
-mod filter;
+pub(crate) mod filter;
 mod run;
 mod types;
 

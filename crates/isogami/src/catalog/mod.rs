@@ -8,8 +8,10 @@
 //! units are deterministic and independent, so they can run in any order, in parallel, or on
 //! different machines. Plain data out; storing is the caller's business.
 
+mod assess;
 mod settings;
 mod unit;
 
+pub use assess::{assess, Assessment, Rejection};
 pub use settings::CatalogSettings;
 pub use unit::{run_unit, CatalogEntry, StageTally, UnitOutcome};

@@ -1,9 +1,10 @@
 //! One work unit: a family on one supercell, from joint masks to catalogue entries.
 
+use super::assess::{assess, Assessment};
 use super::settings::CatalogSettings;
 use crate::api;
 use crate::cell::{CellDims, UnitCell};
-use crate::deploy::{DeploymentReport, EndReason};
+use crate::deploy::DeploymentReport;
 use crate::error::Result;
 use crate::explore::{enumerate_topologies, TopologyReport};
 use crate::linkage::LinkageAnalysis;
@@ -85,30 +86,19 @@ fn topology_tallies(r: &TopologyReport) -> Vec<StageTally> {
     ]
 }
 
-/// Deploys `design` and characterises it; `None` when it does not reach the threshold (or
-/// is not a one-DOF mechanism at this shape, or is locked). Uses the library's one deploy
-/// entry point with the catalogue's settings, so `isogami deploy` with the same settings
-/// gives the same report.
+/// Deploys `design` and characterises it; `None` when it is not admitted (see
+/// [`assess`]: one DOF, not locked, past the threshold). Uses the library's one deploy entry
+/// point with the catalogue's settings, so `isogami deploy` with the same settings gives the
+/// same report.
 fn characterise(
     design: &Design,
     topology: &str,
     settings: &CatalogSettings,
 ) -> Result<Option<CatalogEntry>> {
-    if api::analyze(design, settings.topology.mobility)?
-        .mobility
-        .dof
-        != 1
-    {
-        return Ok(None);
-    }
-    let run = api::deploy(design, &settings.deploy_request(), &mut |_| true)?;
-    let report = run.report;
-    if matches!(report.end_reason, EndReason::Locked) || report.steps < 2 {
-        return Ok(None);
-    }
-    if report.max_expansion.is_nan() || report.max_expansion < settings.threshold {
-        return Ok(None);
-    }
+    let report = match assess(design, settings, &mut |_| true)? {
+        Assessment::Admitted(report) => *report,
+        Assessment::Rejected(_) => return Ok(None),
+    };
     let linkages = api::linkages(design)?;
     Ok(Some(CatalogEntry {
         design: design.clone(),

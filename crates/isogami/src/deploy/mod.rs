@@ -38,7 +38,7 @@ pub use compare::{
 pub use error::{DeployError, FrameProblem, ReportField};
 pub use frames::{frame_records, select_frames, FrameRecord};
 pub use newton::{minimize, Objective, SolveOutcome};
-pub use report::{build_report, DeploymentReport, FrameReport, TilePose};
+pub use report::{build_report, DeploymentReport, FrameReport, TilePose, POISSON_OPEN_FRACTION};
 pub use settings::{DeploySettings, Method};
 pub use trajectory::{EndReason, RawStep, Trajectory};
 

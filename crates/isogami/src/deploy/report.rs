@@ -87,6 +87,11 @@ pub struct DeploymentReport {
     pub frames: Vec<FrameReport>,
 }
 
+/// Frames count as open for the Poisson-like ratio when their largest principal expansion
+/// reaches this fraction of the largest one of the whole deployment: below it both
+/// expansions are so small that their ratio is dominated by solver noise.
+pub const POISSON_OPEN_FRACTION: Real = 0.05;
+
 /// Builds the report from checked frame records.
 pub fn build_report(
     design: &str,
@@ -151,6 +156,30 @@ pub fn build_report(
 }
 
 impl DeploymentReport {
+    /// Smallest and largest Poisson-like ratio −ε_min/ε_max over the frames that have opened
+    /// (largest principal expansion at least [`POISSON_OPEN_FRACTION`] of the largest one
+    /// reached); None when no frame has. −1 is isotropic opening, 0 opening along one axis
+    /// with the other fixed, positive values shrinking across the opening direction.
+    pub fn poisson_range(&self) -> Option<(Real, Real)> {
+        if self.max_expansion.is_nan() || self.max_expansion <= 0.0 {
+            return None;
+        }
+        let open = POISSON_OPEN_FRACTION * self.max_expansion;
+        self.frames
+            .iter()
+            .filter(|f| f.measures.max_expansion >= open)
+            .filter_map(|f| {
+                crate::measure::effective_poisson_ratio(
+                    f.measures.min_expansion,
+                    f.measures.max_expansion,
+                )
+            })
+            .fold(None, |acc, r| match acc {
+                None => Some((r, r)),
+                Some((lo, hi)) => Some((Real::min(lo, r), Real::max(hi, r))),
+            })
+    }
+
     /// Checks that every number of the report is finite (a report with NaN or ∞ must never
     /// reach a front end); the error names the first offending field.
     pub fn check_finite(&self) -> Result<(), DeployError> {

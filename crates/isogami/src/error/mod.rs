@@ -43,6 +43,9 @@ pub enum Error {
     /// Topology enumeration.
     #[error(transparent)]
     Explore(#[from] crate::explore::ExploreError),
+    /// Inverse design: target, request, stop.
+    #[error(transparent)]
+    Inverse(#[from] crate::inverse::InverseError),
     /// A setting outside its range.
     #[error(transparent)]
     Settings(#[from] SettingsError),
@@ -51,7 +54,11 @@ pub enum Error {
 impl Error {
     /// True when the caller's progress callback stopped the run.
     pub fn is_cancelled(&self) -> bool {
-        matches!(self, Error::Deploy(crate::deploy::DeployError::Cancelled))
+        matches!(
+            self,
+            Error::Deploy(crate::deploy::DeployError::Cancelled)
+                | Error::Inverse(crate::inverse::InverseError::Cancelled)
+        )
     }
 }
 

@@ -1,0 +1,92 @@
+//! The catalogue's admission rule for one design, public so that every stage that must decide
+//! "is this a working design?" (the exploration's deploy-and-threshold and shape stages, the
+//! inverse design's screening and refinement) decides it the same way.
+//!
+//! A design is admitted when it is a one-degree-of-freedom mechanism in its closed state
+//! (mobility analysis with the catalogue's tolerance), it is not locked at the start (contact
+//! does not block both opening directions, and at least one step is accepted), and its
+//! largest principal expansion over the deployment reaches the threshold.
+
+use super::settings::CatalogSettings;
+use crate::api;
+use crate::deploy::{DeploymentReport, EndReason};
+use crate::error::Result;
+use crate::math::Real;
+use crate::topology::Design;
+use serde::Serialize;
+use std::fmt;
+
+/// Why a design that builds is not admitted.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "kind")]
+pub enum Rejection {
+    /// The closed state does not have exactly one degree of freedom.
+    Mobility {
+        /// Degrees of freedom found.
+        dof: usize,
+    },
+    /// Contact blocks the opening at once (or no step is accepted).
+    Locked,
+    /// The sheet does not expand enough.
+    BelowThreshold {
+        /// Largest principal expansion reached.
+        max_expansion: Real,
+        /// The threshold.
+        threshold: Real,
+    },
+}
+
+impl fmt::Display for Rejection {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Rejection::Mobility { dof } => {
+                write!(f, "{dof} degrees of freedom in the closed state (needs 1)")
+            }
+            Rejection::Locked => f.write_str("locked by contact at the start"),
+            Rejection::BelowThreshold {
+                max_expansion,
+                threshold,
+            } => write!(
+                f,
+                "largest principal expansion {max_expansion:.4} is below the threshold {threshold}"
+            ),
+        }
+    }
+}
+
+/// The verdict on one design.
+#[derive(Debug, Clone)]
+pub enum Assessment {
+    /// Admitted, with its deployment report.
+    Admitted(Box<DeploymentReport>),
+    /// Not admitted.
+    Rejected(Rejection),
+}
+
+/// Decides whether `design` is admitted under `settings` (see the module documentation),
+/// deploying it with the catalogue's request. `progress` is the deployment's callback
+/// (return `false` to cancel). Errors are those of building, analysing or deploying the
+/// design; a design that builds but does not work is [`Assessment::Rejected`].
+pub fn assess(
+    design: &Design,
+    settings: &CatalogSettings,
+    progress: crate::deploy::Progress<'_>,
+) -> Result<Assessment> {
+    let dof = api::analyze(design, settings.topology.mobility)?
+        .mobility
+        .dof;
+    if dof != 1 {
+        return Ok(Assessment::Rejected(Rejection::Mobility { dof }));
+    }
+    let report = api::deploy(design, &settings.deploy_request(), progress)?.report;
+    if matches!(report.end_reason, EndReason::Locked) || report.steps < 2 {
+        return Ok(Assessment::Rejected(Rejection::Locked));
+    }
+    if report.max_expansion.is_nan() || report.max_expansion < settings.threshold {
+        return Ok(Assessment::Rejected(Rejection::BelowThreshold {
+            max_expansion: report.max_expansion,
+            threshold: settings.threshold,
+        }));
+    }
+    Ok(Assessment::Admitted(Box::new(report)))
+}

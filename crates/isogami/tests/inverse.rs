@@ -1,0 +1,191 @@
+//! Inverse design on small, known inputs: the rotating squares' known optimum, constraints,
+//! stopping, and validity of everything returned.
+
+use isogami::api::{deploy, resolve_design, DeployRequest};
+use isogami::inverse::{
+    inverse_design, Candidate, Evaluator, Invalidity, InverseError, InverseRequest, Outcome, Target,
+};
+use isogami::topology::Design;
+use isogami::Error;
+use std::sync::atomic::AtomicBool;
+
+fn candidate(text: &str, with_report: bool) -> Candidate {
+    let design = resolve_design(text).unwrap();
+    let report = with_report.then(|| {
+        deploy(&design, &DeployRequest::default(), &mut |_| true)
+            .unwrap()
+            .report
+    });
+    let topology = Design {
+        params: design.family.default_params(),
+        ..design.clone()
+    }
+    .to_string();
+    Candidate {
+        design,
+        topology,
+        report,
+    }
+}
+
+/// Designs of a few families (the library's sample opening designs).
+fn samples() -> Vec<Candidate> {
+    isogami::topology::SAMPLE_OPENING_DESIGNS
+        .iter()
+        .skip(1)
+        .take(4)
+        .map(|s| candidate(s, true))
+        .collect()
+}
+
+#[test]
+fn rotating_squares_reach_area_ratio_two_at_45_degrees() {
+    let mut pool = samples();
+    pool.push(candidate("rotating-squares", false));
+    let request = InverseRequest::new(Target::parse("area; families=IH76").unwrap());
+    let result = inverse_design(&pool, &request, &mut |_| true).unwrap();
+    assert_eq!(
+        result.admitted, 1,
+        "the family constraint keeps rotating squares only"
+    );
+    let best = &result.results[0].after;
+    // (cos φ + sin φ)² = 1 + sin 2φ, largest at φ = 45°: 2.
+    assert!((best.measures.max_area_ratio - 2.0).abs() < 2e-3);
+    let at_max = best
+        .report
+        .frames
+        .iter()
+        .max_by(|a, b| a.measures.area_ratio.total_cmp(&b.measures.area_ratio))
+        .unwrap();
+    let phi = at_max.measures.max_tile_rotation.to_degrees();
+    assert!((phi - 45.0).abs() < 3.0, "largest area at {phi}°");
+}
+
+#[test]
+fn every_returned_design_is_valid_and_no_worse_than_screened() {
+    let pool = samples();
+    let target = Target::parse("uniform + 0.5*zero-poisson").unwrap();
+    let mut request = InverseRequest::new(target.clone());
+    request.top = 2;
+    request.budget = 16;
+    let mut stages = Vec::new();
+    let result = inverse_design(&pool, &request, &mut |p| {
+        stages.push(p.stage);
+        true
+    })
+    .unwrap();
+    assert!(!result.results.is_empty() && result.results.len() <= 2);
+    assert!(stages.contains(&isogami::inverse::Stage::Verify));
+    let ev = Evaluator {
+        target: &target,
+        settings: request.settings,
+    };
+    for r in &result.results {
+        assert!(r.after.objective <= r.before.objective);
+        assert_eq!(r.improved, r.after.objective < r.before.objective);
+        let again = ev
+            .evaluate(&r.after.design, r.after.kerf, &AtomicBool::new(false))
+            .unwrap();
+        assert_eq!(again.objective(), Some(r.after.objective));
+        assert_eq!(r.after.report.dof, 1);
+    }
+    let topologies: std::collections::HashSet<_> =
+        result.results.iter().map(|r| &r.topology).collect();
+    assert_eq!(
+        topologies.len(),
+        result.results.len(),
+        "different topologies"
+    );
+    let json = serde_json::to_string(&result).unwrap();
+    assert!(json.contains("\"before\"") && json.contains("\"after\""));
+}
+
+#[test]
+fn the_progress_callback_stops_the_run() {
+    let pool = samples();
+    let request = InverseRequest::new(Target::parse("area").unwrap());
+    let mut calls = 0;
+    let e = inverse_design(&pool, &request, &mut |_| {
+        calls += 1;
+        calls < 3
+    })
+    .unwrap_err();
+    assert!(e.is_cancelled(), "{e}");
+    assert_eq!(e, Error::Inverse(InverseError::Cancelled));
+}
+
+#[test]
+fn requests_and_candidates_are_checked() {
+    let pool = samples();
+    let mut request = InverseRequest::new(Target::parse("area").unwrap());
+    request.top = 0;
+    assert!(inverse_design(&pool, &request, &mut |_| true)
+        .unwrap_err()
+        .to_string()
+        .contains("top 0"));
+    let request = InverseRequest::new(Target::parse("area").unwrap());
+    assert!(inverse_design(&[], &request, &mut |_| true)
+        .unwrap_err()
+        .to_string()
+        .contains("no candidate designs given"));
+    let request = InverseRequest::new(Target::parse("area; families=IH7").unwrap());
+    assert!(inverse_design(&pool, &request, &mut |_| true)
+        .unwrap_err()
+        .to_string()
+        .contains("pass the constraints"));
+    // A hinge bridge as long as an edge fits no design: nothing valid.
+    let request = InverseRequest::new(Target::parse("area; hinge>=1").unwrap());
+    assert!(matches!(
+        inverse_design(&pool, &request, &mut |_| true),
+        Err(Error::Inverse(InverseError::NothingValid { .. }))
+    ));
+}
+
+#[test]
+fn constraints_make_designs_invalid_with_a_reason() {
+    let rs = resolve_design("rotating-squares").unwrap();
+    let stop = AtomicBool::new(false);
+    let check = |text: &str, kerf: f64| {
+        let target = Target::parse(text).unwrap();
+        let ev = Evaluator {
+            target: &target,
+            settings: Default::default(),
+        };
+        ev.evaluate(&rs, kerf, &stop).unwrap().outcome
+    };
+    assert!(matches!(check("area", 0.01), Outcome::Valid { .. }));
+    assert!(matches!(
+        check("area; kerf>=0.02", 0.01),
+        Outcome::Invalid(Invalidity::Kerf { .. })
+    ));
+    assert!(matches!(
+        check("area; tiles<=2", 0.01),
+        Outcome::Invalid(Invalidity::Excluded { what: "tile count" })
+    ));
+    assert!(matches!(
+        check("area; rotation>=100", 0.01),
+        Outcome::Invalid(Invalidity::Rotation { .. })
+    ));
+    // A bridge of 0.05 L fits on the squares' edges; one as long as the edge cannot (the cut
+    // must clear the joint's corner first).
+    assert!(matches!(
+        check("area; hinge>=0.05", 0.01),
+        Outcome::Valid { .. }
+    ));
+    match check("area; hinge>=1", 0.01) {
+        Outcome::Invalid(Invalidity::Hinge { problem }) => assert!(!problem.is_empty()),
+        Outcome::Invalid(i) => panic!("{i}"),
+        Outcome::Valid { .. } => panic!("a bridge of a whole edge fits"),
+    }
+    // A shape the exploration would not sample (a sliver) is invalid.
+    let sliver: Design = "IH28:3,0.05:1x1:a--a-b-bbb".parse().unwrap();
+    let target = Target::parse("area").unwrap();
+    let ev = Evaluator {
+        target: &target,
+        settings: Default::default(),
+    };
+    assert!(matches!(
+        ev.evaluate(&sliver, 0.01, &stop).unwrap().outcome,
+        Outcome::Invalid(Invalidity::Shape { .. } | Invalidity::Build { .. })
+    ));
+}
