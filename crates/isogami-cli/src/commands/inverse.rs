@@ -29,11 +29,11 @@ pub struct Args {
     /// Evaluations (deployments) per refined design; 0 screens only.
     #[arg(long, default_value_t = 80)]
     budget: usize,
-    /// How many of the best pre-screened designs to re-deploy (default 8 × top).
+    /// How many of the best pre-screened designs to re-deploy (default 16 × top).
     #[arg(long)]
     confirm: Option<usize>,
     /// How many screened designs (two shapes per topology at most) get a first refinement
-    /// of a quarter of the budget before the best TOP topologies go on (default 8 × top).
+    /// of a quarter of the budget before the best TOP topologies go on (default 16 × top).
     #[arg(long)]
     triage: Option<usize>,
     /// Fresh shape samples around each of the best topologies before refining.

@@ -31,11 +31,11 @@ pub struct InverseRequest {
     pub top: usize,
     /// Evaluations (deployments) per refined design; 0 screens only.
     pub budget: usize,
-    /// How many of the best pre-screened designs to re-deploy (M); 0 means 8 · `top`.
+    /// How many of the best pre-screened designs to re-deploy (M); 0 means 16 · `top`.
     pub confirm: usize,
     /// How many screened designs (at most two shapes per topology) get a short first
     /// refinement (a quarter of `budget`) before the best `top` topologies are refined
-    /// further; 0 means 8 · `top`.
+    /// further; 0 means 16 · `top`.
     pub triage: usize,
     /// Fresh shape samples around each of the `top` best screened topologies (0: none).
     pub samples: usize,
@@ -53,7 +53,7 @@ pub struct InverseRequest {
 }
 
 impl InverseRequest {
-    /// A request for `target` with the defaults: top 3, budget 80, confirm 24, triage 24, no
+    /// A request for `target` with the defaults: top 3, budget 80, confirm 48, triage 48, no
     /// fresh samples (span 0.15 when asked), the catalogue's kerf and settings.
     pub fn new(target: Target) -> InverseRequest {
         let settings = CatalogSettings::default();
@@ -132,7 +132,7 @@ impl InverseRequest {
     /// M: how many pre-screened designs are re-deployed.
     pub fn confirm_count(&self) -> usize {
         if self.confirm == 0 {
-            8 * self.top
+            16 * self.top
         } else {
             self.confirm
         }
@@ -141,7 +141,7 @@ impl InverseRequest {
     /// How many screened designs are triaged (never fewer than `top`).
     pub fn triage_count(&self) -> usize {
         if self.triage == 0 {
-            8 * self.top
+            16 * self.top
         } else {
             self.triage.max(self.top)
         }
