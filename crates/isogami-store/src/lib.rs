@@ -39,6 +39,7 @@ mod error;
 mod exploration;
 mod file;
 mod from_catalog;
+mod inverse_results;
 mod lock;
 mod merge;
 mod open;
@@ -59,6 +60,7 @@ pub use exploration::{
 };
 pub use file::sidecar_paths;
 pub use from_catalog::POISSON_OPEN_FRACTION;
+pub use inverse_results::SavedDesign;
 pub use merge::MergeReport;
 pub use open::{Check, RunInfo, Store, StoreWriter};
 pub use query::{DesignQuery, Facet, FacetCount, FacetValue, Measure, Page, SortKey};

@@ -4,9 +4,8 @@
 
 use crate::output::{emit, print_json, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
-use isogami::api::linkages;
 use isogami::inverse::{inverse_design, InverseRequest, InverseResult, Scored, Target};
-use isogami_store::{Check, DesignQuery, DesignRecord, Origin, Store, StoreError, StoreWriter};
+use isogami_store::{Check, DesignQuery, SavedDesign, Store, StoreError, StoreWriter};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -85,40 +84,9 @@ fn request_of(args: &Args) -> Result<InverseRequest, String> {
     Ok(r)
 }
 
-/// What `--save` did with one refined design.
-#[derive(Debug, Serialize)]
-struct Saved {
-    spec: String,
-    saved: bool,
-    note: String,
-}
-
-fn save(db: &Path, result: &InverseResult) -> Result<Vec<Saved>, String> {
+fn save(db: &Path, result: &InverseResult) -> Result<Vec<SavedDesign>, String> {
     let mut writer = StoreWriter::open(db, None, Check::Quick).map_err(|e| at(db, e))?;
-    let mut out = Vec::new();
-    for r in &result.results {
-        let a = &r.after;
-        let analysis = linkages(&a.design).ok();
-        let record = DesignRecord::from_parts(
-            &a.design,
-            &r.topology,
-            Origin::User,
-            &a.report,
-            analysis.as_ref(),
-        )
-        .map_err(|e| at(db, e))?;
-        let (saved, note) = match writer.save_user_design(&record) {
-            Ok(()) => (true, "saved".to_string()),
-            Err(StoreError::DuplicateSpec(_)) => (false, "already in the database".to_string()),
-            Err(e) => return Err(at(db, e)),
-        };
-        out.push(Saved {
-            spec: a.spec.clone(),
-            saved,
-            note,
-        });
-    }
-    Ok(out)
+    writer.save_inverse_results(result).map_err(|e| at(db, e))
 }
 
 fn row(text: &mut String, label: &str, s: &Scored) {
@@ -147,7 +115,7 @@ fn row(text: &mut String, label: &str, s: &Scored) {
     );
 }
 
-fn table(result: &InverseResult, saved: &[Saved]) -> String {
+fn table(result: &InverseResult, saved: &[SavedDesign]) -> String {
     let mut t = String::new();
     outln!(t, "target: {}", result.target);
     outln!(
@@ -195,7 +163,7 @@ struct JsonOut<'a> {
     #[serde(flatten)]
     result: &'a InverseResult,
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    saved: Vec<Saved>,
+    saved: Vec<SavedDesign>,
 }
 
 /// Runs inverse design on the database and prints or saves the results.
