@@ -178,6 +178,20 @@ pub struct PyDatabase {
 }
 
 impl PyDatabase {
+    /// The file's path.
+    pub(crate) fn file(&self) -> PathBuf {
+        self.path.clone()
+    }
+
+    /// Runs `f` on the open store with the GIL released (for the other modules' calls).
+    pub(crate) fn with_store<T: Send>(
+        &self,
+        py: Python<'_>,
+        f: impl FnOnce(&Store) -> isogami_store::StoreResult<T> + Send,
+    ) -> PyResult<T> {
+        self.with(py, f)
+    }
+
     /// Runs `f` on the open store with the GIL released.
     fn with<T: Send>(
         &self,

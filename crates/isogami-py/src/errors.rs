@@ -63,7 +63,7 @@ create_exception!(
     isogami,
     CancelledError,
     DeployError,
-    "A deployment stopped before its end: the progress callback returned False or the timeout passed."
+    "A long call (deployment, export, inverse design) stopped before its end: the progress callback returned False or the timeout passed."
 );
 create_exception!(
     isogami,
@@ -107,6 +107,12 @@ create_exception!(
     IsogamiError,
     "An export that cannot be made: patch size, scale, state or format settings out of range."
 );
+create_exception!(
+    isogami,
+    InverseError,
+    IsogamiError,
+    "An inverse-design target that cannot be read or is out of range, a request outside its limits, or no valid candidate design for it."
+);
 
 /// The Python exception of a library error.
 pub fn library(e: isogami::Error) -> PyErr {
@@ -124,6 +130,7 @@ pub fn library(e: isogami::Error) -> PyErr {
         E::Linkage(_) => LinkageError::new_err(message),
         E::Explore(_) => ExploreError::new_err(message),
         E::Settings(_) => SettingsError::new_err(message),
+        E::Inverse(_) => InverseError::new_err(message),
         _ => IsogamiError::new_err(message),
     }
 }
@@ -177,6 +184,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
         ("StoreError", py.get_type::<StoreError>()),
         ("QueryError", py.get_type::<QueryError>()),
         ("ExportError", py.get_type::<ExportError>()),
+        ("InverseError", py.get_type::<InverseError>()),
     ] {
         m.add(name, class)?;
     }

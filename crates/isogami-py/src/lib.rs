@@ -6,7 +6,7 @@
 //!
 //! One module per concern: `design`, `family`, `cell`, `mobility`, `settings`,
 //! `deployment` (with `progress`), `measure`, `linkage`, `compare`, `query` and `database`,
-//! `export`, `errors`, and `convert` for the boundary's conversions.
+//! `export`, `inverse`, `errors`, and `convert` for the boundary's conversions.
 
 mod cell;
 mod compare;
@@ -17,6 +17,7 @@ mod design;
 mod errors;
 mod export;
 mod family;
+mod inverse;
 mod linkage;
 mod measure;
 mod mobility;
@@ -44,6 +45,7 @@ fn _isogami(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<database::PyDatabase>()?;
     m.add_class::<database::PyRecord>()?;
     m.add_class::<database::PyStoredDesign>()?;
+    m.add_class::<inverse::PyInverseResult>()?;
     m.add_function(wrap_pyfunction!(design::design, m)?)?;
     m.add_function(wrap_pyfunction!(family::families, m)?)?;
     m.add_function(wrap_pyfunction!(family::family, m)?)?;
@@ -55,6 +57,7 @@ fn _isogami(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(database::open_database, m)?)?;
     m.add_function(wrap_pyfunction!(export::export, m)?)?;
     m.add_function(wrap_pyfunction!(export::export_formats, m)?)?;
+    m.add_function(wrap_pyfunction!(inverse::inverse, m)?)?;
     for f in [
         wrap_pyfunction!(measure::deformation_gradient, m)?,
         wrap_pyfunction!(measure::polar, m)?,

@@ -36,7 +36,7 @@ impl Watch {
         if let Some(cb) = &callback {
             if !cb.is_callable() {
                 return Err(pyo3::exceptions::PyTypeError::new_err(format!(
-                    "progress must be callable (states: int) -> bool | None, got {}",
+                    "progress must be callable (one argument) -> bool | None, got {}",
                     crate::convert::type_name(cb)
                 )));
             }
@@ -64,6 +64,15 @@ impl Watch {
     /// `false` stops the call. Attaches to Python only when a callback is given or a signal
     /// check is due.
     pub fn tick(&mut self, states: usize) -> bool {
+        self.tick_with(|py| Ok(states.into_pyobject(py)?.into_any()))
+    }
+
+    /// As [`Watch::tick`], with the callback's one argument made by `argument` (called only
+    /// when the callback is due).
+    pub fn tick_with(
+        &mut self,
+        argument: impl FnOnce(Python<'_>) -> PyResult<Bound<'_, PyAny>>,
+    ) -> bool {
         if let Some(limit) = self.timeout {
             if self.started.elapsed() >= limit {
                 self.stop = Some(Stop::Timeout(limit));
@@ -80,7 +89,7 @@ impl Watch {
             match &self.callback {
                 None => Ok(true),
                 Some(cb) => {
-                    let answer = cb.call1(py, (states,))?;
+                    let answer = cb.call1(py, (argument(py)?,))?;
                     // None (no return value) goes on; False (any falsy value) stops.
                     let answer = answer.bind(py);
                     Ok(answer.is_none() || answer.is_truthy()?)

@@ -123,6 +123,14 @@ fn requests_and_candidates_are_checked() {
         .unwrap_err()
         .to_string()
         .contains("top 0"));
+    // A NaN kerf is refused, also when the target's minimum kerf would otherwise hide it
+    // in the maximum of the two.
+    for target in ["area", "area; kerf>=0.02"] {
+        let mut request = InverseRequest::new(Target::parse(target).unwrap());
+        request.kerf = f64::NAN;
+        let e = inverse_design(&pool, &request, &mut |_| true).unwrap_err();
+        assert!(e.to_string().contains("kerf NaN"), "{e}");
+    }
     let request = InverseRequest::new(Target::parse("area").unwrap());
     assert!(inverse_design(&[], &request, &mut |_| true)
         .unwrap_err()

@@ -15,7 +15,8 @@ the browser's filters. Long calls release the GIL and can be interrupted with Ct
 
 Main entry points: ``design``, ``families``/``family``, ``cell``, ``analyze``, ``deploy``
 (with ``DeploySettings``), ``linkages``, ``compare``, ``open_database`` (with ``Query``),
-``export`` (``export_formats``) and the measure functions (``polar``, ``principal_expansions``, ``expansion_profile``, ...).
+``export`` (``export_formats``), ``inverse`` (inverse design on a database) and the
+measure functions (``polar``, ``principal_expansions``, ``expansion_profile``, ...).
 Every library error is an ``IsogamiError`` subclass carrying the library's message.
 """
 
@@ -38,6 +39,8 @@ from ._isogami import (
     DesignError,
     ExploreError,
     ExportError,
+    InverseError,
+    InverseResult,
     Family,
     IsogamiError,
     KinematicsError,
@@ -66,6 +69,7 @@ from ._isogami import (
     expansion_profile,
     export,
     export_formats,
+    inverse,
     families,
     family,
     linkages,
@@ -95,6 +99,8 @@ __all__ = [
     "DesignError",
     "ExploreError",
     "ExportError",
+    "InverseError",
+    "InverseResult",
     "Family",
     "IsogamiError",
     "KinematicsError",
@@ -123,6 +129,7 @@ __all__ = [
     "expansion_profile",
     "export",
     "export_formats",
+    "inverse",
     "families",
     "family",
     "linkages",

@@ -42,6 +42,7 @@ class SettingsError(IsogamiError): ...
 class StoreError(IsogamiError): ...
 class QueryError(StoreError): ...
 class ExportError(IsogamiError): ...
+class InverseError(IsogamiError): ...
 
 class Family:
     """One of the 81 realizable isohedral tiling families IH1…IH93."""
@@ -586,3 +587,39 @@ def export(
 
 def export_formats() -> List[Dict[str, Optional[str]]]:
     """The export formats: name, description, extension, media_type, settings group."""
+
+InverseProgress = Callable[[Dict[str, Any]], Optional[bool]]
+
+class InverseResult:
+    """An inverse-design run's result: per topology the screened and the refined design."""
+
+    @property
+    def target(self) -> str: ...
+    @property
+    def designs(self) -> List[Design]: ...
+    @property
+    def best(self) -> Optional[Design]: ...
+    @property
+    def objectives(self) -> List[float]: ...
+    @property
+    def seconds(self) -> float: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """As ``isogami inverse --json`` prints it."""
+    def __len__(self) -> int: ...
+
+def inverse(
+    target: Union[str, Mapping[str, Any]],
+    database: Union[Database, str, PathLike[str]],
+    *,
+    top: int = 3,
+    budget: int = 80,
+    confirm: Optional[int] = None,
+    triage: Optional[int] = None,
+    samples: int = 0,
+    kerf: Optional[float] = None,
+    refine_kerf: bool = False,
+    save: bool = False,
+    progress: Optional[InverseProgress] = None,
+    timeout: Optional[float] = None,
+) -> InverseResult:
+    """Designs with a target behaviour from a database, their tile shapes refined."""

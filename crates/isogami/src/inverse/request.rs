@@ -105,7 +105,12 @@ impl InverseRequest {
                 },
             });
         }
-        let kerf = self.effective_kerf();
+        // NaN would vanish in the maximum with the target's minimum kerf.
+        let kerf = if self.kerf.is_nan() {
+            self.kerf
+        } else {
+            self.effective_kerf()
+        };
         if !(kerf.is_finite() && (crate::contact::MIN_KERF..=MAX_KERF).contains(&kerf)) {
             return Err(InverseError::OutOfRange {
                 what: "kerf",

@@ -1,0 +1,247 @@
+//! `isogami.inverse`: from a target behaviour to designs that have it, through the library's
+//! one entry point (`isogami::inverse::inverse_design`) on a database's candidates
+//! (`Store::candidates`), saving through the store (`StoreWriter::save_inverse_results`) as
+//! `isogami inverse --save` does. Same options as the CLI; the result's ``to_dict()`` is the
+//! JSON `isogami inverse --json` prints.
+
+use crate::convert::{to_python, type_name};
+use crate::database::PyDatabase;
+use crate::design::PyDesign;
+use crate::errors;
+use crate::progress::Watch;
+use isogami::inverse::{inverse_design, Candidate, InverseRequest, InverseResult, Target};
+use isogami_store::{Check, DesignQuery, SavedDesign, Store, StoreWriter};
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// The result of an inverse-design run: per topology the best screened design and its
+/// refinement, in rank order. ``designs`` are the refined designs, ``best`` the first;
+/// ``to_dict()`` gives everything (targets, counts, before/after objectives, measures and
+/// reports) as `isogami inverse --json` prints it.
+#[pyclass(name = "InverseResult", module = "isogami", frozen)]
+pub struct PyInverseResult {
+    result: InverseResult,
+    saved: Vec<SavedDesign>,
+}
+
+/// The JSON form: the library's result and, after ``save=True``, what was saved.
+#[derive(Serialize)]
+struct Output<'a> {
+    #[serde(flatten)]
+    result: &'a InverseResult,
+    #[serde(skip_serializing_if = "<[SavedDesign]>::is_empty")]
+    saved: &'a [SavedDesign],
+}
+
+#[pymethods]
+impl PyInverseResult {
+    /// The target in canonical text form.
+    #[getter]
+    fn target(&self) -> String {
+        self.result.target.clone()
+    }
+
+    /// The refined designs, best first.
+    #[getter]
+    fn designs(&self) -> Vec<PyDesign> {
+        self.result
+            .results
+            .iter()
+            .map(|r| PyDesign {
+                inner: r.after.design.clone(),
+            })
+            .collect()
+    }
+
+    /// The best refined design.
+    #[getter]
+    fn best(&self) -> Option<PyDesign> {
+        self.result.results.first().map(|r| PyDesign {
+            inner: r.after.design.clone(),
+        })
+    }
+
+    /// The refined objectives (smaller is better), best first.
+    #[getter]
+    fn objectives(&self) -> Vec<f64> {
+        self.result
+            .results
+            .iter()
+            .map(|r| r.after.objective)
+            .collect()
+    }
+
+    /// Wall time of the run in seconds.
+    #[getter]
+    fn seconds(&self) -> f64 {
+        self.result.seconds
+    }
+
+    /// Everything, as the dict `json.loads` makes of `isogami inverse --json`'s output.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(
+            py,
+            &Output {
+                result: &self.result,
+                saved: &self.saved,
+            },
+        )
+    }
+
+    fn __len__(&self) -> usize {
+        self.result.results.len()
+    }
+
+    fn __repr__(&self) -> String {
+        match self.result.results.first() {
+            Some(best) => format!(
+                "isogami.InverseResult(target={:?}, designs={}, best={:?}, objective={:.6})",
+                self.result.target,
+                self.result.results.len(),
+                best.after.spec,
+                best.after.objective
+            ),
+            None => format!(
+                "isogami.InverseResult(target={:?}, designs=0)",
+                self.result.target
+            ),
+        }
+    }
+}
+
+/// The target of a Python argument: compact text, JSON text, or a dict of the JSON form.
+fn target_of(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<Target> {
+    let text = if let Ok(text) = obj.extract::<String>() {
+        text
+    } else if obj.cast::<pyo3::types::PyDict>().is_ok() {
+        py.import("json")?
+            .call_method1("dumps", (obj,))?
+            .extract::<String>()?
+    } else {
+        return Err(PyTypeError::new_err(format!(
+            "target must be a str (compact text or JSON) or a dict (the JSON form), got {}",
+            type_name(obj)
+        )));
+    };
+    Target::resolve(&text).map_err(|e| errors::InverseError::new_err(e.to_string()))
+}
+
+/// The database argument: an open ``Database`` or a path.
+enum Source<'a> {
+    Open(&'a PyDatabase),
+    Path(PathBuf),
+}
+
+impl Source<'_> {
+    fn path(&self) -> PathBuf {
+        match self {
+            Source::Open(db) => db.file(),
+            Source::Path(p) => p.clone(),
+        }
+    }
+
+    /// The designs passing the target's family, cell and tile constraints.
+    fn candidates(&self, py: Python<'_>, target: &Target) -> PyResult<Vec<Candidate>> {
+        let query = DesignQuery::for_constraints(&target.constraints);
+        match self {
+            Source::Open(db) => db.with_store(py, move |store| store.candidates(&query)),
+            Source::Path(path) => {
+                let shown = path.display().to_string();
+                py.detach(|| {
+                    Store::open_read(path, Check::Quick).and_then(|s| s.candidates(&query))
+                })
+                .map_err(|e| errors::store(e, &shown))
+            }
+        }
+    }
+}
+
+/// Finds designs with a target behaviour in a design database and refines their tile shapes
+/// (the library's inverse design; see `isogami inverse --help` and docs/INVERSE.md).
+///
+/// ``target``: compact text such as ``"2*area + isotropic; families=IH28; tiles<=4"``, JSON
+/// text, or a dict of the JSON form. ``database``: a ``Database`` or a path. ``top``: how
+/// many designs of different topologies to keep and refine; ``budget``: evaluations
+/// (deployments) per refined design, 0 screens only; ``confirm`` / ``triage``: how many
+/// pre-screened designs to re-deploy / to refine briefly (default 16 × top); ``samples``:
+/// fresh shape samples per best topology; ``kerf``: the kerf designs are deployed with (mean
+/// edge lengths); ``refine_kerf``: optimise the kerf too; ``save``: store the refined
+/// designs in the database as user designs (``to_dict()["saved"]`` says which).
+///
+/// ``progress(p)`` is called after every evaluation with a dict (``stage``, ``done``,
+/// ``total``, ``best``) and stops the run when it returns False; ``timeout`` in seconds;
+/// Ctrl-C stops it (``CancelledError`` / ``KeyboardInterrupt``). The GIL is released while
+/// it runs. Bad targets and options raise ``InverseError`` or ``SettingsError`` before
+/// anything runs.
+#[pyfunction]
+#[pyo3(signature = (
+    target, database, *, top=3, budget=80, confirm=None, triage=None, samples=0, kerf=None,
+    refine_kerf=false, save=false, progress=None, timeout=None
+))]
+#[allow(clippy::too_many_arguments)]
+pub fn inverse(
+    py: Python<'_>,
+    target: &Bound<'_, PyAny>,
+    database: &Bound<'_, PyAny>,
+    top: usize,
+    budget: usize,
+    confirm: Option<usize>,
+    triage: Option<usize>,
+    samples: usize,
+    kerf: Option<f64>,
+    refine_kerf: bool,
+    save: bool,
+    progress: Option<Bound<'_, PyAny>>,
+    timeout: Option<f64>,
+) -> PyResult<PyInverseResult> {
+    let mut request = InverseRequest::new(target_of(py, target)?);
+    request.top = top;
+    request.budget = budget;
+    for (name, given) in [("confirm", confirm), ("triage", triage)] {
+        if given == Some(0) {
+            return Err(errors::InverseError::new_err(format!(
+                "inverse design: {name} must be at least 1 (None for the default, 16 × top)"
+            )));
+        }
+    }
+    request.confirm = confirm.unwrap_or(0);
+    request.triage = triage.unwrap_or(0);
+    request.samples = samples;
+    if let Some(k) = kerf {
+        request.kerf = k;
+    }
+    request.refine_kerf = refine_kerf;
+    request.validate().map_err(|e| errors::library(e.into()))?;
+    let source = if let Ok(db) = database.cast::<PyDatabase>() {
+        Source::Open(db.get())
+    } else if let Ok(path) = database.extract::<PathBuf>() {
+        Source::Path(path)
+    } else {
+        return Err(PyTypeError::new_err(format!(
+            "database must be an isogami.Database or a path, got {}",
+            type_name(database)
+        )));
+    };
+    let candidates = source.candidates(py, &request.target)?;
+    let mut watch = Watch::new(progress.filter(|p| !p.is_none()), timeout)?;
+    let result = py.detach(|| {
+        inverse_design(&candidates, &request, &mut |p| {
+            watch.tick_with(|py| to_python(py, p))
+        })
+    });
+    let result = watch.finish(result)?;
+    let saved = if save {
+        let path = source.path();
+        let shown = path.display().to_string();
+        py.detach(|| {
+            StoreWriter::open(&path, None, Check::Quick)
+                .and_then(|mut w| w.save_inverse_results(&result))
+        })
+        .map_err(|e| errors::store(e, &shown))?
+    } else {
+        Vec::new()
+    };
+    Ok(PyInverseResult { result, saved })
+}
