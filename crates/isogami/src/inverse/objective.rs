@@ -5,7 +5,7 @@
 //! never opens, or a lock goal on a deployment that did not end at a contact limit) gives a
 //! typed [`Unmet`], never a NaN. See [`Goal`] for the definition of every value.
 
-use super::target::{Goal, PathPoint, Target};
+use super::target::{Goal, Target};
 use crate::deploy::{DeploymentReport, EndReason, FrameReport};
 use crate::math::{rotation, Mat2, Real};
 use crate::measure::{directional_expansion, polar};
@@ -81,17 +81,6 @@ fn expansions_at(frames: &[FrameReport], t: Real) -> (Real, Real) {
         }
     }
     pair(&frames[frames.len() - 1])
-}
-
-fn path_value(frames: &[FrameReport], points: &[PathPoint]) -> Real {
-    let sum: Real = points
-        .iter()
-        .map(|p| {
-            let (lo, hi) = expansions_at(frames, p.t);
-            (lo - p.min).powi(2) + (hi - p.max).powi(2)
-        })
-        .sum();
-    (sum / points.len() as Real).sqrt()
 }
 
 fn end_state(report: &DeploymentReport) -> Result<&FrameReport, Unmet> {
@@ -175,26 +164,12 @@ pub fn goal_value(goal: &Goal, report: &DeploymentReport) -> Result<Real, Unmet>
             let (lo, hi) = report.poisson_range().ok_or(Unmet::NeverOpens)?;
             (lo - nu).abs().max((hi - nu).abs())
         }
-        Goal::LockF { f } => {
-            let want = stretch(f).ok_or(Unmet::NotFinite)?;
-            (end_state(report)?.measures.u_matrix() - want).norm()
+        // Matching goals: the Euclidean norm of the residual (Frobenius for U, since the
+        // off-diagonal entry carries √2; RMS over the path's points).
+        Goal::LockF { .. } | Goal::Lock { .. } | Goal::Path { .. } => {
+            let r = goal_residual(goal, report)?.ok_or(Unmet::NotFinite)?;
+            r.iter().map(|v| v * v).sum::<Real>().sqrt()
         }
-        Goal::Lock {
-            min,
-            max,
-            angle_deg,
-        } => {
-            let end = &end_state(report)?.measures;
-            match angle_deg {
-                Some(a) => {
-                    let r = rotation(a.to_radians());
-                    let want = r * Mat2::new(1.0 + max, 0.0, 0.0, 1.0 + min) * r.transpose();
-                    (end.u_matrix() - want).norm()
-                }
-                None => (end.min_expansion - min).hypot(end.max_expansion - max),
-            }
-        }
-        Goal::Path { points } => path_value(frames, points),
     };
     if value.is_finite() {
         Ok(value)
@@ -237,6 +212,7 @@ pub fn score(target: &Target, report: &DeploymentReport) -> Result<Score, Unmet>
 mod tests {
     use super::*;
     use crate::api::{deploy, resolve_design, DeployRequest};
+    use crate::inverse::target::PathPoint;
 
     fn rotating_squares() -> DeploymentReport {
         let d = resolve_design("rotating-squares").unwrap();
