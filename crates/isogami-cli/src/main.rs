@@ -41,6 +41,9 @@ enum Command {
     /// Inverse design: screen the database for a target behaviour and refine the best
     /// designs' tile shapes.
     Inverse(commands::inverse::Args),
+    /// Shape-aware mobility: generic or special, the shape constraints that keep one DOF,
+    /// moving a parameter along them, rank-dropping shapes of rigid designs.
+    Shape(commands::shape::Args),
     /// Serve the material browser over the design database (runs the quick exploration
     /// first when the database does not exist).
     Serve(commands::serve::ServeArgs),
@@ -71,6 +74,7 @@ fn main() -> ExitCode {
         Command::Linkages(a) => commands::linkages::run(a),
         Command::Export(a) => commands::export::run(a),
         Command::Inverse(a) => commands::inverse::run(a),
+        Command::Shape(a) => commands::shape::run(a),
         Command::Serve(a) => commands::serve::serve(a),
         Command::Site(a) => commands::serve::site(a),
         Command::Merge(a) => commands::db::merge(a),

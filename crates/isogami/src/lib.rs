@@ -28,6 +28,7 @@ pub mod math;
 pub mod measure;
 pub mod mobility;
 pub mod render;
+pub mod shape_space;
 pub mod tiling;
 pub mod topology;
 

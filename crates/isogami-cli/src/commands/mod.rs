@@ -13,3 +13,4 @@ pub mod laser_args;
 pub mod linkages;
 pub mod print_args;
 pub mod serve;
+pub mod shape;

@@ -46,6 +46,9 @@ pub enum Error {
     /// Inverse design: target, request, stop.
     #[error(transparent)]
     Inverse(#[from] crate::inverse::InverseError),
+    /// Shape-aware mobility: classification, moving along the special set.
+    #[error(transparent)]
+    Shape(#[from] crate::shape_space::ShapeError),
     /// A setting outside its range.
     #[error(transparent)]
     Settings(#[from] SettingsError),

@@ -1,0 +1,113 @@
+//! The reduced constraint Jacobian J(p) of a design's closed state as a function of its shape
+//! parameters p, and its derivatives along directions of the (scaled) shape space.
+//!
+//! J is the mechanism's joint-constraint Jacobian at its rest state with tile 0's three
+//! columns removed (as in [`crate::mobility::reduced_hessian`], H = JᵀJ). It is
+//! non-dimensional (lengths in units of the mean edge), so its entries are O(1) at every
+//! shape. Shape directions are given in scaled coordinates x_i = p_i / s_i with
+//! s_i = max(|Kaplan default_i|, 0.25), the exploration's sampling scale, so that a unit step
+//! is comparable across parameters.
+
+use crate::kinematics::Mechanism;
+use crate::math::{DMat, Real};
+use crate::tiling::Family;
+use crate::topology::Design;
+
+/// Relative step of the central differences of J, in scaled coordinates.
+pub const DIFF_STEP: Real = 1e-6;
+
+/// The sampling scale s_i of every parameter of `family`.
+pub fn param_scales(family: Family) -> Vec<Real> {
+    family
+        .default_params()
+        .iter()
+        .map(|d| d.abs().max(0.25))
+        .collect()
+}
+
+/// `design` with parameters p + Σ step·s_i·dir_i.
+pub fn moved(design: &Design, dir: &[Real], step: Real) -> Design {
+    let scales = param_scales(design.family);
+    let mut d = design.clone();
+    for ((p, s), x) in d.params.iter_mut().zip(&scales).zip(dir) {
+        *p += step * s * x;
+    }
+    d
+}
+
+/// The reduced Jacobian of `design` at its closed state.
+pub fn reduced_jacobian(design: &Design) -> crate::Result<DMat> {
+    let cell = design.cell()?;
+    let mech = Mechanism::new(&cell, &design.joints)?;
+    let j = mech.jacobian(&mech.rest);
+    Ok(j.columns(3, j.ncols() - 3).into_owned())
+}
+
+/// A change of J over one difference step larger than this (entries are O(1), a smooth change
+/// is O(DIFF_STEP)) is a jump: the cell placed a tile at another lattice translate on one
+/// side (its representative is chosen by rounding, which can flip exactly at a symmetric
+/// shape). The mechanism is the same, but its matrix is not continuous there.
+const JUMP: Real = 1e-3;
+
+/// dJ/dx along the scaled direction `dir` at `design`, whose J is `j0`, consistent with it
+/// (the same tile representatives): central differences of step [`DIFF_STEP`], or one-sided
+/// on the side where J does not jump.
+pub fn derivative_from(design: &Design, j0: &DMat, dir: &[Real]) -> crate::Result<DMat> {
+    let side = |sign: Real| -> crate::Result<Option<DMat>> {
+        let j = reduced_jacobian(&moved(design, dir, sign * DIFF_STEP))?;
+        Ok(((&j - j0).amax() < JUMP).then_some(j))
+    };
+    Ok(match (side(1.0)?, side(-1.0)?) {
+        (Some(plus), Some(minus)) => (plus - minus) / (2.0 * DIFF_STEP),
+        (Some(plus), None) => (plus - j0) / DIFF_STEP,
+        (None, Some(minus)) => (j0 - minus) / DIFF_STEP,
+        // Jumps on both sides within 1e-6 of a scale: treat J as locally constant there is
+        // wrong, so report no derivative information (zero), which makes the direction look
+        // tangent; the callers re-check one DOF by the mobility analysis.
+        (None, None) => DMat::zeros(j0.nrows(), j0.ncols()),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::api::resolve_design;
+
+    fn derivative(design: &Design, dir: &[Real]) -> DMat {
+        derivative_from(design, &reduced_jacobian(design).unwrap(), dir).unwrap()
+    }
+
+    #[test]
+    fn a_jump_of_the_tile_representative_is_differenced_on_the_smooth_side() {
+        // IH46 at p0 = 0.5 (its default) places tile 0 at another lattice translate for
+        // p0 > 0.5: the one-sided difference from below agrees with a coarser one.
+        let d = resolve_design("IH46:0.5,0.230769230769,0.5,0.5:1x1:aaaa").unwrap();
+        let dir = [1.0, 0.0, 0.0, 0.0];
+        let j0 = reduced_jacobian(&d).unwrap();
+        let up = reduced_jacobian(&moved(&d, &dir, DIFF_STEP)).unwrap();
+        assert!(
+            (up - &j0).amax() > JUMP,
+            "the representative flips above p0 = 0.5"
+        );
+        let fine = derivative(&d, &dir);
+        let h = 1e-4;
+        let below = (&j0 - reduced_jacobian(&moved(&d, &dir, -h)).unwrap()) / h;
+        assert!((fine - below).amax() < 1e-3);
+    }
+
+    #[test]
+    fn the_derivative_is_consistent_across_step_sizes() {
+        // Central differences at two steps agree to O(h²): the Jacobian is smooth in the
+        // shape and the step is well inside its resolution.
+        let d = resolve_design("IH28:0.6,0.35:1x1:a--a-b-bbb").unwrap();
+        let dir = [0.6, -0.8];
+        let fine = derivative(&d, &dir);
+        let h = 1e-4;
+        let coarse = (reduced_jacobian(&moved(&d, &dir, h)).unwrap()
+            - reduced_jacobian(&moved(&d, &dir, -h)).unwrap())
+            / (2.0 * h);
+        let scale = fine.norm().max(1.0);
+        assert!(fine.norm() > 1e-3, "the shape changes the constraints");
+        assert!((fine - coarse).norm() < 1e-6 * scale);
+    }
+}
