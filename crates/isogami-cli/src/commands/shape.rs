@@ -82,12 +82,42 @@ fn class_name(c: ShapeClass) -> &'static str {
     }
 }
 
-#[derive(Serialize, Default)]
-struct FamilyCount {
+/// Designs, or topologies, of one family by class.
+#[derive(Serialize, Default, Clone, Copy)]
+struct Count {
     generic: usize,
     special: usize,
     fixed_shape: usize,
     failed: usize,
+}
+
+impl Count {
+    fn add(&mut self, class: Option<ShapeClass>) {
+        match class {
+            Some(ShapeClass::Generic) => self.generic += 1,
+            Some(ShapeClass::Special) => self.special += 1,
+            Some(ShapeClass::FixedShape) => self.fixed_shape += 1,
+            None => self.failed += 1,
+        }
+    }
+
+    fn sum(counts: impl Iterator<Item = Count>) -> Count {
+        counts.fold(Count::default(), |a, c| Count {
+            generic: a.generic + c.generic,
+            special: a.special + c.special,
+            fixed_shape: a.fixed_shape + c.fixed_shape,
+            failed: a.failed + c.failed,
+        })
+    }
+}
+
+/// Per family: its designs and its topologies by class. A topology is generic when any of
+/// its stored shapes is (it moves on an open set of shapes), special when none is but one
+/// is special.
+#[derive(Serialize, Default)]
+struct FamilyCount {
+    designs: Count,
+    topologies: Count,
 }
 
 #[derive(Serialize)]
@@ -108,62 +138,86 @@ fn classify_db(path: &std::path::Path, settings: &ShapeSettings, json: bool) -> 
         special: Vec::new(),
         failures: Vec::new(),
     };
+    // Per topology, the most mobile class over its shapes: generic, then special, then fixed
+    // shape (a family without parameters), then failed.
+    let rank = |c: Option<ShapeClass>| match c {
+        Some(ShapeClass::Generic) => 3,
+        Some(ShapeClass::Special) => 2,
+        Some(ShapeClass::FixedShape) => 1,
+        None => 0,
+    };
+    let mut topologies: BTreeMap<&str, (String, Option<ShapeClass>)> = BTreeMap::new();
     for c in &candidates {
-        let count = out.families.entry(c.design.family.to_string()).or_default();
-        match classify(&c.design, settings) {
+        let family = c.design.family.to_string();
+        let class = match classify(&c.design, settings) {
             Ok(m) => {
-                match m.class {
-                    ShapeClass::Generic => count.generic += 1,
-                    ShapeClass::Special => count.special += 1,
-                    ShapeClass::FixedShape => count.fixed_shape += 1,
-                }
-                if m.class == ShapeClass::Special {
+                let class = m.class;
+                if class == ShapeClass::Special {
                     out.special.push(m);
                 }
+                Some(class)
             }
             Err(e) => {
-                count.failed += 1;
                 out.failures.push((c.design.to_string(), e.to_string()));
+                None
             }
+        };
+        out.families
+            .entry(family.clone())
+            .or_default()
+            .designs
+            .add(class);
+        let entry = topologies.entry(&c.topology).or_insert((family, class));
+        if rank(class) > rank(entry.1) {
+            entry.1 = class;
         }
+    }
+    for (family, class) in topologies.into_values() {
+        out.families
+            .entry(family)
+            .or_default()
+            .topologies
+            .add(class);
     }
     if json {
         return print_json(&out);
     }
     let mut o = String::new();
+    outln!(o, "{:<8} {:>26}   {:>26}", "", "designs", "topologies");
+    let head = ["family", "generic", "special", "fixed", "failed"];
     outln!(
         o,
-        "{:<8} {:>8} {:>8} {:>12} {:>7}",
-        "family",
-        "generic",
-        "special",
-        "fixed shape",
-        "failed"
+        "{:<8} {:>6} {:>6} {:>6} {:>6}   {:>6} {:>6} {:>6} {:>6}",
+        head[0],
+        head[1],
+        head[2],
+        head[3],
+        head[4],
+        head[1],
+        head[2],
+        head[3],
+        head[4]
     );
-    let mut total = FamilyCount::default();
-    for (f, c) in &out.families {
+    let row = |o: &mut String, name: &str, d: Count, t: Count| {
         outln!(
             o,
-            "{f:<8} {:>8} {:>8} {:>12} {:>7}",
-            c.generic,
-            c.special,
-            c.fixed_shape,
-            c.failed
+            "{name:<8} {:>6} {:>6} {:>6} {:>6}   {:>6} {:>6} {:>6} {:>6}",
+            d.generic,
+            d.special,
+            d.fixed_shape,
+            d.failed,
+            t.generic,
+            t.special,
+            t.fixed_shape,
+            t.failed
         );
-        total.generic += c.generic;
-        total.special += c.special;
-        total.fixed_shape += c.fixed_shape;
-        total.failed += c.failed;
+    };
+    for (f, c) in &out.families {
+        row(&mut o, f, c.designs, c.topologies);
     }
-    outln!(
-        o,
-        "{:<8} {:>8} {:>8} {:>12} {:>7}",
-        "all",
-        total.generic,
-        total.special,
-        total.fixed_shape,
-        total.failed
-    );
+    let designs = Count::sum(out.families.values().map(|c| c.designs));
+    let topologies = Count::sum(out.families.values().map(|c| c.topologies));
+    row(&mut o, "all", designs, topologies);
     for m in &out.special {
         outln!(
             o,
