@@ -113,6 +113,12 @@ create_exception!(
     IsogamiError,
     "An inverse-design target that cannot be read or is out of range, a request outside its limits, or no valid candidate design for it."
 );
+create_exception!(
+    isogami,
+    ShapeError,
+    IsogamiError,
+    "Shape-aware mobility that cannot be computed: a design without exactly one degree of freedom, a pinned parameter, a path that leaves the well-shaped tiles."
+);
 
 /// The Python exception of a library error.
 pub fn library(e: isogami::Error) -> PyErr {
@@ -131,6 +137,7 @@ pub fn library(e: isogami::Error) -> PyErr {
         E::Explore(_) => ExploreError::new_err(message),
         E::Settings(_) => SettingsError::new_err(message),
         E::Inverse(_) => InverseError::new_err(message),
+        E::Shape(_) => ShapeError::new_err(message),
         _ => IsogamiError::new_err(message),
     }
 }
@@ -185,6 +192,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
         ("QueryError", py.get_type::<QueryError>()),
         ("ExportError", py.get_type::<ExportError>()),
         ("InverseError", py.get_type::<InverseError>()),
+        ("ShapeError", py.get_type::<ShapeError>()),
     ] {
         m.add(name, class)?;
     }

@@ -6,7 +6,7 @@
 //!
 //! One module per concern: `design`, `family`, `cell`, `mobility`, `settings`,
 //! `deployment` (with `progress`), `measure`, `linkage`, `compare`, `query` and `database`,
-//! `export`, `inverse`, `errors`, and `convert` for the boundary's conversions.
+//! `export`, `inverse`, `shape`, `errors`, and `convert` for the boundary's conversions.
 
 mod cell;
 mod compare;
@@ -24,6 +24,7 @@ mod mobility;
 mod progress;
 mod query;
 mod settings;
+mod shape;
 
 use pyo3::prelude::*;
 
@@ -58,6 +59,9 @@ fn _isogami(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(export::export, m)?)?;
     m.add_function(wrap_pyfunction!(export::export_formats, m)?)?;
     m.add_function(wrap_pyfunction!(inverse::inverse, m)?)?;
+    m.add_function(wrap_pyfunction!(shape::shape_mobility, m)?)?;
+    m.add_function(wrap_pyfunction!(shape::follow_shape, m)?)?;
+    m.add_function(wrap_pyfunction!(shape::rank_drop_shape, m)?)?;
     for f in [
         wrap_pyfunction!(measure::deformation_gradient, m)?,
         wrap_pyfunction!(measure::polar, m)?,

@@ -15,8 +15,8 @@ the browser's filters. Long calls release the GIL and can be interrupted with Ct
 
 Main entry points: ``design``, ``families``/``family``, ``cell``, ``analyze``, ``deploy``
 (with ``DeploySettings``), ``linkages``, ``compare``, ``open_database`` (with ``Query``),
-``export`` (``export_formats``), ``inverse`` (inverse design on a database) and the
-measure functions (``polar``, ``principal_expansions``, ``expansion_profile``, ...).
+``export`` (``export_formats``), ``inverse`` (inverse design on a database), ``shape_mobility`` / ``follow_shape`` /
+``rank_drop_shape`` (shape-aware mobility) and the measure functions (``polar``, ``principal_expansions``, ``expansion_profile``, ...).
 Every library error is an ``IsogamiError`` subclass carrying the library's message.
 """
 
@@ -41,6 +41,7 @@ from ._isogami import (
     ExportError,
     InverseError,
     InverseResult,
+    ShapeError,
     Family,
     IsogamiError,
     KinematicsError,
@@ -70,6 +71,9 @@ from ._isogami import (
     export,
     export_formats,
     inverse,
+    follow_shape,
+    rank_drop_shape,
+    shape_mobility,
     families,
     family,
     linkages,
@@ -101,6 +105,7 @@ __all__ = [
     "ExportError",
     "InverseError",
     "InverseResult",
+    "ShapeError",
     "Family",
     "IsogamiError",
     "KinematicsError",
@@ -130,6 +135,9 @@ __all__ = [
     "export",
     "export_formats",
     "inverse",
+    "follow_shape",
+    "rank_drop_shape",
+    "shape_mobility",
     "families",
     "family",
     "linkages",

@@ -43,6 +43,7 @@ class StoreError(IsogamiError): ...
 class QueryError(StoreError): ...
 class ExportError(IsogamiError): ...
 class InverseError(IsogamiError): ...
+class ShapeError(IsogamiError): ...
 
 class Family:
     """One of the 81 realizable isohedral tiling families IH1…IH93."""
@@ -623,3 +624,12 @@ def inverse(
     timeout: Optional[float] = None,
 ) -> InverseResult:
     """Designs with a target behaviour from a database, their tile shapes refined."""
+
+def shape_mobility(design: DesignLike) -> Dict[str, Any]:
+    """Generic or special: does one DOF survive shape changes; constraints and pinned parameters."""
+
+def follow_shape(design: DesignLike, index: int, value: float) -> Design:
+    """Parameter ``index`` moved to ``value``, the others adjusted to keep one DOF."""
+
+def rank_drop_shape(design: DesignLike) -> Optional[Design]:
+    """A shape of a rigid design's topology with exactly one DOF, or None."""
