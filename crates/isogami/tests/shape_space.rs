@@ -7,7 +7,8 @@
 use isogami::api::{analyze, deploy, resolve_design, DeployRequest};
 use isogami::mobility::MobilitySettings;
 use isogami::shape_space::{
-    classify, follow, param_scales, rank_drop, ShapeClass, ShapeError, ShapeSettings,
+    classify, follow, param_scales, rank_drop, search_neighbours, ShapeClass, ShapeError,
+    ShapeSettings,
 };
 use isogami::topology::Design;
 
@@ -244,4 +245,31 @@ fn bad_requests_are_typed_errors() {
     let mut s = settings;
     s.radius = 0.0;
     assert!(classify(&d, &s).is_err());
+}
+
+#[test]
+fn rigid_neighbours_of_a_known_design_hold_new_mechanisms() {
+    // IH27 aaa-a--a-a with one more joint is rigid at the default shape, so the exploration
+    // never samples its shapes; at other shapes two such neighbours move, deploy to the
+    // contact limit and pass the catalogue's admission rule.
+    let from = design("IH27:0.141304,0.465108,0.534891:1x1:aaa-a--a-a");
+    let report = search_neighbours(
+        std::slice::from_ref(&from),
+        &ShapeSettings::default(),
+        &isogami::catalog::CatalogSettings::default(),
+    );
+    assert!(report.rigid_neighbours >= 4);
+    let admitted: Vec<_> = report.findings.iter().filter(|f| f.admitted).collect();
+    assert!(!admitted.is_empty(), "{:?}", report.findings);
+    for f in &report.findings {
+        let rigid = design(&f.rigid);
+        let found = design(&f.spec);
+        assert_eq!(dof(&rigid), 0, "{}", f.rigid);
+        assert_eq!(found.joints, rigid.joints, "same topology, another shape");
+        assert_eq!(dof(&found), 1, "{}", f.spec);
+    }
+    for f in admitted {
+        let run = deploy(&design(&f.spec), &DeployRequest::default(), &mut |_| true).unwrap();
+        assert!(run.report.max_expansion > 0.1 && run.report.max_joint_residual < 1e-9);
+    }
 }

@@ -5,7 +5,10 @@
 
 use crate::output::{emit, print_json, CliResult};
 use isogami::api::resolve_design;
-use isogami::shape_space::{classify, follow, rank_drop, ShapeClass, ShapeMobility, ShapeSettings};
+use isogami::catalog::CatalogSettings;
+use isogami::shape_space::{
+    classify, follow, rank_drop, search_neighbours, ShapeClass, ShapeMobility, ShapeSettings,
+};
 use isogami::topology::Design;
 use isogami_store::{Check, DesignQuery, Store};
 use serde::Serialize;
@@ -23,8 +26,9 @@ pub struct Args {
     #[arg(long, allow_hyphen_values = true, conflicts_with = "db")]
     set: Option<String>,
     /// Search the design's shapes for one with exactly one degree of freedom (for a design
-    /// that is rigid at its own shape).
-    #[arg(long, conflicts_with_all = ["db", "set"])]
+    /// that is rigid at its own shape); with --db, search the rigid neighbours (one joint
+    /// added or moved) of every topology in the database and assess what is found.
+    #[arg(long, conflicts_with = "set")]
     rank_drop: bool,
     /// Classify every design of this database instead (a table per family).
     #[arg(long, conflicts_with = "design")]
@@ -232,10 +236,52 @@ fn classify_db(path: &std::path::Path, settings: &ShapeSettings, json: bool) -> 
     emit(&o)
 }
 
+/// The rank-drop search on the rigid neighbours of every topology of a database.
+fn rank_drop_db(path: &std::path::Path, settings: &ShapeSettings, json: bool) -> CliResult {
+    let store =
+        Store::open_read(path, Check::Quick).map_err(|e| format!("{}: {e}", path.display()))?;
+    let candidates = store
+        .candidates(&DesignQuery::default())
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut topologies: Vec<Design> = Vec::new();
+    let mut seen = std::collections::BTreeSet::new();
+    for c in &candidates {
+        if seen.insert(c.topology.clone()) {
+            topologies.push(design_of(&c.topology)?);
+        }
+    }
+    let report = search_neighbours(&topologies, settings, &CatalogSettings::default());
+    if json {
+        return print_json(&report);
+    }
+    let mut o = String::new();
+    let admitted = report.findings.iter().filter(|f| f.admitted).count();
+    outln!(
+        o,
+        "{} topologies, {} rigid neighbours searched, {} rank-dropping shapes found, {} admitted",
+        report.designs,
+        report.rigid_neighbours,
+        report.findings.len(),
+        admitted
+    );
+    for f in &report.findings {
+        let verdict = match (&f.max_expansion, &f.rejection) {
+            (Some(e), _) => format!("admitted, opens to {e:.3}"),
+            (None, Some(why)) => format!("not admitted: {why}"),
+            (None, None) => "not admitted".to_string(),
+        };
+        outln!(o, "{}  ({verdict})", f.spec);
+    }
+    emit(&o)
+}
+
 /// Runs the shape-space analysis asked for.
 pub fn run(args: Args) -> CliResult {
     let settings = ShapeSettings::default();
     if let Some(db) = &args.db {
+        if args.rank_drop {
+            return rank_drop_db(db, &settings, args.json);
+        }
         return classify_db(db, &settings, args.json);
     }
     let design = design_of(args.design.as_deref().unwrap_or_default())?;

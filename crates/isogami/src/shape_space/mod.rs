@@ -10,7 +10,8 @@
 //!   `correct.rs`), so a shape slider can move along a mechanism's family instead of
 //!   breaking it.
 //! - [`rank_drop`]: search the shapes of a topology that is rigid at its default shape for
-//!   one where it gains exactly one DOF.
+//!   one where it gains exactly one DOF; [`search_neighbours`] runs it on the rigid
+//!   neighbours of known designs (one joint added or moved) and assesses what it finds.
 //!
 //! Everything works on the closed state's reduced constraint Jacobian J(p)
 //! (`jacobian.rs`) in scaled shape coordinates; the DOF is counted with the mobility
@@ -23,12 +24,14 @@ mod follow;
 mod jacobian;
 mod kernel;
 mod rank_drop;
+mod search;
 
 pub use classify::{classify, ShapeClass, ShapeMobility};
 pub use error::ShapeError;
 pub use follow::{follow, Followed};
 pub use jacobian::param_scales;
 pub use rank_drop::{rank_drop, RankDrop};
+pub use search::{neighbours, search_neighbours, Finding, SearchReport};
 
 use crate::error::{Requirement, SettingsError};
 use crate::math::Real;
