@@ -4,7 +4,8 @@
 // server's result, which is what the command shown under the form prints (run here with the
 // binary); "open" shows the first refined design deploying on the design page. A bad target
 // shows the server's message and starts nothing; every example target is one the server
-// reads; Stop ends a run. On the static site nothing runs and the page shows the command.
+// reads; Stop ends a run; "save all" stores the refined designs on a writable server. On the
+// static site nothing runs and the page shows the command.
 
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -12,7 +13,7 @@ import { execFile } from 'node:child_process';
 import { basename, dirname } from 'node:path';
 import { promisify } from 'node:util';
 import {
-  buildSite, byTestId, canvasColours, canvasPixels, env, getJson, launchBrowser, newPage, problems, screenshot, serveFolder, startServer,
+  buildSite, byTestId, canvasColours, canvasPixels, copyDb, env, getJson, launchBrowser, newPage, problems, screenshot, serveFolder, startServer,
 } from './harness.mjs';
 import { EXAMPLES } from '../src/inverse-request.js';
 import { shellSplit } from '../test/shell.mjs';
@@ -166,6 +167,44 @@ test('Stop ends a run', async () => {
   assert.ok(await byTestId(page, 'results-section').isHidden());
   assert.equal((await getJson(`${server.base}/api/inverse`)).running, null);
   assert.deepEqual(problems(page), []);
+});
+
+test('save all stores the refined designs on a writable server', async () => {
+  const copy = await copyDb();
+  const writable = await startServer({ db: copy.file });
+  try {
+    const page = await newPage(browser);
+    await page.goto(`${writable.base}/inverse.html`);
+    await page.waitForFunction(() => document.querySelector('[data-testid="top"]').value !== '');
+    await byTestId(page, 'target').fill('area');
+    await byTestId(page, 'top').fill('2');
+    await byTestId(page, 'budget').fill('8');
+    await byTestId(page, 'run').click();
+    await page.waitForFunction(() => document.body.dataset.inverseState === 'done', null, { timeout: 300000 });
+    const specs = await byTestId(page, 'result-spec').allTextContents();
+    assert.ok(specs.length >= 1);
+    // Refined designs are new; one that refinement did not move is already stored.
+    const stored = async (spec) => (await fetch(`${writable.base}/api/design?spec=${encodeURIComponent(spec)}`)).status === 200;
+    const fresh = [];
+    for (const spec of specs) if (!(await stored(spec))) fresh.push(spec);
+    assert.ok(fresh.length >= 1, 'refinement found a new design');
+    await byTestId(page, 'save-all').click();
+    await page.waitForFunction(() => /^saved/.test(document.querySelector('[data-testid="save-status"]').textContent));
+    const kept = specs.length - fresh.length;
+    assert.equal(
+      await byTestId(page, 'save-status').textContent(),
+      `saved ${fresh.length} design${fresh.length === 1 ? '' : 's'}${kept ? `; ${kept} already in the database` : ''}.`,
+    );
+    assert.ok(await byTestId(page, 'save-all').isDisabled(), 'saved once');
+    for (const spec of fresh) {
+      const view = await getJson(`${writable.base}/api/design?spec=${encodeURIComponent(spec)}`);
+      assert.equal(view.origin, 'user');
+    }
+    assert.deepEqual(problems(page), []);
+  } finally {
+    await writable.stop();
+    await copy.remove();
+  }
 });
 
 test('on the static site the page shows the command instead of running', async () => {
