@@ -207,6 +207,27 @@ test('save all stores the refined designs on a writable server', async () => {
   }
 });
 
+test('Ctrl-C stops the server promptly while a job runs', async () => {
+  const own = await startServer({ args: ['--read-only'] });
+  try {
+    const res = await fetch(`${own.base}/api/inverse`, {
+      method: 'POST',
+      headers: { 'content-type': 'application/json' },
+      body: JSON.stringify({ target: 'isotropic + 0.5*uniform', top: 5, budget: 200 }),
+    });
+    assert.equal(res.status, 202);
+    const { id } = await res.json();
+    await new Promise((ok) => setTimeout(ok, 300));
+    assert.equal((await getJson(`${own.base}/api/inverse/${id}`)).state, 'running');
+    const t0 = Date.now();
+    const code = await own.interrupt(8000); // the run alone takes about 20 s here
+    assert.notEqual(code, null, 'the server exited');
+    assert.ok(Date.now() - t0 < 8000);
+  } finally {
+    await own.stop();
+  }
+});
+
 test('on the static site the page shows the command instead of running', async () => {
   const site = await buildSite();
   const files = await serveFolder(site.dir, '/sub');
@@ -219,6 +240,9 @@ test('on the static site the page shows the command instead of running', async (
     await page.waitForFunction(() => document.querySelector('[data-testid="top"]').value !== '');
     assert.ok(await byTestId(page, 'run').isDisabled());
     assert.match(await byTestId(page, 'run-note').textContent(), /isogami serve/);
+    // The command line has no server caps.
+    assert.equal(await byTestId(page, 'budget').getAttribute('max'), null);
+    assert.ok(await page.locator('#progress-section').isHidden());
     await byTestId(page, 'example').nth(2).click();
     await byTestId(page, 'budget').fill('20');
     assert.equal(

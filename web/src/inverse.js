@@ -77,8 +77,9 @@ async function main() {
   }
   const initial = emptyForm(settings);
   for (const key of ['top', 'budget']) $(key).value = initial[key];
+  // The server's caps; the command line has only the library's.
   for (const f of NUMBER_FIELDS) {
-    const cap = settings.limits?.[f.cap];
+    const cap = data.live ? settings.limits?.[f.cap] : undefined;
     if (cap !== undefined) {
       $(f.key).max = String(cap);
       $(`${f.key}-cap`).textContent = `at most ${cap}`;
@@ -111,6 +112,7 @@ async function main() {
   updateCommand();
   if (!data.live) {
     $('run').disabled = true;
+    $('progress-section').hidden = true;
     $('run-note').textContent = 'Running needs `isogami serve`: run the command below instead.';
     return;
   }

@@ -49,8 +49,9 @@ pub fn serve_blocking(
         .block_on(serve(state, addr, on_ready))
 }
 
-/// Serves `state` on `addr` until Ctrl-C. `on_ready` gets the bound address (port 0 picks a
-/// free one) once the server accepts connections.
+/// Serves `state` on `addr` until Ctrl-C (which also stops a running inverse-design job).
+/// `on_ready` gets the bound address (port 0 picks a free one) once the server accepts
+/// connections.
 pub async fn serve(
     state: AppState,
     addr: SocketAddr,
@@ -58,9 +59,11 @@ pub async fn serve(
 ) -> std::io::Result<()> {
     let listener = tokio::net::TcpListener::bind(addr).await?;
     on_ready(listener.local_addr()?);
+    let jobs = state.clone();
     axum::serve(listener, router(state))
-        .with_graceful_shutdown(async {
+        .with_graceful_shutdown(async move {
             let _ = tokio::signal::ctrl_c().await;
+            jobs.jobs().stop_all();
         })
         .await
 }

@@ -95,6 +95,14 @@ impl Jobs {
             .ok_or_else(|| unknown(id, limits))
     }
 
+    /// Asks every running job to stop (the server is shutting down: the runtime waits for
+    /// its blocking tasks).
+    pub fn stop_all(&self) {
+        for j in &self.lock().jobs {
+            j.request_stop();
+        }
+    }
+
     /// The running job's id, if one runs.
     pub fn running(&self) -> Option<u64> {
         let r = self.lock();
