@@ -4,13 +4,13 @@
 //! (the result, plus `saved` once saved).
 
 use super::limits::InverseLimits;
+use super::view::{Echo, JobError, JobState, JobView};
 use crate::error::ApiError;
 use crate::state::AppState;
 use axum::http::StatusCode;
 use isogami::inverse::InverseResult;
 use isogami::inverse::{inverse_design, InverseError, InverseProgress, InverseRequest};
 use isogami_store::{DesignQuery, SavedDesign};
-use serde::Serialize;
 use serde_json::Value;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
@@ -18,92 +18,6 @@ use std::time::Instant;
 
 /// Most points of the best-objective history kept (improvements only, so rarely reached).
 const MAX_HISTORY: usize = 2000;
-
-/// Where a job is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum JobState {
-    /// Running (also while a requested stop takes effect).
-    Running,
-    /// Ended with a result.
-    Done,
-    /// Ended with an error.
-    Failed,
-    /// Stopped before the end (asked to, at the time limit, or abandoned).
-    Stopped,
-}
-
-/// An error as the API's error answers carry it.
-#[derive(Debug, Clone, Serialize)]
-pub struct JobError {
-    /// One line naming the problem.
-    pub error: String,
-    /// Machine-readable kind.
-    pub kind: &'static str,
-    /// What to do.
-    pub hint: String,
-}
-
-impl From<ApiError> for JobError {
-    fn from(e: ApiError) -> JobError {
-        JobError {
-            error: e.message,
-            kind: e.kind,
-            hint: e.hint,
-        }
-    }
-}
-
-/// The request as run, for the view (the target in canonical text).
-#[derive(Debug, Clone, Serialize)]
-pub struct Echo {
-    pub target: String,
-    pub top: usize,
-    pub budget: usize,
-    pub confirm: usize,
-    pub triage: usize,
-    pub samples: usize,
-    pub kerf: f64,
-    pub refine_kerf: bool,
-}
-
-impl Echo {
-    fn of(r: &InverseRequest) -> Echo {
-        Echo {
-            target: r.target.to_string(),
-            top: r.top,
-            budget: r.budget,
-            confirm: r.confirm_count(),
-            triage: r.triage_count(),
-            samples: r.samples,
-            kerf: r.effective_kerf(),
-            refine_kerf: r.refine_kerf,
-        }
-    }
-}
-
-/// What a poll answers (`GET /api/inverse/{id}`).
-#[derive(Debug, Clone, Serialize)]
-pub struct JobView {
-    pub id: u64,
-    pub state: JobState,
-    /// A stop was asked for and the run has not ended yet.
-    pub stopping: bool,
-    /// Seconds since the job started (until it ended).
-    pub elapsed: f64,
-    pub request: Echo,
-    /// The library's last progress report: stage, done and total in the stage, best
-    /// objective, leaders.
-    pub progress: Option<InverseProgress>,
-    /// Evaluations so far, every stage counted.
-    pub evaluations: usize,
-    /// [evaluations, best objective] at every improvement of the run's best.
-    pub history: Vec<[f64; 2]>,
-    /// When done: the result as `isogami inverse --json` prints it.
-    pub result: Option<Value>,
-    /// When failed or stopped: why.
-    pub error: Option<JobError>,
-}
 
 struct Inner {
     state: JobState,

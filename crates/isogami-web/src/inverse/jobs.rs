@@ -2,8 +2,9 @@
 //! [`InverseLimits::keep`](super::InverseLimits::keep) (and at most
 //! [`max_kept`](super::InverseLimits::max_kept) of them), then forgotten.
 
-use super::job::{Job, JobState};
+use super::job::Job;
 use super::limits::InverseLimits;
+use super::view::JobState;
 use crate::error::{ApiError, ApiResult};
 use axum::http::StatusCode;
 use isogami::inverse::InverseRequest;

@@ -2,8 +2,7 @@
 //! polling it, stopping it, saving its refined designs.
 
 use crate::error::{ApiError, ApiResult};
-use crate::inverse::job::JobView;
-use crate::inverse::{InverseBody, Job, JobState};
+use crate::inverse::{InverseBody, Job, JobState, JobView};
 use crate::state::AppState;
 use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
