@@ -1,5 +1,6 @@
 // Builds the browser front end: `node build.mjs <outdir>` bundles and minifies src/ into
-// <outdir>: index.html (catalogue), design.html (design page), app.js, design.js, style.css.
+// <outdir>: index.html (catalogue), design.html (design page), inverse.html (inverse design),
+// app.js, design.js, inverse.js, style.css.
 // Every URL in them is relative, so the files work under `isogami serve` and from any
 // static host or sub-path. Called by crates/isogami-web's build.rs after `npm ci`.
 
@@ -30,7 +31,11 @@ const common = {
 
 await build({
   ...common,
-  entryPoints: { app: join(src, 'catalogue.js'), design: join(src, 'design.js') },
+  entryPoints: {
+    app: join(src, 'catalogue.js'),
+    design: join(src, 'design.js'),
+    inverse: join(src, 'inverse.js'),
+  },
   outdir,
 });
 await build({ ...common, entryPoints: [join(src, 'style.css')], outfile: join(outdir, 'style.css') });

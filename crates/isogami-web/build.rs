@@ -12,7 +12,8 @@ fn main() {
     let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("set by cargo"));
     let out = PathBuf::from(std::env::var("OUT_DIR").expect("set by cargo"));
     println!("cargo:rerun-if-env-changed=ISOGAMI_WEB_DIST");
-    let dist = match std::env::var_os("ISOGAMI_WEB_DIST") {
+    let given = std::env::var_os("ISOGAMI_WEB_DIST");
+    let dist = match &given {
         Some(dir) => PathBuf::from(dir),
         None => {
             let web = manifest.join("../../web");
@@ -36,7 +37,13 @@ fn main() {
     );
     code.push_str("pub static ASSETS: &[(&str, &[u8])] = &[\n");
     for (name, path) in &files {
-        println!("cargo:rerun-if-changed={}", path.display());
+        // Watch a given folder's files. Never the files this script just built: they are
+        // newer than the moment cargo records for the run, so cargo would find the script
+        // stale on every build and rebuild and relink everything after it (the sources in
+        // web/ are what is watched then, in build_front_end).
+        if given.is_some() {
+            println!("cargo:rerun-if-changed={}", path.display());
+        }
         code.push_str(&format!(
             "    ({name:?}, include_bytes!({:?})),\n",
             path.display().to_string()

@@ -73,6 +73,14 @@ export async function startServer({ db = env().db, args: extraArgs = [] } = {}) 
         await gone;
       }
     },
+    /** Sends SIGINT (Ctrl-C: a graceful shutdown) and resolves with the exit code, or null
+     * when the server is still running after `ms`. */
+    async interrupt(ms) {
+      if (child.exitCode !== null) return child.exitCode;
+      const gone = new Promise((ok) => child.once('exit', (code) => ok(code)));
+      child.kill('SIGINT');
+      return Promise.race([gone, new Promise((ok) => setTimeout(() => ok(null), ms))]);
+    },
   };
 }
 

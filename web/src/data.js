@@ -129,6 +129,35 @@ class ServerData {
   exportFile(params, signal) {
     return getFile(`./api/export?${params}`, signal);
   }
+
+  /** Inverse design: defaults, caps, saving allowed, database name, running job. */
+  inverseSettings() {
+    return getJson('./api/inverse');
+  }
+
+  /** Starts an inverse-design job; {id}. */
+  startInverse(body) {
+    return getJson('./api/inverse', {
+      method: 'POST',
+      headers: { 'content-type': 'application/json' },
+      body: JSON.stringify(body),
+    });
+  }
+
+  /** An inverse-design job's state, progress and result. */
+  inverseJob(id) {
+    return getJson(`./api/inverse/${encodeURIComponent(id)}`);
+  }
+
+  /** Stops an inverse-design job; its state. */
+  stopInverse(id) {
+    return getJson(`./api/inverse/${encodeURIComponent(id)}`, { method: 'DELETE' });
+  }
+
+  /** Saves a finished job's refined designs; {saved: [{spec, saved, note}]}. */
+  saveInverse(id) {
+    return getJson(`./api/inverse/${encodeURIComponent(id)}/save`, { method: 'POST' });
+  }
 }
 
 /** STATIC mode: files written by `isogami site`, queries answered by query.js. */
@@ -207,6 +236,27 @@ class StaticData {
 
   async exportFile() {
     throw new ApiError('downloads need `isogami serve`', 'static', 'run the command shown, or `isogami serve --db FILE` and download from there');
+  }
+
+  /** The inverse-design settings the site was written with (older sites have none). */
+  async inverseSettings() {
+    return this.site.inverse ?? { defaults: { top: 3, budget: 80 }, limits: {}, save: false, database: null, running: null };
+  }
+
+  async startInverse() {
+    throw new ApiError('inverse design needs `isogami serve`', 'static', 'run the command shown, or `isogami serve --db FILE` and run it there');
+  }
+
+  async inverseJob() {
+    return this.startInverse();
+  }
+
+  async stopInverse() {
+    return this.startInverse();
+  }
+
+  async saveInverse() {
+    return this.startInverse();
   }
 }
 

@@ -158,9 +158,11 @@ export function createScatter(container, { onClick, describe, height = 340 }) {
 
 /**
  * Line plot of several series over t ∈ [0, 1] with a vertical marker. `series`:
- * `[{name, className, points: [[t, y], …]}]`.
+ * `[{name, className, points: [[t, y], …]}]`. Options for other uses: `xAuto` (x from 0 to
+ * the largest x of the points instead of [0, 1]), `steps` (draw each value until the next
+ * point), `marker: false` (no marker).
  */
-export function createLinePlot(container, { xLabel, yLabel, height = 220 }) {
+export function createLinePlot(container, { xLabel, yLabel, height = 220, xAuto = false, steps = false, marker: withMarker = true }) {
   container.classList.add('plot');
   const svg = d3.select(container).append('svg').attr('role', 'img');
   let series = [];
@@ -169,7 +171,10 @@ export function createLinePlot(container, { xLabel, yLabel, height = 220 }) {
   function draw() {
     const { width, height: h } = size(container, height);
     const all = series.flatMap((s) => s.points.map((p) => p[1]));
-    const sx = d3.scaleLinear().domain([0, 1]).range([MARGIN.left, width - MARGIN.right]);
+    const xs = series.flatMap((s) => s.points.map((p) => p[0]));
+    const xMax = xAuto ? Math.max(1, ...xs) : 1;
+    const sx = d3.scaleLinear().domain([0, xMax]).range([MARGIN.left, width - MARGIN.right]);
+    if (xAuto) sx.nice();
     const sy = d3
       .scaleLinear()
       .domain(padDomain(d3.extent(all.length ? all : [0, 1])))
@@ -186,6 +191,7 @@ export function createLinePlot(container, { xLabel, yLabel, height = 220 }) {
     axisLabels(svg, width, h, xLabel, yLabel);
     const line = d3
       .line()
+      .curve(steps ? d3.curveStepAfter : d3.curveLinear)
       .x((p) => sx(p[0]))
       .y((p) => sy(p[1]));
     series.forEach((s, i) => {
@@ -202,6 +208,7 @@ export function createLinePlot(container, { xLabel, yLabel, height = 220 }) {
         .attr('text-anchor', 'start')
         .text(s.name);
     });
+    if (!withMarker) return;
     svg
       .append('line')
       .attr('class', 'marker')

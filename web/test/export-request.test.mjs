@@ -7,6 +7,7 @@ import assert from 'node:assert/strict';
 import {
   attachmentName, cliCommand, exportFileName, exportPairs, exportParams, fieldsOf, shellWord,
 } from '../src/export-request.js';
+import { shellSplit } from './shell.mjs';
 
 // A catalogue of the shape GET /api/export/formats serves.
 const catalog = {
@@ -44,28 +45,6 @@ const form = (extra = {}) => ({
   settings: {},
   ...extra,
 });
-
-/** Words of a POSIX command line (bare words and single-quoted parts, as the panel writes). */
-function shellSplit(line) {
-  const words = [];
-  let word = null;
-  for (let i = 0; i < line.length; i += 1) {
-    const c = line[i];
-    if (c === "'") {
-      const end = line.indexOf("'", i + 1);
-      word = (word ?? '') + line.slice(i + 1, end);
-      i = end;
-    } else if (c === '\\') {
-      word = (word ?? '') + line[i + 1];
-      i += 1;
-    } else if (c === ' ') {
-      if (word !== null) words.push(word);
-      word = null;
-    } else word = (word ?? '') + c;
-  }
-  if (word !== null) words.push(word);
-  return words;
-}
 
 /** The query pairs a command line stands for (flags back to keys; --out dropped). */
 function pairsOfCommand(line) {

@@ -71,7 +71,7 @@ impl ApiError {
             StatusCode::METHOD_NOT_ALLOWED,
             "method_not_allowed",
             "this endpoint does not take this HTTP method",
-            "POST to /api/deploy and /api/designs; GET everything else",
+            "POST to /api/deploy, /api/designs and /api/inverse; DELETE /api/inverse/{id}; GET everything else",
         )
     }
 

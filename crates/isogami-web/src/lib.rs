@@ -11,6 +11,7 @@
 //! | [`error`] | API errors: status, kind, one-line message, hint |
 //! | [`export`] | fabrication and interchange exports as downloads |
 //! | [`filters`] | query strings → store queries |
+//! | [`inverse`] | inverse-design jobs: start, progress, stop, save |
 //! | [`live`] | deployments of posted designs, bounded in time and cancelled with the client |
 //! | [`view`] | the design view: report, geometry, linkages, notices |
 //! | [`thumbnail`] | closed/open thumbnails as SVG |
@@ -22,6 +23,7 @@ pub mod assets;
 pub mod error;
 pub mod export;
 pub mod filters;
+pub mod inverse;
 pub mod live;
 pub mod routes;
 pub mod site;
@@ -47,8 +49,9 @@ pub fn serve_blocking(
         .block_on(serve(state, addr, on_ready))
 }
 
-/// Serves `state` on `addr` until Ctrl-C. `on_ready` gets the bound address (port 0 picks a
-/// free one) once the server accepts connections.
+/// Serves `state` on `addr` until Ctrl-C (which also stops a running inverse-design job).
+/// `on_ready` gets the bound address (port 0 picks a free one) once the server accepts
+/// connections.
 pub async fn serve(
     state: AppState,
     addr: SocketAddr,
@@ -56,9 +59,11 @@ pub async fn serve(
 ) -> std::io::Result<()> {
     let listener = tokio::net::TcpListener::bind(addr).await?;
     on_ready(listener.local_addr()?);
+    let jobs = state.clone();
     axum::serve(listener, router(state))
-        .with_graceful_shutdown(async {
+        .with_graceful_shutdown(async move {
             let _ = tokio::signal::ctrl_c().await;
+            jobs.jobs().stop_all();
         })
         .await
 }

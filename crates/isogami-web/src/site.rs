@@ -1,7 +1,8 @@
 //! `isogami site`: the catalogue as a static site that works from any static file host.
 //!
 //! The embedded front end plus `data/site.json` (stats, families, dictionary, export formats
-//! for the CLI command the design page composes; its presence
+//! for the CLI command the design page composes, inverse design's defaults and the database's
+//! file name for the command the inverse-design page composes; its presence
 //! switches the pages to static mode), `data/designs.json` (every catalogue row),
 //! `data/design/<slug>.json` (each design view) and `thumbs/<slug>.svg`. The site is built
 //! in a temporary folder beside the target and moved into place at the end, so an
@@ -158,6 +159,10 @@ pub fn write_site(
                 serde_json::from_str(text).unwrap_or(serde_json::Value::String(text.clone()));
         }
         let families: Vec<_> = Family::all().map(|f| f.info()).collect();
+        let db_name = db
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
         w.json(
             "data/site.json",
             &json!({
@@ -166,6 +171,8 @@ pub fn write_site(
                 "families": families,
                 "dictionary": DICTIONARY,
                 "export": crate::export::catalog(),
+                // For the `isogami inverse` command the inverse-design page shows.
+                "inverse": crate::inverse::InverseLimits::default().describe(false, &db_name),
                 "tool_version": env!("CARGO_PKG_VERSION"),
             }),
         )?;

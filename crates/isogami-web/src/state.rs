@@ -1,8 +1,9 @@
 //! The server's shared state: a small pool of read-only database connections, the
-//! database's path (for saving user designs through the store's locked writer) and the
-//! limits every request obeys.
+//! database's path (for saving user designs through the store's locked writer), the
+//! inverse-design jobs and the limits every request obeys.
 
 use crate::error::{ApiError, ApiResult};
+use crate::inverse::{InverseLimits, Jobs};
 use isogami_store::{Check, Store, StoreResult};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -20,6 +21,8 @@ pub struct ServerSettings {
     pub readers: usize,
     /// Whether users may save designs to the database.
     pub allow_save: bool,
+    /// Caps of inverse-design jobs.
+    pub inverse: InverseLimits,
 }
 
 impl Default for ServerSettings {
@@ -29,6 +32,7 @@ impl Default for ServerSettings {
             max_body: 64 * 1024,
             readers: 4,
             allow_save: true,
+            inverse: InverseLimits::default(),
         }
     }
 }
@@ -47,6 +51,8 @@ struct Inner {
     settings: ServerSettings,
     /// Serialises saves of this process (the store's file lock guards against others).
     save: Mutex<()>,
+    /// Inverse-design jobs.
+    jobs: Jobs,
 }
 
 impl AppState {
@@ -65,6 +71,7 @@ impl AppState {
                 next: AtomicUsize::new(0),
                 settings,
                 save: Mutex::new(()),
+                jobs: Jobs::default(),
             }),
         })
     }
@@ -72,6 +79,11 @@ impl AppState {
     /// The limits.
     pub fn settings(&self) -> &ServerSettings {
         &self.inner.settings
+    }
+
+    /// The inverse-design jobs.
+    pub fn jobs(&self) -> &Jobs {
+        &self.inner.jobs
     }
 
     /// The database file.

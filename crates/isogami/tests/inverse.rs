@@ -3,10 +3,12 @@
 
 use isogami::api::{deploy, resolve_design, DeployRequest};
 use isogami::inverse::{
-    inverse_design, Candidate, Evaluator, Invalidity, InverseError, InverseRequest, Outcome, Target,
+    inverse_design, Candidate, Evaluator, Invalidity, InverseError, InverseProgress,
+    InverseRequest, Outcome, Stage, Target, LEADERS,
 };
 use isogami::topology::Design;
 use isogami::Error;
+use std::collections::{HashMap, HashSet};
 use std::sync::atomic::AtomicBool;
 
 fn candidate(text: &str, with_report: bool) -> Candidate {
@@ -112,6 +114,64 @@ fn the_progress_callback_stops_the_run() {
     .unwrap_err();
     assert!(e.is_cancelled(), "{e}");
     assert_eq!(e, Error::Inverse(InverseError::Cancelled));
+}
+
+#[test]
+fn leaders_only_improve_and_end_as_the_result() {
+    let pool = samples();
+    let mut request = InverseRequest::new(Target::parse("uniform + 0.5*zero-poisson").unwrap());
+    request.top = 2;
+    request.budget = 16;
+    let mut reports: Vec<InverseProgress> = Vec::new();
+    let result = inverse_design(&pool, &request, &mut |p| {
+        reports.push(p.clone());
+        true
+    })
+    .unwrap();
+    let mut seen: HashMap<String, (f64, String)> = HashMap::new();
+    let mut changes = 0;
+    for p in &reports {
+        assert!(p.leaders.len() <= LEADERS.max(request.top));
+        let topologies: HashSet<&str> = p.leaders.iter().map(|l| l.topology.as_str()).collect();
+        assert_eq!(topologies.len(), p.leaders.len(), "one leader per topology");
+        assert!(p
+            .leaders
+            .windows(2)
+            .all(|w| w[0].objective <= w[1].objective));
+        // The run's best is the first leader's.
+        assert_eq!(p.best, p.leaders.first().map(|l| l.objective));
+        for l in &p.leaders {
+            match seen.get(&l.topology) {
+                Some((v, spec)) if *spec == l.spec => assert_eq!(*v, l.objective),
+                Some((v, spec)) => {
+                    assert!(
+                        l.objective < *v,
+                        "{} got worse: {v} -> {}",
+                        spec,
+                        l.objective
+                    );
+                    changes += 1;
+                }
+                None => {}
+            }
+            seen.insert(l.topology.clone(), (l.objective, l.spec.clone()));
+        }
+    }
+    let last = &reports.last().unwrap().leaders;
+    assert!(last.len() >= result.results.len());
+    for (l, r) in last.iter().zip(&result.results) {
+        assert_eq!(
+            (&l.topology, &l.spec, l.objective, l.kerf),
+            (&r.topology, &r.after.spec, r.after.objective, r.after.kerf)
+        );
+    }
+    // Refinement improved a design here; the board showed it as it happened: a leader found
+    // after screening.
+    assert!(result.results.iter().any(|r| r.improved));
+    assert!(changes > 0);
+    assert!(last
+        .iter()
+        .any(|l| matches!(l.stage, Stage::Triage | Stage::Refine)));
 }
 
 #[test]

@@ -15,11 +15,17 @@
 //! | `GET /api/export?design=&format=&…` | a design's export as a download |
 //! | `POST /api/deploy` | a live deployment of a posted design |
 //! | `POST /api/designs` | save a posted design as a user design |
+//! | `GET /api/inverse` | inverse design's defaults, caps, saving allowed, running job |
+//! | `POST /api/inverse` | start an inverse-design job (202 `{id}`; 409 while one runs) |
+//! | `GET /api/inverse/{id}` | its state, progress, leaders, result |
+//! | `DELETE /api/inverse/{id}` | stop it |
+//! | `POST /api/inverse/{id}/save` | save its refined designs as user designs |
 
 mod assets;
 mod catalogue;
 mod design;
 mod export;
+mod inverse;
 
 use crate::error::ApiError;
 use crate::state::AppState;
@@ -43,6 +49,9 @@ pub fn router(state: AppState) -> Router {
         .route("/deploy", post(design::deploy_live))
         .route("/export", get(export::export))
         .route("/export/formats", get(export::formats))
+        .route("/inverse", get(inverse::settings).post(inverse::start))
+        .route("/inverse/{id}", get(inverse::status).delete(inverse::stop))
+        .route("/inverse/{id}/save", post(inverse::save))
         .fallback(|| async { ApiError::no_endpoint() })
         .method_not_allowed_fallback(|| async { ApiError::method_not_allowed() });
     Router::new()

@@ -51,7 +51,8 @@ pub use error::InverseError;
 pub use evaluate::{Evaluation, Evaluator, Invalidity, Outcome};
 pub use objective::{goal_value, score, Score, Unmet};
 pub use request::{
-    InverseProgress, InverseRequest, InverseResult, Measures, RefinedDesign, Scored, Source, Stage,
+    InverseProgress, InverseRequest, InverseResult, Leader, Measures, RefinedDesign, Scored,
+    Source, Stage, LEADERS,
 };
 pub use screen::Candidate;
 pub use target::{Constraints, Goal, PathPoint, Target, Term};
@@ -67,7 +68,8 @@ use std::time::Instant;
 const VERIFY_TOLERANCE: f64 = 1e-9;
 
 /// Finds designs for `request.target` among `candidates` and refines them (see the module
-/// documentation). `progress` is called on this thread after every evaluation; when it
+/// documentation). `progress` is called on this thread after every evaluation (with the
+/// stage, counts, best objective and the leading topologies' best designs so far); when it
 /// returns `false` the run stops with [`InverseError::Cancelled`].
 ///
 /// Errors: an invalid request, no candidate passing the constraints, no valid design among
@@ -93,7 +95,10 @@ pub fn inverse_design(
         target: &request.target,
         settings,
     };
-    let run = monitored(progress, |monitor| run(candidates, request, &ev, monitor));
+    let shown = request.top.max(LEADERS);
+    let run = monitored(progress, shown, |monitor| {
+        run(candidates, request, &ev, monitor)
+    });
     let mut result = match run {
         Ok(r) => r?,
         Err(Stopped) => return Err(InverseError::Cancelled.into()),
@@ -131,6 +136,7 @@ fn run(
         .map(|s| {
             refine::refine(
                 &s.evaluation,
+                &s.topology,
                 first_budget(s),
                 request.refine_kerf,
                 ev,
@@ -164,7 +170,15 @@ fn run(
         .par_iter()
         .map(|&i| {
             let rest = request.budget - first_budget(&screened[i]);
-            refine::refine(&first[i].best, rest, request.refine_kerf, ev, monitor)
+            let topology = &screened[i].topology;
+            refine::refine(
+                &first[i].best,
+                topology,
+                rest,
+                request.refine_kerf,
+                ev,
+                monitor,
+            )
         })
         .collect::<Result<Vec<_>, Stopped>>()?;
     // Per kept topology: its best start (as screened), its best refined point, and every
@@ -264,7 +278,7 @@ fn finish(
 ) -> Result<RefinedDesign, Stopped> {
     let before = scored(&s.evaluation).expect("screened designs are valid");
     let check = ev.evaluate(&r.best.design, r.best.kerf, monitor.stop_flag())?;
-    monitor.evaluated(check.objective());
+    monitor.evaluated(&check, &s.topology);
     let agrees = match (check.objective(), r.best.objective()) {
         (Some(a), Some(b)) => (a - b).abs() <= VERIFY_TOLERANCE * (1.0 + b.abs()),
         _ => false,

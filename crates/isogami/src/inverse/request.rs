@@ -182,8 +182,11 @@ impl Stage {
     }
 }
 
+/// Fewest leaders a progress report lists (more when the request keeps more topologies).
+pub const LEADERS: usize = 8;
+
 /// What the progress callback is told after every evaluation.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct InverseProgress {
     /// Current stage.
     pub stage: Stage,
@@ -193,6 +196,25 @@ pub struct InverseProgress {
     pub total: usize,
     /// Best objective seen so far in the whole run (None before the first valid design).
     pub best: Option<Real>,
+    /// The best valid design so far of each of the leading topologies, best first: at most
+    /// max([`LEADERS`], top) of them. A topology's entry only ever improves; at the end the
+    /// first `top` leaders are the result's designs, in its order.
+    pub leaders: Vec<Leader>,
+}
+
+/// One topology's best valid design so far (a row of the live leader board).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Leader {
+    /// Spec of the topology at default shape (candidates' `topology`).
+    pub topology: String,
+    /// Spec of its best design so far.
+    pub spec: String,
+    /// Kerf that design was deployed with.
+    pub kerf: Real,
+    /// Its objective.
+    pub objective: Real,
+    /// The stage that found it.
+    pub stage: Stage,
 }
 
 /// Where a screened design came from.

@@ -90,7 +90,7 @@ fn evaluate_all(
     jobs.into_par_iter()
         .map(|(design, topology, source)| {
             let evaluation = ev.evaluate(&design, kerf, monitor.stop_flag())?;
-            monitor.evaluated(evaluation.objective());
+            monitor.evaluated(&evaluation, &topology);
             Ok(Screened {
                 evaluation,
                 topology,

@@ -40,9 +40,11 @@ pub(crate) struct Refined {
     pub invalid: usize,
 }
 
-/// Refines the valid evaluation `start` with at most `budget` evaluations.
+/// Refines the valid evaluation `start` (a design of `topology`) with at most `budget`
+/// evaluations.
 pub(crate) fn refine(
     start: &Evaluation,
+    topology: &str,
     budget: usize,
     refine_kerf: bool,
     ev: &Evaluator<'_>,
@@ -56,7 +58,7 @@ pub(crate) fn refine(
             invalid: 0,
         });
     }
-    let tracker = Tracker::new(start, space, ev, monitor, budget);
+    let tracker = Tracker::new(start, topology, space, ev, monitor, budget);
     lm::polish(&tracker);
     simplex::rounds(&tracker);
     let (best, evaluations, invalid) = tracker.finish()?;

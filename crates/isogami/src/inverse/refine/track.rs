@@ -98,6 +98,8 @@ pub(super) struct Tracker<'a, 'b> {
     pub space: Space,
     ev: &'a Evaluator<'b>,
     monitor: &'a Monitor<'a>,
+    /// The topology of every design evaluated (for the monitor's leader board).
+    topology: &'a str,
     budget: usize,
     state: RefCell<State>,
 }
@@ -124,6 +126,7 @@ impl<'a, 'b> Tracker<'a, 'b> {
     /// again).
     pub fn new(
         start: &Evaluation,
+        topology: &'a str,
         space: Space,
         ev: &'a Evaluator<'b>,
         monitor: &'a Monitor<'a>,
@@ -135,6 +138,7 @@ impl<'a, 'b> Tracker<'a, 'b> {
             space,
             ev,
             monitor,
+            topology,
             budget,
             state: RefCell::new(State {
                 best: start.clone(),
@@ -173,7 +177,7 @@ impl<'a, 'b> Tracker<'a, 'b> {
                 return None;
             }
         };
-        self.monitor.evaluated(e.objective());
+        self.monitor.evaluated(&e, self.topology);
         let p = point_of(&e);
         let mut s = self.state.borrow_mut();
         if p.cost >= INFEASIBLE {

@@ -1,0 +1,258 @@
+// The inverse-design page over a read-only `isogami serve`, in real headless Chromium: reached
+// from the catalogue's navigation, a target entered from the keyboard runs; the stage,
+// progress bar and leaders show and update while it runs; the results table lists the
+// server's result, which is what the command shown under the form prints (run here with the
+// binary); "open" shows the first refined design deploying on the design page. A bad target
+// shows the server's message and starts nothing; every example target is one the server
+// reads; Stop ends a run; "save all" stores the refined designs on a writable server. On the
+// static site nothing runs and the page shows the command.
+
+import { after, before, test } from 'node:test';
+import assert from 'node:assert/strict';
+import { execFile } from 'node:child_process';
+import { basename, dirname } from 'node:path';
+import { promisify } from 'node:util';
+import {
+  buildSite, byTestId, canvasColours, canvasPixels, copyDb, env, getJson, launchBrowser, newPage, problems, screenshot, serveFolder, startServer,
+} from './harness.mjs';
+import { EXAMPLES } from '../src/inverse-request.js';
+import { shellSplit } from '../test/shell.mjs';
+
+let server;
+let browser;
+
+before(async () => {
+  server = await startServer({ args: ['--read-only'] });
+  browser = await launchBrowser();
+});
+
+after(async () => {
+  await browser?.close();
+  await server?.stop();
+});
+
+async function openPanel(page) {
+  await page.goto(`${server.base}/index.html`);
+  await byTestId(page, 'nav-inverse').click();
+  await page.waitForURL(/inverse\.html$/);
+  // The defaults and caps come from the server.
+  await page.waitForFunction(() => document.querySelector('[data-testid="top"]').value !== '');
+}
+
+const state = (page) => page.evaluate(() => document.body.dataset.inverseState ?? '');
+
+/** POSTs a body to /api/inverse from node; status and JSON. */
+async function postInverse(body) {
+  const res = await fetch(`${server.base}/api/inverse`, {
+    method: 'POST',
+    headers: { 'content-type': 'application/json' },
+    body: JSON.stringify(body),
+  });
+  return { status: res.status, json: await res.json() };
+}
+
+test('a run shows its progress and leaders, ends with the CLI’s result, and opens a design', async () => {
+  const page = await newPage(browser);
+  await openPanel(page);
+  // Every field has a label; the caps are shown.
+  const unlabelled = await page.$$eval('#inverse-form input, #inverse-form select', (els) =>
+    els.filter((e) => e.labels.length === 0).map((e) => e.id || e.name),
+  );
+  assert.deepEqual(unlabelled, []);
+  const settings = await getJson(`${server.base}/api/inverse`);
+  assert.equal(await byTestId(page, 'budget').getAttribute('max'), String(settings.limits.budget));
+  assert.equal(await byTestId(page, 'top').inputValue(), String(settings.defaults.top));
+
+  // An example chip from the keyboard, then Enter in the target field runs it.
+  const chip = byTestId(page, 'example').first();
+  await chip.focus();
+  await page.keyboard.press('Enter');
+  assert.equal(await byTestId(page, 'target').inputValue(), EXAMPLES[0].target);
+  await byTestId(page, 'target').fill('area');
+  const command = await byTestId(page, 'inverse-command').textContent();
+  assert.equal(command, `isogami inverse --target 'area' --db ${basename(env().db)} --top 3 --budget 80 --json`);
+  const started = page.waitForResponse((r) => r.url().endsWith('/api/inverse') && r.request().method() === 'POST');
+  await byTestId(page, 'target').press('Enter');
+  assert.equal((await started).status(), 202);
+
+  // While it runs: a stage, a progress bar moving, leaders with objectives.
+  await page.waitForFunction(() =>
+    document.body.dataset.inverseState === 'running' &&
+    document.querySelectorAll('[data-testid="leader"]').length > 0 &&
+    Number(document.querySelector('[data-testid="progress-bar"]').value) > 0);
+  assert.ok(await byTestId(page, 'run').isDisabled());
+  assert.ok(await byTestId(page, 'stop').isEnabled());
+  assert.match(await byTestId(page, 'stage-line').textContent(), /\w/);
+  assert.match(await byTestId(page, 'progress-line').textContent(), /evaluations · best objective -?\d/);
+  assert.ok((await screenshot(browser, page, 'inverse-running')) > 30);
+
+  await page.waitForFunction(() => document.body.dataset.inverseState !== 'running', null, { timeout: 300000 });
+  assert.equal(await state(page), 'done');
+  // The leaders changed while it ran (they appeared, then improved).
+  const updates = await page.evaluate(() => Number(document.body.dataset.leaderUpdates));
+  assert.ok(updates >= 2, `${updates} leader updates`);
+  assert.ok(Number(await page.evaluate(() => document.body.dataset.polls)) >= 2);
+
+  // The results are the server's, and the command prints the same.
+  const id = await page.evaluate(() => document.body.dataset.jobId);
+  const job = await getJson(`${server.base}/api/inverse/${id}`);
+  const results = job.result.results;
+  assert.ok(results.length >= 1 && results.length <= 3);
+  assert.equal(await byTestId(page, 'result').count(), results.length);
+  const shown = await byTestId(page, 'result-spec').allTextContents();
+  assert.deepEqual(shown, results.map((r) => r.after.spec));
+  assert.ok(await byTestId(page, 'save-all').isHidden(), 'no saving on a read-only server');
+  const words = shellSplit(command);
+  const { stdout } = await promisify(execFile)(env().bin, words.slice(1), { cwd: dirname(env().db), maxBuffer: 64 << 20 });
+  const cli = JSON.parse(stdout);
+  delete cli.seconds;
+  const api = { ...job.result };
+  delete api.seconds;
+  assert.deepEqual(api, cli, 'the page’s result is what `isogami inverse --json` prints');
+  assert.ok((await screenshot(browser, page, 'inverse-results')) > 30);
+  assert.deepEqual(problems(page), []);
+
+  // Open the first refined design: the design page deploys that spec.
+  await byTestId(page, 'result').first().locator('[data-testid="open"]').click();
+  await page.waitForURL(/design\.html\?spec=/);
+  await page.waitForFunction(() => Number(document.body.dataset.deployments || 0) >= 1, null, { timeout: 60000 });
+  assert.equal(await byTestId(page, 'spec').textContent(), results[0].after.spec);
+  assert.ok(canvasColours(await canvasPixels(page, '[data-testid="sheet"]')) > 2, 'the sheet is drawn');
+  // A refined design is not in the database: the design page asks, then deploys it live.
+  assert.deepEqual(problems(page, [/^404 GET \S+\/api\/design\?spec=/]), []);
+});
+
+test('a bad target shows the server’s message and starts nothing; the examples are all readable', async () => {
+  const page = await newPage(browser);
+  await openPanel(page);
+  await byTestId(page, 'target').fill('aera + isotropic');
+  const response = page.waitForResponse((r) => r.url().endsWith('/api/inverse') && r.request().method() === 'POST');
+  await byTestId(page, 'run').click();
+  const res = await response;
+  assert.equal(res.status(), 400);
+  const notice = byTestId(page, 'notice');
+  await notice.waitFor({ state: 'visible' });
+  assert.equal(await notice.locator('strong').textContent(), (await res.json()).error);
+  assert.match(await notice.textContent(), /unknown goal 'aera'/);
+  assert.equal(await state(page), '');
+  assert.ok(await byTestId(page, 'run').isEnabled());
+  assert.equal((await getJson(`${server.base}/api/inverse`)).running, null);
+  assert.deepEqual(problems(page, [/^400 POST \S+\/api\/inverse$/]), []);
+
+  // Each example is read by the server (it then refuses top 0, so nothing runs).
+  for (const x of EXAMPLES) {
+    const { status, json } = await postInverse({ target: x.target, top: 0 });
+    assert.equal(status, 400);
+    assert.equal(json.kind, 'bad_parameter', `${x.target}: ${json.error}`);
+    assert.match(json.error, /top 0/);
+  }
+});
+
+test('Stop ends a run', async () => {
+  const page = await newPage(browser);
+  await openPanel(page);
+  await byTestId(page, 'target').fill('isotropic + 0.5*uniform');
+  await byTestId(page, 'top').fill('5');
+  await byTestId(page, 'budget').fill('200');
+  await byTestId(page, 'run').click();
+  await page.waitForFunction(() => document.querySelectorAll('[data-testid="leader"]').length > 0);
+  assert.equal(await state(page), 'running');
+  await byTestId(page, 'stop').click();
+  await page.waitForFunction(() => document.body.dataset.inverseState === 'stopped');
+  const notice = byTestId(page, 'notice');
+  await notice.waitFor({ state: 'visible' });
+  assert.match(await notice.textContent(), /stopped by request/);
+  assert.match(await byTestId(page, 'stage-line').textContent(), /^Stopped after \d+ evaluations/);
+  assert.ok(await byTestId(page, 'run').isEnabled());
+  assert.ok(await byTestId(page, 'results-section').isHidden());
+  assert.equal((await getJson(`${server.base}/api/inverse`)).running, null);
+  assert.deepEqual(problems(page), []);
+});
+
+test('save all stores the refined designs on a writable server', async () => {
+  const copy = await copyDb();
+  const writable = await startServer({ db: copy.file });
+  try {
+    const page = await newPage(browser);
+    await page.goto(`${writable.base}/inverse.html`);
+    await page.waitForFunction(() => document.querySelector('[data-testid="top"]').value !== '');
+    await byTestId(page, 'target').fill('area');
+    await byTestId(page, 'top').fill('2');
+    await byTestId(page, 'budget').fill('8');
+    await byTestId(page, 'run').click();
+    await page.waitForFunction(() => document.body.dataset.inverseState === 'done', null, { timeout: 300000 });
+    const specs = await byTestId(page, 'result-spec').allTextContents();
+    assert.ok(specs.length >= 1);
+    // Refined designs are new; one that refinement did not move is already stored.
+    const stored = async (spec) => (await fetch(`${writable.base}/api/design?spec=${encodeURIComponent(spec)}`)).status === 200;
+    const fresh = [];
+    for (const spec of specs) if (!(await stored(spec))) fresh.push(spec);
+    assert.ok(fresh.length >= 1, 'refinement found a new design');
+    await byTestId(page, 'save-all').click();
+    await page.waitForFunction(() => /^saved/.test(document.querySelector('[data-testid="save-status"]').textContent));
+    const kept = specs.length - fresh.length;
+    assert.equal(
+      await byTestId(page, 'save-status').textContent(),
+      `saved ${fresh.length} design${fresh.length === 1 ? '' : 's'}${kept ? `; ${kept} already in the database` : ''}.`,
+    );
+    assert.ok(await byTestId(page, 'save-all').isDisabled(), 'saved once');
+    for (const spec of fresh) {
+      const view = await getJson(`${writable.base}/api/design?spec=${encodeURIComponent(spec)}`);
+      assert.equal(view.origin, 'user');
+    }
+    assert.deepEqual(problems(page), []);
+  } finally {
+    await writable.stop();
+    await copy.remove();
+  }
+});
+
+test('Ctrl-C stops the server promptly while a job runs', async () => {
+  const own = await startServer({ args: ['--read-only'] });
+  try {
+    const res = await fetch(`${own.base}/api/inverse`, {
+      method: 'POST',
+      headers: { 'content-type': 'application/json' },
+      body: JSON.stringify({ target: 'isotropic + 0.5*uniform', top: 5, budget: 200 }),
+    });
+    assert.equal(res.status, 202);
+    const { id } = await res.json();
+    await new Promise((ok) => setTimeout(ok, 300));
+    assert.equal((await getJson(`${own.base}/api/inverse/${id}`)).state, 'running');
+    const t0 = Date.now();
+    const code = await own.interrupt(8000); // the run alone takes about 20 s here
+    assert.notEqual(code, null, 'the server exited');
+    assert.ok(Date.now() - t0 < 8000);
+  } finally {
+    await own.stop();
+  }
+});
+
+test('on the static site the page shows the command instead of running', async () => {
+  const site = await buildSite();
+  const files = await serveFolder(site.dir, '/sub');
+  try {
+    const page = await newPage(browser);
+    await page.goto(`${files.base}/index.html`);
+    await byTestId(page, 'nav-inverse').click();
+    await page.waitForURL(/inverse\.html$/);
+    await page.waitForFunction(() => document.body.dataset.mode === 'static');
+    await page.waitForFunction(() => document.querySelector('[data-testid="top"]').value !== '');
+    assert.ok(await byTestId(page, 'run').isDisabled());
+    assert.match(await byTestId(page, 'run-note').textContent(), /isogami serve/);
+    // The command line has no server caps.
+    assert.equal(await byTestId(page, 'budget').getAttribute('max'), null);
+    assert.ok(await page.locator('#progress-section').isHidden());
+    await byTestId(page, 'example').nth(2).click();
+    await byTestId(page, 'budget').fill('20');
+    assert.equal(
+      await byTestId(page, 'inverse-command').textContent(),
+      `isogami inverse --target '${EXAMPLES[2].target}' --db ${basename(env().db)} --top 3 --budget 20 --json`,
+    );
+    assert.ok((await screenshot(browser, page, 'inverse-static')) > 20);
+    assert.deepEqual(problems(page), []);
+  } finally {
+    await files.stop();
+    await site.remove();
+  }
+});

@@ -1,0 +1,164 @@
+// What the inverse-design page asks for and shows, as data: the example targets, the body of
+// POST /api/inverse, the equivalent `isogami inverse …` command, the numbers checked against
+// the server's caps, and the rows of the leaders and results tables. Pure functions over a
+// form state, the server's settings (GET /api/inverse, or a static site's data/site.json
+// `inverse`) and the job's JSON; inverse.js draws the page.
+//
+// Form state: { target, top, budget, confirm, triage, samples, kerf, refineKerf } where every
+// number is the text of its field ('' means the CLI's default).
+
+import { shellWord } from './export-request.js';
+
+/** Example targets for the chips: a label and the target text (the README's syntax). */
+export const EXAMPLES = [
+  { label: 'largest area', target: 'area' },
+  { label: 'isotropic', target: 'isotropic' },
+  { label: 'isotropic, uniform, ≤ 4 tiles', target: 'isotropic + 0.5*uniform; tiles<=4' },
+  { label: 'most uniform opening', target: 'uniform' },
+  { label: 'locks at +10 % / +30 %', target: 'lock(0.1,0.3)' },
+  { label: 'expansion path', target: 'path(0.5:0.05:0.1, 1:0.1:0.3)' },
+];
+
+/** The numeric fields: form key, body and CLI name, lowest value, cap key (null: no cap). */
+export const NUMBER_FIELDS = [
+  { key: 'top', name: 'top', min: 1, cap: 'top' },
+  { key: 'budget', name: 'budget', min: 0, cap: 'budget' },
+  { key: 'confirm', name: 'confirm', min: 1, cap: 'confirm' },
+  { key: 'triage', name: 'triage', min: 1, cap: 'triage' },
+  { key: 'samples', name: 'samples', min: 0, cap: 'samples' },
+];
+
+/** A blank form with the server's defaults for top and budget. */
+export function emptyForm(settings) {
+  const d = settings?.defaults ?? {};
+  return {
+    target: '',
+    top: String(d.top ?? 3),
+    budget: String(d.budget ?? 80),
+    confirm: '',
+    triage: '',
+    samples: '',
+    kerf: '',
+    refineKerf: false,
+  };
+}
+
+/** The form's problem as one line (a number that is not a whole number in range, no
+ * target), or null. The server checks everything again; this only saves a round trip. */
+export function formProblem(form, settings) {
+  if (!String(form.target ?? '').trim()) return 'target: no goal given (e.g. \'area\', \'isotropic\', \'lock(0.1,0.3)\')';
+  const limits = settings?.limits ?? {};
+  for (const f of NUMBER_FIELDS) {
+    const text = String(form[f.key] ?? '').trim();
+    if (text === '') continue;
+    const v = Number(text);
+    if (!Number.isInteger(v) || v < f.min) return `${f.name} must be a whole number of at least ${f.min}`;
+    const cap = limits[f.cap];
+    if (cap !== undefined && v > cap) return `${f.name} ${v} is above this server's limit of ${cap}`;
+  }
+  const kerf = String(form.kerf ?? '').trim();
+  if (kerf !== '' && !(Number(kerf) > 0)) return 'kerf must be a positive number';
+  return null;
+}
+
+/** The numbers of the form that differ from an empty field, as [name, number] pairs in a
+ * fixed order (top, budget, confirm, triage, samples, kerf). */
+function numbers(form) {
+  const out = [];
+  for (const f of NUMBER_FIELDS) {
+    const text = String(form[f.key] ?? '').trim();
+    if (text !== '') out.push([f.name, Number(text)]);
+  }
+  const kerf = String(form.kerf ?? '').trim();
+  if (kerf !== '') out.push(['kerf', Number(kerf)]);
+  return out;
+}
+
+/** The JSON body of POST /api/inverse. */
+export function inverseBody(form) {
+  const body = { target: String(form.target).trim() };
+  for (const [name, v] of numbers(form)) body[name] = v;
+  if (form.refineKerf) body.refine_kerf = true;
+  return body;
+}
+
+/** The `isogami inverse …` command that runs the same search (`database`: the database's
+ * file name, run from its folder). */
+export function cliCommand(form, database) {
+  const words = ['isogami', 'inverse', '--target', `'${String(form.target).trim().replace(/'/g, `'\\''`)}'`];
+  words.push('--db', shellWord(database || 'isogami.db'));
+  for (const [name, v] of numbers(form)) words.push(`--${name}`, shellWord(String(v)));
+  if (form.refineKerf) words.push('--refine-kerf');
+  words.push('--json');
+  return words.join(' ');
+}
+
+/** "IH28 2×1" of a spec (family and cell), or the spec's first field. */
+export function familyCell(spec) {
+  const parts = String(spec).split(':');
+  return parts.length >= 3 ? `${parts[0]} ${parts[2].replace('x', '×')}` : parts[0];
+}
+
+/** Rows of the leaders table from a progress report. */
+export function leaderRows(progress) {
+  return (progress?.leaders ?? []).map((l, i) => ({
+    rank: i + 1,
+    design: familyCell(l.spec),
+    spec: l.spec,
+    kerf: l.kerf,
+    objective: l.objective,
+    stage: l.stage,
+  }));
+}
+
+/** A [min, max] pair as "[a, b]" with 4 significant digits, or "–". */
+export function pair(v) {
+  if (!Array.isArray(v) || v.length !== 2) return '–';
+  const f = (x) => String(Number(Number(x).toPrecision(4)));
+  return `[${f(v[0])}, ${f(v[1])}]`;
+}
+
+/** A supercell as "2×1": the JSON's [a, b] (or "2x1" text). */
+export function cellText(cell) {
+  return Array.isArray(cell) ? cell.join('×') : String(cell).replace('x', '×');
+}
+
+/** Rows of the results table from a finished job's result (`isogami inverse --json`). */
+export function resultRows(result) {
+  return (result?.results ?? []).map((r) => {
+    const m = r.after.measures;
+    return {
+      rank: r.rank,
+      design: `${r.family} ${cellText(r.cell)}`,
+      before: r.before.objective,
+      after: r.after.objective,
+      improved: r.improved,
+      spec: r.after.spec,
+      kerf: r.after.kerf,
+      area: m.max_area_ratio,
+      expansions: pair([m.min_expansion, m.max_expansion]),
+      poisson: pair(m.poisson),
+      end: `${m.end_reason} at ${pair(m.end_expansions)}`,
+      evaluations: r.evaluations,
+    };
+  });
+}
+
+/** One line of progress: "triage · 12 / 40 evaluations · best −0.98", for the live region. */
+export function progressLine(job) {
+  const p = job?.progress;
+  if (!p) return job?.state === 'running' ? 'starting…' : '';
+  const best = p.best === null || p.best === undefined ? '–' : String(Number(p.best.toPrecision(4)));
+  return `${p.stage} · ${p.done} / ${p.total} evaluations · best objective ${best} · ${job.evaluations} in all`;
+}
+
+/** The best-objective line's points from the job's history, extended to the evaluations so
+ * far (a step function drawn as a line). */
+export function historyPoints(job) {
+  const h = job?.history ?? [];
+  if (!h.length) return [];
+  const points = h.map(([n, v]) => [n, v]);
+  const last = h[h.length - 1];
+  if ((job.evaluations ?? 0) > last[0]) points.push([job.evaluations, last[1]]);
+  return points;
+}
