@@ -100,6 +100,9 @@ def test_progress_reports_every_stage_and_can_stop(quick_db):
     assert {"confirm", "triage", "refine", "verify"} <= set(stages)
     wrong = [p for p in seen if not (0 <= p["done"] and (p["stage"] == "refine" or p["done"] <= p["total"]))]
     assert wrong == []
+    last = seen[-1]["leaders"]
+    assert last and all(a["objective"] <= b["objective"] for a, b in zip(last, last[1:]))
+    assert last[0]["objective"] == seen[-1]["best"]
     bests = [p["best"] for p in seen if p["best"] is not None]
     assert bests and all(b <= a + 1e-15 for a, b in zip(bests, bests[1:]))  # best only improves
 
