@@ -171,7 +171,8 @@ impl Source<'_> {
 /// designs in the database as user designs (``to_dict()["saved"]`` says which).
 ///
 /// ``progress(p)`` is called after every evaluation with a dict (``stage``, ``done``,
-/// ``total``, ``best``, ``leaders``: each leading topology's best valid design so far) and stops the run when it returns False; ``timeout`` in seconds;
+/// ``total``, ``best``, ``leaders``: each leading topology's best valid design so far) and
+/// stops the run when it returns False; ``timeout`` in seconds;
 /// Ctrl-C stops it (``CancelledError`` / ``KeyboardInterrupt``). The GIL is released while
 /// it runs. Bad targets and options raise ``InverseError`` or ``SettingsError`` before
 /// anything runs.
