@@ -92,6 +92,9 @@ pub enum StoreError {
     /// An exploration request with a setting out of range.
     #[error(transparent)]
     InvalidSettings(#[from] isogami::error::SettingsError),
+    /// The request cannot be planned (a requested cell the settings leave out).
+    #[error(transparent)]
+    Plan(#[from] isogami::explore::ExploreError),
     /// A query with a bad bound, limit or parameter slot.
     #[error("invalid query: {0}")]
     InvalidQuery(#[from] crate::query::QueryError),

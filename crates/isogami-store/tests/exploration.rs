@@ -62,7 +62,7 @@ fn runs_every_planned_unit_once_and_resumes() {
     let d = temp("explore-run");
     let db = d.join("a.db");
     let req = request(2);
-    let planned: Vec<WorkUnit> = req.plan().units();
+    let planned: Vec<WorkUnit> = req.plan().unwrap().units();
     assert_eq!(
         planned.len(),
         2,
@@ -161,8 +161,8 @@ fn bad_requests_are_refused_before_the_file_is_made() {
     // The plan of a request is the library's plan.
     let req = request(1);
     assert_eq!(
-        req.plan(),
-        ExplorePlan::new(&req.families, None, &req.settings.topology, None)
+        req.plan().unwrap(),
+        ExplorePlan::new(&req.families, None, &req.settings.topology, None).unwrap()
     );
     std::fs::remove_dir_all(&d).unwrap();
 }
