@@ -123,7 +123,9 @@ fn characterise_all(
             (r, t.elapsed().as_secs_f64())
         })
         .collect();
-    let seconds = done.iter().map(|(_, s)| s).sum();
+    // A fold from +0.0: an empty f64 sum is -0.0, which the store would not read back bit
+    // for bit.
+    let seconds = done.iter().fold(0.0, |acc, (_, s)| acc + s);
     let entries = done.into_iter().map(|(r, _)| r).collect::<Result<_>>()?;
     Ok((entries, seconds))
 }
