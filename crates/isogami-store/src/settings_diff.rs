@@ -51,6 +51,9 @@ mod tests {
             settings_difference(c, "x", a, "y"),
             "kerf unset in x, 0.01 in y; max_edges unset in x, 16 in y"
         );
-        assert_eq!(settings_difference("7", "x", a, "y"), format!("7 in x, {a} in y"));
+        assert_eq!(
+            settings_difference("7", "x", a, "y"),
+            format!("7 in x, {a} in y")
+        );
     }
 }

@@ -169,7 +169,10 @@ fn bad_requests_are_refused_before_the_file_is_made() {
 
 /// Everything stored about a unit but its timings: the design records (spec, summary, full
 /// deployment report and linkage analysis) and the stage counts.
-fn unit_content(store: &Store, id: &str) -> (Vec<isogami_store::DesignRecord>, Vec<(String, u64, u64)>) {
+fn unit_content(
+    store: &Store,
+    id: &str,
+) -> (Vec<isogami_store::DesignRecord>, Vec<(String, u64, u64)>) {
     let stages = store
         .work_units()
         .unwrap()
@@ -209,7 +212,10 @@ fn one_and_two_jobs_store_the_same_designs() {
     let (a, b) = (d.join("one.db"), d.join("two.db"));
     let (one, _) = run(&a, &req(1), false);
     let (two, _) = run(&b, &req(2), false);
-    assert_eq!((one.committed, two.committed), (plan.all.len(), plan.all.len()));
+    assert_eq!(
+        (one.committed, two.committed),
+        (plan.all.len(), plan.all.len())
+    );
     let (sa, sb) = (
         Store::open_read(&a, Check::Full).unwrap(),
         Store::open_read(&b, Check::Full).unwrap(),

@@ -68,6 +68,10 @@ fn a_work_unit_is_identical_for_any_thread_count() {
         pool(threads).install(|| run_unit(fam(28), CellDims::MINIMAL, &settings).unwrap())
     };
     let (one, three) = (content(&run(1)), content(&run(3)));
-    assert!(one.0.len() > 3, "several designs with shape samples: {}", one.0.len());
+    assert!(
+        one.0.len() > 3,
+        "several designs with shape samples: {}",
+        one.0.len()
+    );
     assert_eq!(one, three);
 }

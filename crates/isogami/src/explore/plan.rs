@@ -220,7 +220,8 @@ mod tests {
         let mut seen = Vec::new();
         for i in 0..n {
             let shard = Shard::new(i, n).unwrap();
-            let plan = ExplorePlan::new(&families, None, &TopologyOptions::default(), Some(shard)).unwrap();
+            let plan = ExplorePlan::new(&families, None, &TopologyOptions::default(), Some(shard))
+                .unwrap();
             assert_eq!(plan.all, whole.all, "every shard knows the whole plan");
             let units = plan.units();
             // Positions i, i + n, …: balanced to within one unit.
@@ -265,7 +266,10 @@ mod tests {
             other => panic!("{other:?}"),
         }
         let text = e.to_string();
-        assert!(text.contains("IH76/3x3") && text.contains("max_edges = 16"), "{text}");
+        assert!(
+            text.contains("IH76/3x3") && text.contains("max_edges = 16"),
+            "{text}"
+        );
         // Raising the cap takes the cell.
         let wide = TopologyOptions {
             max_edges: 18,
@@ -311,7 +315,10 @@ mod tests {
             ..TopologyOptions::default()
         };
         let plan = ExplorePlan::new(&[f], None, &cap20, None).unwrap();
-        assert_eq!(plan.all.first().map(WorkUnit::id).as_deref(), Some("IH77/1x1"));
+        assert_eq!(
+            plan.all.first().map(WorkUnit::id).as_deref(),
+            Some("IH77/1x1")
+        );
     }
 
     #[test]
