@@ -54,7 +54,9 @@ pub enum StoreError {
     /// SQLite kept reporting the file busy past the timeout.
     #[error("the database stayed locked by another process for too long; try again")]
     Locked,
-    /// The file was made with other settings than the run that opens it.
+    /// The file was made with other settings than the run that opens it (or than the target
+    /// of a merge); the text names each differing setting, e.g. "max_edges 16 in the file, 20
+    /// in this run".
     #[error("database was made with other settings ({0}); use a new file or the same settings")]
     SettingsMismatch(String),
     /// An exploration into a database planned for another shard or run.
@@ -92,6 +94,9 @@ pub enum StoreError {
     /// An exploration request with a setting out of range.
     #[error(transparent)]
     InvalidSettings(#[from] isogami::error::SettingsError),
+    /// The request cannot be planned (a requested cell the settings leave out).
+    #[error(transparent)]
+    Plan(#[from] isogami::explore::ExploreError),
     /// A query with a bad bound, limit or parameter slot.
     #[error("invalid query: {0}")]
     InvalidQuery(#[from] crate::query::QueryError),

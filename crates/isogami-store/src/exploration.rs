@@ -4,8 +4,10 @@
 //! [`explore_into`] plans the work units ([`ExplorePlan`]), opens the database for writing
 //! (creating it if new; its settings must match; a shard's database records which shard it
 //! holds, see [`ShardRecord`](crate::ShardRecord)), skips the units it already holds, runs the
-//! rest on a pool of `jobs` threads and commits each finished unit from the calling thread in
-//! its own transaction (one writer). A unit that fails is reported, not committed, so a rerun
+//! rest on a pool of `jobs` threads — handed out one at a time, longest expected first
+//! ([`WorkUnit::longest_first`]), each unit itself parallel on the same pool — and commits each
+//! finished unit from the calling thread in its own transaction (one writer). What is stored
+//! does not depend on `jobs` (only the commit order and timings do). A unit that fails is reported, not committed, so a rerun
 //! retries it. A killed run keeps every unit it had committed.
 
 use crate::error::{StoreError, StoreResult};
@@ -16,11 +18,10 @@ use crate::stats::DbStats;
 use isogami::catalog::{run_unit, CatalogSettings};
 use isogami::cell::CellDims;
 use isogami::error::{Requirement, SettingsError};
-use isogami::explore::{ExplorePlan, Shard, WorkUnit};
+use isogami::explore::{ExploreError, ExplorePlan, Shard, WorkUnit};
 use isogami::tiling::Family;
-use rayon::prelude::*;
 use std::path::Path;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc;
 use std::time::Instant;
 
@@ -43,8 +44,10 @@ pub struct ExploreRequest {
 }
 
 impl ExploreRequest {
-    /// The plan this request runs.
-    pub fn plan(&self) -> ExplorePlan {
+    /// The plan this request runs; an error when a requested cell is outside the settings'
+    /// limits (`settings.topology.max_edges`, `max_dims`): requested cells are never dropped
+    /// silently.
+    pub fn plan(&self) -> Result<ExplorePlan, ExploreError> {
         ExplorePlan::new(
             &self.families,
             self.cells.as_deref(),
@@ -138,7 +141,7 @@ pub fn explore_into(
     cancel: &AtomicBool,
 ) -> StoreResult<ExploreOutcome> {
     check_request(request)?;
-    let plan = request.plan();
+    let plan = request.plan()?;
     let units = plan.units();
     let fingerprint = request.settings.fingerprint();
     let run = RunInfo {
@@ -173,20 +176,27 @@ pub fn explore_into(
     let mut finished = 0usize;
     // Set when a commit fails: the workers start nothing more.
     let stop = AtomicBool::new(false);
+    // One unit at a time, longest expected first: every worker takes the next unit when it
+    // finishes one, so no worker sits idle while units are left, and the cheap units fill the
+    // end. Inside a unit the library works in parallel on the same pool, so a worker with no
+    // unit left helps the others with theirs.
+    let order = WorkUnit::longest_first(&todo);
+    let next = AtomicUsize::new(0);
     std::thread::scope(|scope| -> StoreResult<()> {
-        let todo = &todo;
-        let stop = &stop;
+        let (order, next, stop) = (&order, &next, &stop);
         scope.spawn(move || {
-            pool.install(|| {
-                todo.par_iter().for_each_with(tx, |tx, unit| {
-                    if cancel.load(Ordering::Relaxed) || stop.load(Ordering::Relaxed) {
-                        return;
-                    }
-                    let start = Instant::now();
-                    let outcome = run_unit(unit.family, unit.dims, settings);
-                    let _ = tx.send((unit, outcome, start.elapsed().as_secs_f64()));
-                })
-            })
+            pool.broadcast(|_| loop {
+                if cancel.load(Ordering::Relaxed) || stop.load(Ordering::Relaxed) {
+                    return;
+                }
+                let Some(unit) = order.get(next.fetch_add(1, Ordering::Relaxed)) else {
+                    return;
+                };
+                let start = Instant::now();
+                let outcome = run_unit(unit.family, unit.dims, settings);
+                let _ = tx.send((unit, outcome, start.elapsed().as_secs_f64()));
+            });
+            drop(tx);
         });
         for (unit, outcome, seconds) in rx {
             let records = outcome

@@ -164,7 +164,7 @@ impl UnitRecords {
             family: outcome.family.name(),
             cell: outcome.dims.to_string(),
             kind: "topology+shapes".into(),
-            seconds,
+            seconds: positive_zero(seconds),
         };
         let stages = outcome
             .stages
@@ -173,7 +173,7 @@ impl UnitRecords {
                 stage: s.stage.clone(),
                 count_in: s.count_in,
                 count_out: s.count_out,
-                seconds: s.seconds,
+                seconds: positive_zero(s.seconds),
             })
             .collect();
         let designs = outcome
@@ -186,5 +186,15 @@ impl UnitRecords {
             stages,
             designs,
         })
+    }
+}
+
+/// −0.0 as +0.0 (an empty `f64` sum is −0.0): SQLite stores both as the same zero, so the
+/// row's checksum must be computed on the value read back.
+fn positive_zero(x: f64) -> f64 {
+    if x == 0.0 {
+        0.0
+    } else {
+        x
     }
 }

@@ -48,6 +48,7 @@ mod read;
 mod records;
 mod rows;
 mod schema;
+mod settings_diff;
 mod shard;
 mod stats;
 mod verify;

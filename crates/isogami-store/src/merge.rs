@@ -33,7 +33,11 @@ impl StoreWriter {
         let mut report = MergeReport::default();
         let tx = self.store.conn.transaction()?;
         match (crate::open::meta(&tx, "settings")?, &their_settings) {
-            (Some(a), Some(b)) if &a != b => return Err(StoreError::SettingsMismatch(b.clone())),
+            (Some(a), Some(b)) if &a != b => {
+                return Err(StoreError::SettingsMismatch(
+                    crate::settings_diff::settings_difference(&a, "the target", b, "the input"),
+                ))
+            }
             (None, Some(b)) => {
                 put_meta(&tx, "settings", b)?;
                 put_meta(

@@ -352,7 +352,16 @@ impl StoreWriter {
                     put_meta(&writer.conn, "tool_version", run.tool_version)?;
                 }
                 Some(s) if s == run.settings => {}
-                Some(s) => return Err(StoreError::SettingsMismatch(s)),
+                Some(s) => {
+                    return Err(StoreError::SettingsMismatch(
+                        crate::settings_diff::settings_difference(
+                            &s,
+                            "the file",
+                            run.settings,
+                            "this run",
+                        ),
+                    ))
+                }
             }
         }
         Ok(writer)

@@ -62,7 +62,7 @@ fn runs_every_planned_unit_once_and_resumes() {
     let d = temp("explore-run");
     let db = d.join("a.db");
     let req = request(2);
-    let planned: Vec<WorkUnit> = req.plan().units();
+    let planned: Vec<WorkUnit> = req.plan().unwrap().units();
     assert_eq!(
         planned.len(),
         2,
@@ -161,8 +161,158 @@ fn bad_requests_are_refused_before_the_file_is_made() {
     // The plan of a request is the library's plan.
     let req = request(1);
     assert_eq!(
-        req.plan(),
-        ExplorePlan::new(&req.families, None, &req.settings.topology, None)
+        req.plan().unwrap(),
+        ExplorePlan::new(&req.families, None, &req.settings.topology, None).unwrap()
     );
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// Everything stored about a unit but its timings: the design records (spec, summary, full
+/// deployment report and linkage analysis) and the stage counts.
+fn unit_content(
+    store: &Store,
+    id: &str,
+) -> (Vec<isogami_store::DesignRecord>, Vec<(String, u64, u64)>) {
+    let stages = store
+        .work_units()
+        .unwrap()
+        .into_iter()
+        .find(|(u, _)| u.id == id)
+        .map(|(_, st)| {
+            st.iter()
+                .map(|x| (x.stage.clone(), x.count_in, x.count_out))
+                .collect()
+        })
+        .unwrap_or_default();
+    (store.designs_of_unit(id).unwrap(), stages)
+}
+
+#[test]
+fn one_and_two_jobs_store_the_same_designs() {
+    let d = temp("explore-jobs");
+    // Quick settings on cells up to 2x2 of at most 10 edges: a low-symmetry hexagon cell
+    // (IH28, hundreds of unique topologies deployed in parallel), rotating squares on 2x2,
+    // triangle cells.
+    let mut settings = quick_settings();
+    settings.topology.max_dims = 2;
+    settings.topology.max_edges = 10;
+    settings.samples = 3;
+    let req = |jobs: usize| ExploreRequest {
+        settings,
+        families: [28, 76, 83, 90]
+            .iter()
+            .map(|&n| Family::from_number(n).unwrap())
+            .collect(),
+        cells: None,
+        shard: None,
+        jobs,
+    };
+    let plan = req(1).plan().unwrap();
+    assert!(plan.all.len() >= 6, "{} units", plan.all.len());
+    let (a, b) = (d.join("one.db"), d.join("two.db"));
+    let (one, _) = run(&a, &req(1), false);
+    let (two, _) = run(&b, &req(2), false);
+    assert_eq!(
+        (one.committed, two.committed),
+        (plan.all.len(), plan.all.len())
+    );
+    let (sa, sb) = (
+        Store::open_read(&a, Check::Full).unwrap(),
+        Store::open_read(&b, Check::Full).unwrap(),
+    );
+    let mut designs = 0;
+    for unit in &plan.all {
+        let (ca, cb) = (unit_content(&sa, &unit.id()), unit_content(&sb, &unit.id()));
+        assert!(!ca.1.is_empty(), "{unit} stored");
+        designs += ca.0.len();
+        assert_eq!(ca, cb, "{unit}");
+    }
+    assert!(designs > 10, "{designs} designs");
+    assert_eq!(sa.stats().unwrap().designs, sb.stats().unwrap().designs);
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+#[test]
+fn runs_with_other_edge_caps_do_not_mix() {
+    let d = temp("explore-caps");
+    let db = d.join("a.db");
+    let mut req = request(1);
+    run(&db, &req, false);
+    let before = std::fs::read(&db).unwrap();
+    req.settings.topology.max_edges = 11;
+    let e = explore_into(&db, &req, &mut |_| {}, &AtomicBool::new(false)).unwrap_err();
+    let text = e.to_string();
+    assert!(matches!(e, StoreError::SettingsMismatch(_)), "{text}");
+    assert!(
+        text.contains("max_edges 12 in the file, 11 in this run"),
+        "{text}"
+    );
+    assert_eq!(std::fs::read(&db).unwrap(), before, "the file is unchanged");
+    // A database of the other cap cannot be merged into it either.
+    let other = d.join("b.db");
+    run(&other, &req, false);
+    let mut w = isogami_store::StoreWriter::open(&db, None, Check::Full).unwrap();
+    let e = w
+        .merge_from(&Store::open_read(&other, Check::Full).unwrap())
+        .unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("max_edges 12 in the target, 11 in the input"),
+        "{e}"
+    );
+    drop(w);
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+#[test]
+fn a_requested_cell_over_the_cap_is_refused_before_the_file_is_made() {
+    let d = temp("explore-over-cap");
+    let db = d.join("a.db");
+    let mut req = request(1);
+    req.families = vec![Family::from_number(76).unwrap()];
+    req.cells = Some(vec![isogami::cell::CellDims::new(2, 2).unwrap()]);
+    req.settings.topology.max_dims = 2;
+    req.settings.topology.max_edges = 6;
+    let e = explore_into(&db, &req, &mut |_| {}, &AtomicBool::new(false)).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            StoreError::Plan(isogami::explore::ExploreError::CellsOverCap {
+                edges: 8,
+                max_edges: 6,
+                ..
+            })
+        ),
+        "{e}"
+    );
+    assert!(!db.exists());
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+#[test]
+fn a_negative_zero_time_is_stored_as_zero_and_reads_back_intact() {
+    let d = temp("explore-negative-zero");
+    let db = d.join("a.db");
+    let mut outcome = isogami::catalog::run_unit(
+        Family::from_number(90).unwrap(),
+        isogami::cell::CellDims::MINIMAL,
+        &quick_settings(),
+    )
+    .unwrap();
+    for s in &mut outcome.stages {
+        s.seconds = -0.0;
+    }
+    let records = UnitRecords::from_outcome(&outcome, -0.0).unwrap();
+    let run = isogami_store::RunInfo {
+        tool_version: "0.1.0",
+        settings: "{}",
+    };
+    let mut w = isogami_store::StoreWriter::open(&db, Some(run), Check::Full).unwrap();
+    w.commit_unit(&records).unwrap();
+    drop(w);
+    let store = Store::open_read(&db, Check::Full).unwrap();
+    let units = store.work_units().unwrap();
+    assert_eq!(units.len(), 1);
+    assert!(units[0].1.iter().all(|s| s.seconds.to_bits() == 0));
     std::fs::remove_dir_all(&d).unwrap();
 }

@@ -55,9 +55,9 @@ fn a_shard_records_its_plan_and_reruns_add_nothing() {
         .shard()
         .unwrap()
         .expect("a shard database has a record");
-    assert_eq!(record, ShardRecord::of_plan(&req.plan()).unwrap());
+    assert_eq!(record, ShardRecord::of_plan(&req.plan().unwrap()).unwrap());
     assert_eq!((record.index, record.count, record.plan_units), (1, 2, 4));
-    let ids: Vec<String> = req.plan().units().iter().map(|u| u.id()).collect();
+    let ids: Vec<String> = req.plan().unwrap().units().iter().map(|u| u.id()).collect();
     assert_eq!(record.units, ids);
     // Positions 1 and 3 of the plan IH83, IH84, IH90, IH91.
     assert_eq!(ids, ["IH84/1x1", "IH91/1x1"]);

@@ -5,9 +5,9 @@
 use crate::output::{emit, print_json, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami::catalog::CatalogSettings;
-use isogami::cell::CellDims;
-use isogami::explore::Shard;
-use isogami::tiling::Family;
+use isogami::cell::{CellDims, UnitCell};
+use isogami::explore::{ExploreError, Shard, WorkUnit, MAX_REDUCED_EDGES};
+use isogami::tiling::{Family, Tiling};
 use isogami_store::{explore_into, ExploreEvent, ExploreRequest, MAX_JOBS};
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
@@ -18,10 +18,15 @@ pub struct Args {
     /// Families, comma separated (e.g. IH1,IH28), or "all".
     #[arg(long, default_value = "all")]
     families: String,
-    /// Supercells, comma separated (e.g. 1x1,2x1); default: every cell with at most 16
-    /// unique edges.
+    /// Supercells, comma separated (e.g. 1x1,2x1); default: every cell with at most
+    /// --max-edges unique edges. A listed cell over --max-edges is an error.
     #[arg(long)]
     cells: Option<String>,
+    /// Largest number of unique edges of an explored cell, 1..=24 (default 16; 12 with
+    /// --quick). A cell given with --cells over it is an error, never skipped. Work grows
+    /// about 2^edges: 20 takes hours of CPU for all families, 24 days.
+    #[arg(long)]
+    max_edges: Option<usize>,
     /// Keep designs whose largest principal expansion reaches this.
     #[arg(long, default_value_t = CatalogSettings::default().threshold, allow_hyphen_values = true)]
     threshold: f64,
@@ -54,6 +59,7 @@ impl Args {
         Args {
             families: "all".into(),
             cells: None,
+            max_edges: None,
             threshold: defaults.threshold,
             samples: defaults.samples,
             db,
@@ -92,6 +98,15 @@ fn settings_of(args: &Args) -> Result<CatalogSettings, String> {
     if args.quick {
         s = s.quick();
     }
+    if let Some(n) = args.max_edges {
+        if n == 0 || n > MAX_REDUCED_EDGES {
+            return Err(format!(
+                "--max-edges must lie in 1..={MAX_REDUCED_EDGES} (the topology enumeration's \
+                 limit), got {n}"
+            ));
+        }
+        s.topology.max_edges = n;
+    }
     s.validate().map_err(|e| e.to_string())?;
     Ok(s)
 }
@@ -115,13 +130,76 @@ fn request_of(args: &Args) -> Result<ExploreRequest, String> {
     if jobs == 0 || jobs > MAX_JOBS {
         return Err(format!("--jobs must lie in 1..={MAX_JOBS}, got {jobs}"));
     }
-    Ok(ExploreRequest {
+    let request = ExploreRequest {
         settings,
         families,
         cells,
         shard,
         jobs,
-    })
+    };
+    let plan = request.plan().map_err(|e| plan_error(&e, &request))?;
+    if args.families.trim() != "all" {
+        empty_families(&request, &plan.all)?;
+    }
+    Ok(request)
+}
+
+/// A planning error in the terms of the command line.
+fn plan_error(e: &ExploreError, request: &ExploreRequest) -> String {
+    let max = request.settings.topology.max_edges;
+    match e {
+        ExploreError::CellsOverCap {
+            family,
+            dims,
+            edges,
+            others,
+            needed,
+            ..
+        } => {
+            let more = match others {
+                0 => String::new(),
+                n => format!(" ({n} more requested cell(s) too)"),
+            };
+            let fix = if *needed <= MAX_REDUCED_EDGES {
+                format!("give --max-edges {needed} or leave the cell out")
+            } else {
+                format!("leave the cell out (--max-edges is at most {MAX_REDUCED_EDGES})")
+            };
+            format!(
+                "--cells: {family}/{dims} has {edges} unique edges, more than --max-edges \
+                 {max}{more}; {fix}"
+            )
+        }
+        ExploreError::CellOverDims { dims, max_dims } => format!(
+            "--cells: {dims} is larger than {max_dims}x{max_dims}, the largest cell of {}",
+            if request.settings.topology.max_dims == 1 {
+                "--quick (minimal cells only)"
+            } else {
+                "an exploration"
+            }
+        ),
+        other => format!("--cells: {other}"),
+    }
+}
+
+/// An explicitly named family without any cell under the cap is an error, not an empty run.
+fn empty_families(request: &ExploreRequest, units: &[WorkUnit]) -> Result<(), String> {
+    let max = request.settings.topology.max_edges;
+    for &family in &request.families {
+        if units.iter().any(|u| u.family == family) {
+            continue;
+        }
+        let edges = UnitCell::new(&Tiling::default_for(family), CellDims::MINIMAL)
+            .map(|c| c.edges.len())
+            .map_err(|e| format!("{family}: {e}"))?;
+        if edges > max {
+            return Err(format!(
+                "--families: {family}'s minimal cell has {edges} unique edges, more than \
+                 --max-edges {max}; give --max-edges {edges} to explore it"
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Explores and prints the per-family, per-stage report.

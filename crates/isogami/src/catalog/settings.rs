@@ -130,6 +130,7 @@ impl CatalogSettings {
                 },
             ));
         }
+        self.topology.validate()?;
         self.deploy_request().validate()
     }
 

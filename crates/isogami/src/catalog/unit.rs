@@ -10,6 +10,7 @@ use crate::explore::{enumerate_topologies, TopologyReport};
 use crate::linkage::LinkageAnalysis;
 use crate::tiling::{shape_grid, Family, Tiling};
 use crate::topology::Design;
+use rayon::prelude::*;
 use serde::Serialize;
 use std::time::Instant;
 
@@ -108,66 +109,91 @@ fn characterise(
     }))
 }
 
-/// Runs one work unit. Deterministic: the same inputs give the same outcome.
+/// Characterises every design of `work` on the current rayon pool; results in the order of
+/// `work` (the first error in that order wins), with the seconds of work summed over threads.
+fn characterise_all(
+    work: &[(Design, String)],
+    settings: &CatalogSettings,
+) -> Result<(Vec<Option<CatalogEntry>>, f64)> {
+    let done: Vec<(Result<Option<CatalogEntry>>, f64)> = work
+        .par_iter()
+        .map(|(design, topology)| {
+            let t = Instant::now();
+            let r = characterise(design, topology, settings);
+            (r, t.elapsed().as_secs_f64())
+        })
+        .collect();
+    // A fold from +0.0: an empty f64 sum is -0.0, which the store would not read back bit
+    // for bit.
+    let seconds = done.iter().fold(0.0, |acc, (_, s)| acc + s);
+    let entries = done.into_iter().map(|(r, _)| r).collect::<Result<_>>()?;
+    Ok((entries, seconds))
+}
+
+/// Runs one work unit. Deterministic: the same inputs give the same outcome, whatever the
+/// number of threads of the current rayon pool, on which the enumeration, the deployments and
+/// the shape samples run in parallel. Stage seconds are seconds of work summed over threads.
 pub fn run_unit(family: Family, dims: CellDims, settings: &CatalogSettings) -> Result<UnitOutcome> {
     settings.validate()?;
     let topo = enumerate_topologies(family, dims, &settings.topology)?;
     let mut stages = topology_tallies(&topo);
 
-    let start = Instant::now();
-    let mut kept_topologies = Vec::new();
-    for d in &topo.designs {
-        if let Some(entry) = characterise(d, &d.to_string(), settings)? {
-            kept_topologies.push(entry);
-        }
-    }
+    let work: Vec<(Design, String)> = topo
+        .designs
+        .iter()
+        .map(|d| (d.clone(), d.to_string()))
+        .collect();
+    let (deployed, seconds) = characterise_all(&work, settings)?;
+    let kept_topologies: Vec<CatalogEntry> = deployed.into_iter().flatten().collect();
     stages.push(tally(
         "deploy_threshold",
         topo.designs.len() as u64,
         kept_topologies.len() as u64,
-        start.elapsed().as_secs_f64(),
+        seconds,
     ));
 
-    let start = Instant::now();
     let grid = shape_grid(
         family,
         settings.shape_levels,
         settings.shape_span,
         settings.samples,
     );
+    // Every kept topology on every grid shape but the first (the default shape, deployed
+    // above); shapes whose cell cannot be built are counted as sampled, never kept.
     let mut sampled = 0u64;
-    let mut entries = Vec::new();
-    for kept in kept_topologies {
-        // The default shape is the grid's first sample and is already deployed.
+    let mut work = Vec::new();
+    let mut slots: Vec<Vec<usize>> = Vec::with_capacity(kept_topologies.len());
+    for kept in &kept_topologies {
         sampled += 1;
-        let topology = kept.topology.clone();
-        let joints = kept.design.joints.clone();
-        entries.push(kept);
+        let mut mine = Vec::new();
         for params in grid.iter().skip(1) {
             sampled += 1;
-            let design = Design {
-                family,
-                params: params.clone(),
-                dims,
-                joints: joints.clone(),
-            };
             // Parameters that the grid found valid build; a shape whose cell cannot be built
             // with this joint list is simply not kept.
             let builds = Tiling::new(family, params).is_ok_and(|t| UnitCell::new(&t, dims).is_ok());
             if !builds {
                 continue;
             }
-            if let Some(entry) = characterise(&design, &topology, settings)? {
-                entries.push(entry);
-            }
+            mine.push(work.len());
+            work.push((
+                Design {
+                    family,
+                    params: params.clone(),
+                    dims,
+                    joints: kept.design.joints.clone(),
+                },
+                kept.topology.clone(),
+            ));
         }
+        slots.push(mine);
     }
-    stages.push(tally(
-        "shapes",
-        sampled,
-        entries.len() as u64,
-        start.elapsed().as_secs_f64(),
-    ));
+    let (mut samples, seconds) = characterise_all(&work, settings)?;
+    let mut entries = Vec::new();
+    for (kept, mine) in kept_topologies.into_iter().zip(slots) {
+        entries.push(kept);
+        entries.extend(mine.into_iter().filter_map(|k| samples[k].take()));
+    }
+    stages.push(tally("shapes", sampled, entries.len() as u64, seconds));
     Ok(UnitOutcome {
         family,
         dims,

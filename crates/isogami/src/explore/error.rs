@@ -21,6 +21,35 @@ pub enum ExploreError {
         /// Most edges enumerated.
         limit: usize,
     },
+    /// Requested cells with more unique edges than the run's cap (`max_edges`): a plan never
+    /// drops a requested cell silently.
+    #[error(
+        "{family}/{dims} has {edges} unique edges, more than the edge cap max_edges = \
+         {max_edges}{}; raise the cap to {needed} or leave these cells out",
+        others_text(*others)
+    )]
+    CellsOverCap {
+        /// The first such cell's family (plan order).
+        family: Family,
+        /// Its cell.
+        dims: CellDims,
+        /// Its unique edges.
+        edges: usize,
+        /// The cap.
+        max_edges: usize,
+        /// How many more requested (family, cell) pairs are over the cap.
+        others: usize,
+        /// The cap that would take every requested cell.
+        needed: usize,
+    },
+    /// A requested cell repeated more often than the run allows (`max_dims`).
+    #[error("cell {dims} is larger than the run allows (at most {max_dims} repeats along either tiling vector, max_dims)")]
+    CellOverDims {
+        /// The cell.
+        dims: CellDims,
+        /// The run's largest repetition.
+        max_dims: u8,
+    },
     /// The cell cannot be built.
     #[error(transparent)]
     Cell(#[from] CellError),
@@ -33,4 +62,12 @@ pub enum ExploreError {
         /// The shard as given.
         text: String,
     },
+}
+
+fn others_text(others: usize) -> String {
+    match others {
+        0 => String::new(),
+        1 => " (and 1 more requested cell)".to_string(),
+        n => format!(" (and {n} more requested cells)"),
+    }
 }

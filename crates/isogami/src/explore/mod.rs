@@ -39,5 +39,5 @@ pub use pipeline::{
     TopologyOptions, TopologyReport,
 };
 pub use plan::{ExplorePlan, Shard, WorkUnit, MAX_SHARDS};
-pub use reduced::{MaskVerdict, ReducedGraph, ReducedResult};
+pub use reduced::{MaskVerdict, ReducedGraph, ReducedResult, MAX_REDUCED_EDGES};
 pub use separate::{edge_rates, separation, EdgeRate, Separation, SeparationRule};

@@ -7,9 +7,12 @@
 //! surviving mask (the tests check this against brute force). Every kept design is analysed
 //! once more by `mobility::analyze`, which supplies its reported gap and motion.
 //!
-//! Deterministic: the same input gives the same counts and designs in the same order. Single
-//! threaded (callers parallelise over families and cells). Deployment and the expansion
-//! threshold come after this stage and are not done here. No I/O.
+//! Deterministic: the same input gives the same counts and designs in the same order, whatever
+//! the number of threads. The expansion of the masks and the analyses of deduplication run on
+//! the current rayon pool (every tally is a sum or a set union, and deduplication merges its
+//! analysed orbits in key order), so one large cell keeps every core busy; stage times are
+//! seconds of work summed over threads. Deployment and the expansion threshold come after this
+//! stage and are not done here. No I/O.
 
 use super::dedup::{dedup_orbits, MotionIndex, MotionInvariant, SymmetryGroup, MOTION_TOL};
 use super::error::ExploreError;
@@ -17,10 +20,12 @@ use super::expand::{ExpandStats, Expander};
 use super::reduced::{ReducedGraph, MAX_REDUCED_EDGES};
 use super::separate::{separation, Separation, SeparationRule};
 use crate::cell::{CellDims, UnitCell};
+use crate::error::{Requirement, SettingsError};
 use crate::kinematics::Mechanism;
 use crate::mobility::MobilitySettings;
 use crate::tiling::{Family, Tiling};
 use crate::topology::{Design, JointChoice};
+use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::BTreeSet;
 use std::time::{Duration, Instant};
@@ -46,6 +51,38 @@ impl Default for TopologyOptions {
             mobility: MobilitySettings::default(),
             separation: SeparationRule::default(),
         }
+    }
+}
+
+/// Largest supercell repetition along either tiling vector (`CellDims`' own limit).
+pub const MAX_DIMS: u8 = 4;
+
+impl TopologyOptions {
+    /// Checks the cell limits: `max_edges` in 1..=24 (the enumerator's limit, masks are
+    /// `u32` and 2^24 is already hours of work per cell) and `max_dims` in 1..=4.
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        if self.max_edges == 0 || self.max_edges > MAX_REDUCED_EDGES {
+            return Err(SettingsError::new(
+                "max_edges",
+                self.max_edges,
+                Requirement::CountIn {
+                    low: 1,
+                    high: MAX_REDUCED_EDGES as u64,
+                },
+            )
+            .with_note("the topology enumeration's limit"));
+        }
+        if self.max_dims == 0 || self.max_dims > MAX_DIMS {
+            return Err(SettingsError::new(
+                "max_dims",
+                usize::from(self.max_dims),
+                Requirement::CountIn {
+                    low: 1,
+                    high: u64::from(MAX_DIMS),
+                },
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -140,6 +177,35 @@ pub struct TopologyReport {
     pub timings: StageTimings,
 }
 
+/// What the parallel expansion of many masks adds up: sums and a set union, so independent of
+/// the order and grouping of the masks.
+#[derive(Default)]
+struct ExpandTally {
+    stats: ExpandStats,
+    mobility_one: u64,
+    separating: u64,
+    orbits: BTreeSet<u64>,
+    /// Time spent expanding, summed over the masks.
+    work: Duration,
+    /// Of which in the separation test.
+    separate: Duration,
+}
+
+impl ExpandTally {
+    fn merge(mut self, mut other: ExpandTally) -> ExpandTally {
+        self.stats.add(&other.stats);
+        self.mobility_one += other.mobility_one;
+        self.separating += other.separating;
+        if self.orbits.len() < other.orbits.len() {
+            std::mem::swap(&mut self.orbits, &mut other.orbits);
+        }
+        self.orbits.append(&mut other.orbits);
+        self.work += other.work;
+        self.separate += other.separate;
+        self
+    }
+}
+
 /// Enumerates the joint topologies of `family` (default shape parameters) on the `dims`
 /// supercell. Fails when the cell has more than `options.max_edges` unique edges (or more than
 /// the enumerator's limit of 24) or cannot be built.
@@ -177,45 +243,65 @@ pub fn enumerate_topologies(
 
     // Expand one mask per symmetry orbit; a configuration's images under the orbit's other
     // masks have the same dof and separation, so counts are weighted by the orbit size.
+    // Masks are expanded in parallel; every tally is a sum or a set union, so the result does
+    // not depend on how the masks are split between threads.
     let t = Instant::now();
-    let mut stats = ExpandStats::default();
-    let mut separate_time = Duration::ZERO;
-    let (mut mobility_one, mut separating) = (0u64, 0u64);
-    let mut orbits: BTreeSet<u64> = BTreeSet::new();
-    let mut masks_expanded = 0u64;
-    for &mask in &reduced.survivors {
-        let (canonical, size) = group.mask_orbit(mask);
-        if canonical != mask {
-            continue;
-        }
-        masks_expanded += 1;
-        let weight = size as u64;
-        let mut local_sep = 0u64;
-        let s = expander.expand(mask, &mut |leaf| {
-            let ts = Instant::now();
-            let sep = separation(&cell, &reference, leaf.joints, leaf.motion);
-            if sep.passes(options.separation) {
-                local_sep += 1;
-                orbits.insert(group.canonical_key(leaf.joints).0);
-            }
-            separate_time += ts.elapsed();
-        });
-        mobility_one += weight * s.mobility_one;
-        separating += weight * local_sep;
-        stats.add(&s);
-    }
+    let canonical: Vec<(u32, u64)> = reduced
+        .survivors
+        .par_iter()
+        .filter_map(|&mask| {
+            let (canonical, size) = group.mask_orbit(mask);
+            (canonical == mask).then_some((mask, size as u64))
+        })
+        .collect();
+    let masks_expanded = canonical.len() as u64;
+    let orbit_time = t.elapsed();
+    let tally = canonical
+        .par_iter()
+        .fold(ExpandTally::default, |mut acc, &(mask, weight)| {
+            let started = Instant::now();
+            let mut local_sep = 0u64;
+            let mut separate_time = Duration::ZERO;
+            let s = expander.expand(mask, &mut |leaf| {
+                let ts = Instant::now();
+                let sep = separation(&cell, &reference, leaf.joints, leaf.motion);
+                if sep.passes(options.separation) {
+                    local_sep += 1;
+                    acc.orbits.insert(group.canonical_key(leaf.joints).0);
+                }
+                separate_time += ts.elapsed();
+            });
+            acc.mobility_one += weight * s.mobility_one;
+            acc.separating += weight * local_sep;
+            acc.stats.add(&s);
+            acc.separate += separate_time;
+            acc.work += started.elapsed();
+            acc
+        })
+        .reduce(ExpandTally::default, ExpandTally::merge);
+    let ExpandTally {
+        mut stats,
+        mobility_one,
+        separating,
+        orbits,
+        work,
+        separate: separate_time,
+    } = tally;
     // Configurations stand for every surviving mask, expanded or not.
     stats.configurations = reduced
         .survivors
         .iter()
         .map(|mask| 1u64 << mask.count_ones())
         .sum();
-    timings.expand = t.elapsed().saturating_sub(separate_time);
+    // Seconds of work summed over threads (the wall time when single threaded).
+    timings.expand = (orbit_time + work).saturating_sub(separate_time);
     timings.separate = separate_time;
 
     let t = Instant::now();
     let result = dedup_orbits(&cell, &reference, &group, &orbits, options.mobility);
-    timings.dedup = t.elapsed();
+    // Seconds of work: the analyses summed over threads (at least the wall time).
+    let wall = t.elapsed();
+    timings.dedup = result.work.max(wall);
 
     let mut designs = Vec::with_capacity(result.kept.len());
     let mut details = Vec::with_capacity(result.kept.len());
@@ -271,7 +357,7 @@ pub fn enumerate_topologies(
 /// by edge count, then a, then b. Cells that fail to build are left out.
 pub fn cells_to_explore(family: Family, options: &TopologyOptions) -> Vec<(CellDims, usize)> {
     let tiling = Tiling::default_for(family);
-    let top = options.max_dims.clamp(1, 4);
+    let top = options.max_dims.clamp(1, MAX_DIMS);
     let mut out = Vec::new();
     for a in 1..=top {
         for b in 1..=top {

@@ -7,10 +7,11 @@
 //! exactly and are balanced between cheap and expensive families. No I/O: running the units
 //! and storing them is the caller's business (`isogami-store` runs a plan into a database).
 
+use super::dedup::SymmetryGroup;
 use super::pipeline::{cells_to_explore, TopologyOptions};
 use super::ExploreError;
-use crate::cell::CellDims;
-use crate::tiling::Family;
+use crate::cell::{CellDims, UnitCell};
+use crate::tiling::{Family, Tiling};
 use std::fmt;
 use std::str::FromStr;
 
@@ -30,6 +31,33 @@ impl WorkUnit {
     /// The unit's id, unique within a database, e.g. `IH28/2x1`.
     pub fn id(&self) -> String {
         self.to_string()
+    }
+}
+
+impl WorkUnit {
+    /// A relative estimate of the unit's running time, for handing out the longest units
+    /// first: 3^m / |G|, with m the cell's unique edges and |G| the order of the sheet's
+    /// symmetry group. Each edge is free, jointed at A or jointed at B, and the enumeration
+    /// visits one design per symmetry orbit, so this counts the designs the unit weighs; on
+    /// the default run it puts the five slowest units (the low-symmetry hexagon cells, whose
+    /// thousands of unique topologies are all deployed) first. Not a time: only the order
+    /// matters. 0 for a cell that cannot be built (it fails at once).
+    pub fn expected_cost(&self) -> f64 {
+        let Ok(cell) = UnitCell::new(&Tiling::default_for(self.family), self.dims) else {
+            return 0.0;
+        };
+        let group = SymmetryGroup::new(&cell).len().max(1);
+        3f64.powi(cell.edges.len() as i32) / group as f64
+    }
+
+    /// `units` ordered by [`WorkUnit::expected_cost`], largest first (ties keep the order
+    /// given): the order in which a scheduler that hands out one unit at a time keeps every
+    /// core busy to the end.
+    pub fn longest_first(units: &[WorkUnit]) -> Vec<WorkUnit> {
+        let mut costed: Vec<(f64, WorkUnit)> =
+            units.iter().map(|u| (u.expected_cost(), *u)).collect();
+        costed.sort_by(|a, b| b.0.total_cmp(&a.0));
+        costed.into_iter().map(|(_, u)| u).collect()
     }
 }
 
@@ -107,21 +135,57 @@ impl ExplorePlan {
     /// Plans the units of `families` (in the order given) on the cells that `options` allow
     /// (at most `max_dims` per side and `max_edges` unique edges), keeping only `cells` when
     /// given, then takes `shard`'s slice.
+    ///
+    /// Requested cells are never dropped silently: a requested cell larger than `max_dims`
+    /// ([`ExploreError::CellOverDims`]), over the edge cap for some family
+    /// ([`ExploreError::CellsOverCap`], naming the cap that would take them all) or that
+    /// cannot be built for some family is an error.
     pub fn new(
         families: &[Family],
         cells: Option<&[CellDims]>,
         options: &TopologyOptions,
         shard: Option<Shard>,
-    ) -> ExplorePlan {
+    ) -> Result<ExplorePlan, ExploreError> {
+        let mut wanted: Vec<CellDims> = Vec::new();
+        for &dims in cells.unwrap_or_default() {
+            if dims.a().max(dims.b()) > options.max_dims {
+                return Err(ExploreError::CellOverDims {
+                    dims,
+                    max_dims: options.max_dims,
+                });
+            }
+            if !wanted.contains(&dims) {
+                wanted.push(dims);
+            }
+        }
         let mut all = Vec::new();
+        let mut over: Vec<(WorkUnit, usize)> = Vec::new();
         for &family in families {
-            for (dims, _) in cells_to_explore(family, options) {
-                if cells.is_none_or(|w| w.contains(&dims)) {
+            let allowed = cells_to_explore(family, options);
+            for &(dims, _) in &allowed {
+                if cells.is_none() || wanted.contains(&dims) {
                     all.push(WorkUnit { family, dims });
                 }
             }
+            for &dims in &wanted {
+                if allowed.iter().any(|(d, _)| *d == dims) {
+                    continue;
+                }
+                let cell = UnitCell::new(&Tiling::default_for(family), dims)?;
+                over.push((WorkUnit { family, dims }, cell.edges.len()));
+            }
         }
-        ExplorePlan { all, shard }
+        if let Some(&(first, edges)) = over.first() {
+            return Err(ExploreError::CellsOverCap {
+                family: first.family,
+                dims: first.dims,
+                edges,
+                max_edges: options.max_edges,
+                others: over.len() - 1,
+                needed: over.iter().map(|(_, m)| *m).max().unwrap_or(edges),
+            });
+        }
+        Ok(ExplorePlan { all, shard })
     }
 
     /// The units this process runs: the shard's slice of [`ExplorePlan::all`], in order.
@@ -147,7 +211,7 @@ mod tests {
     #[test]
     fn shards_partition_the_plan_in_order() {
         let families = [fam("IH1"), fam("IH28"), fam("IH90")];
-        let whole = ExplorePlan::new(&families, None, &TopologyOptions::default(), None);
+        let whole = ExplorePlan::new(&families, None, &TopologyOptions::default(), None).unwrap();
         assert!(whole.all.len() > 5, "{} units", whole.all.len());
         assert_eq!(whole.units(), whole.all);
         let ids: HashSet<String> = whole.all.iter().map(WorkUnit::id).collect();
@@ -156,7 +220,8 @@ mod tests {
         let mut seen = Vec::new();
         for i in 0..n {
             let shard = Shard::new(i, n).unwrap();
-            let plan = ExplorePlan::new(&families, None, &TopologyOptions::default(), Some(shard));
+            let plan = ExplorePlan::new(&families, None, &TopologyOptions::default(), Some(shard))
+                .unwrap();
             assert_eq!(plan.all, whole.all, "every shard knows the whole plan");
             let units = plan.units();
             // Positions i, i + n, …: balanced to within one unit.
@@ -179,9 +244,123 @@ mod tests {
             Some(&[one]),
             &TopologyOptions::default(),
             None,
-        );
+        )
+        .unwrap();
         let ids: Vec<String> = plan.all.iter().map(WorkUnit::id).collect();
         assert_eq!(ids, ["IH28/1x1", "IH1/1x1"], "families in the order given");
+    }
+
+    #[test]
+    fn requested_cells_over_the_cap_are_an_error_naming_the_cap() {
+        let three = CellDims::new(3, 3).unwrap();
+        let options = TopologyOptions::default();
+        let e = ExplorePlan::new(&[fam("IH76")], Some(&[three]), &options, None).unwrap_err();
+        match &e {
+            ExploreError::CellsOverCap {
+                edges,
+                max_edges,
+                others,
+                needed,
+                ..
+            } => assert_eq!((*edges, *max_edges, *others, *needed), (18, 16, 0, 18)),
+            other => panic!("{other:?}"),
+        }
+        let text = e.to_string();
+        assert!(
+            text.contains("IH76/3x3") && text.contains("max_edges = 16"),
+            "{text}"
+        );
+        // Raising the cap takes the cell.
+        let wide = TopologyOptions {
+            max_edges: 18,
+            ..options
+        };
+        let plan = ExplorePlan::new(&[fam("IH76")], Some(&[three]), &wide, None).unwrap();
+        assert_eq!(plan.all.len(), 1);
+        // Several families: every pair over the cap is counted, the largest names the cap.
+        let one = CellDims::new(1, 1).unwrap();
+        let e = ExplorePlan::new(
+            &[fam("IH1"), fam("IH76"), fam("IH77")],
+            Some(&[one, three]),
+            &options,
+            None,
+        )
+        .unwrap_err();
+        let ExploreError::CellsOverCap {
+            family,
+            others,
+            needed,
+            ..
+        } = e
+        else {
+            panic!("{e:?}");
+        };
+        assert_eq!(family, fam("IH1"), "the first pair in plan order");
+        assert!(others >= 2, "IH76/3x3 and IH77's cells");
+        assert!(needed > 18, "IH1 3x3 has more than 18 edges: {needed}");
+    }
+
+    #[test]
+    fn ih77_minimal_cell_is_planned_only_under_a_raised_cap() {
+        let f = fam("IH77");
+        let default = ExplorePlan::new(&[f], None, &TopologyOptions::default(), None).unwrap();
+        assert!(default.all.is_empty(), "18 edges: nothing at cap 16");
+        let one = CellDims::new(1, 1).unwrap();
+        assert!(matches!(
+            ExplorePlan::new(&[f], Some(&[one]), &TopologyOptions::default(), None),
+            Err(ExploreError::CellsOverCap { edges: 18, .. })
+        ));
+        let cap20 = TopologyOptions {
+            max_edges: 20,
+            ..TopologyOptions::default()
+        };
+        let plan = ExplorePlan::new(&[f], None, &cap20, None).unwrap();
+        assert_eq!(
+            plan.all.first().map(WorkUnit::id).as_deref(),
+            Some("IH77/1x1")
+        );
+    }
+
+    #[test]
+    fn requested_cells_beyond_max_dims_are_an_error() {
+        let quick = TopologyOptions {
+            max_dims: 1,
+            ..TopologyOptions::default()
+        };
+        let two = CellDims::new(2, 1).unwrap();
+        let e = ExplorePlan::new(&[fam("IH90")], Some(&[two]), &quick, None).unwrap_err();
+        assert_eq!(
+            e,
+            ExploreError::CellOverDims {
+                dims: two,
+                max_dims: 1
+            }
+        );
+        assert!(e.to_string().contains("max_dims"), "{e}");
+    }
+
+    #[test]
+    fn longest_first_orders_by_expected_cost_and_keeps_every_unit() {
+        let families = [fam("IH21"), fam("IH22"), fam("IH76"), fam("IH90")];
+        let plan = ExplorePlan::new(&families, None, &TopologyOptions::default(), None).unwrap();
+        let order = WorkUnit::longest_first(&plan.all);
+        let mut a: Vec<String> = order.iter().map(WorkUnit::id).collect();
+        let mut b: Vec<String> = plan.all.iter().map(WorkUnit::id).collect();
+        a.sort();
+        b.sort();
+        assert_eq!(a, b, "a permutation of the plan");
+        let costs: Vec<f64> = order.iter().map(WorkUnit::expected_cost).collect();
+        assert!(costs.windows(2).all(|w| w[0] >= w[1]), "{costs:?}");
+        // The slowest units of the default run (low-symmetry hexagon cells deploying
+        // thousands of topologies) come before every rotating-squares cell.
+        let pos = |id: &str| order.iter().position(|u| u.id() == id).unwrap();
+        assert!(pos("IH21/1x1") < pos("IH76/2x4") && pos("IH22/3x1") < pos("IH76/2x4"));
+        // 3^m / |G|: IH21's minimal cell has 15 edges and 6 symmetries.
+        let ih21 = WorkUnit {
+            family: fam("IH21"),
+            dims: CellDims::new(1, 1).unwrap(),
+        };
+        assert_eq!(ih21.expected_cost(), 3f64.powi(15) / 6.0);
     }
 
     #[test]

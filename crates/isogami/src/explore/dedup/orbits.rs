@@ -9,9 +9,12 @@ use super::symmetry::SymmetryGroup;
 use crate::cell::UnitCell;
 use crate::explore::separate::{separation, Separation};
 use crate::kinematics::Mechanism;
+use crate::math::Vec2;
 use crate::mobility::{analyze, Mobility, MobilitySettings};
 use crate::topology::JointChoice;
+use rayon::prelude::*;
 use std::collections::BTreeSet;
+use std::time::{Duration, Instant};
 
 /// A design that survived deduplication.
 #[derive(Debug, Clone)]
@@ -41,6 +44,8 @@ pub struct DedupResult {
     pub after_repeats: usize,
     /// Survivors, in joint-string order.
     pub kept: Vec<Kept>,
+    /// Time spent analysing the representatives, summed over threads.
+    pub work: Duration,
 }
 
 /// Number of pin joints of a joint list.
@@ -48,10 +53,62 @@ fn pin_count(joints: &[JointChoice]) -> usize {
     joints.iter().map(|j| j.ends().len()).sum()
 }
 
+/// Orbit representatives analysed per parallel batch: bounds the memory held by analysed but
+/// not yet merged designs.
+const BATCH: usize = 4096;
+
+/// One orbit representative after its (parallel) analysis.
+enum Analysed {
+    /// Not confirmed at dof = 1.
+    Unconfirmed,
+    /// A repeat of a smaller cell's design.
+    Repeat,
+    /// A candidate for the motion merge.
+    Candidate(Box<Kept>),
+}
+
+fn analyse(
+    cell: &UnitCell,
+    mech: &Mechanism,
+    group: &SymmetryGroup,
+    translations: &[Vec2],
+    key: u64,
+    settings: MobilitySettings,
+) -> Analysed {
+    let joints = group.joints_of(key);
+    let Ok(m) = Mechanism::new(cell, &joints) else {
+        return Analysed::Unconfirmed;
+    };
+    let mob = match analyze(&m, &m.rest, settings) {
+        Ok(mob) if mob.dof == 1 && mob.motion.is_some() => mob,
+        _ => return Analysed::Unconfirmed,
+    };
+    let Some(v) = mob.motion.as_ref().map(|mo| mo.vector.clone()) else {
+        return Analysed::Unconfirmed;
+    };
+    if translations
+        .iter()
+        .any(|&t| is_repeat(cell, mech, &joints, &v, t))
+    {
+        return Analysed::Repeat;
+    }
+    Analysed::Candidate(Box::new(Kept {
+        separation: separation(cell, mech, &joints, &v),
+        orbit_size: group.canonical_key(&joints).1,
+        invariant: motion_invariant(cell, mech, &v),
+        joints,
+        mobility: mob,
+        same_motion_merged: 0,
+    }))
+}
+
 /// Steps 2 and 3 of [`super`] on the canonical keys of the symmetry orbits found
 /// (step 1 is the keying itself). Each representative is analysed again with
 /// `mobility::analyze` (`settings` as in the expansion), which also gives its reported gap and
 /// motion. `mech`: any mechanism of the cell.
+///
+/// The analyses run in parallel on the current rayon pool, in batches; the motion merge then
+/// takes them in key order, so the result does not depend on the number of threads.
 pub fn dedup_orbits(
     cell: &UnitCell,
     mech: &Mechanism,
@@ -65,57 +122,48 @@ pub fn dedup_orbits(
         unconfirmed: 0,
         after_repeats: 0,
         kept: Vec::new(),
+        work: Duration::ZERO,
     };
     let mut index = MotionIndex::new();
-    for &key in canonical_keys {
-        let joints = group.joints_of(key);
-        let Ok(m) = Mechanism::new(cell, &joints) else {
-            out.unconfirmed += 1;
-            continue;
-        };
-        let mob = match analyze(&m, &m.rest, settings) {
-            Ok(mob) if mob.dof == 1 && mob.motion.is_some() => mob,
-            _ => {
-                out.unconfirmed += 1;
+    let keys: Vec<u64> = canonical_keys.iter().copied().collect();
+    for batch in keys.chunks(BATCH) {
+        let analysed: Vec<(Analysed, Duration)> = batch
+            .par_iter()
+            .map(|&key| {
+                let t = Instant::now();
+                let a = analyse(cell, mech, group, &translations, key, settings);
+                (a, t.elapsed())
+            })
+            .collect();
+        for (a, time) in analysed {
+            out.work += time;
+            let kept = match a {
+                Analysed::Unconfirmed => {
+                    out.unconfirmed += 1;
+                    continue;
+                }
+                Analysed::Repeat => continue,
+                Analysed::Candidate(k) => *k,
+            };
+            out.after_repeats += 1;
+            if let Some(k) = index.find(&kept.invariant, MOTION_TOL) {
+                // Of designs that move alike, keep the most connected one: the stiffest
+                // realisation of the motion and the one a maker builds (rotating squares with
+                // all eight hinges rather than a six-hinge subset); ties keep the smaller spec.
+                let merged = out.kept[k].same_motion_merged + 1;
+                if pin_count(&kept.joints) > pin_count(&out.kept[k].joints) {
+                    out.kept[k] = Kept {
+                        same_motion_merged: merged,
+                        ..kept
+                    };
+                } else {
+                    out.kept[k].same_motion_merged = merged;
+                }
                 continue;
             }
-        };
-        let Some(v) = mob.motion.as_ref().map(|mo| mo.vector.clone()) else {
-            continue;
-        };
-        if translations
-            .iter()
-            .any(|&t| is_repeat(cell, mech, &joints, &v, t))
-        {
-            continue;
+            index.insert(kept.invariant.clone());
+            out.kept.push(kept);
         }
-        out.after_repeats += 1;
-        let inv = motion_invariant(cell, mech, &v);
-        let kept = Kept {
-            separation: separation(cell, mech, &joints, &v),
-            orbit_size: group.canonical_key(&joints).1,
-            joints,
-            mobility: mob,
-            same_motion_merged: 0,
-            invariant: inv.clone(),
-        };
-        if let Some(k) = index.find(&inv, MOTION_TOL) {
-            // Of designs that move alike, keep the most connected one: the stiffest
-            // realisation of the motion and the one a maker builds (rotating squares with all
-            // eight hinges rather than a six-hinge subset); ties keep the smaller spec.
-            let merged = out.kept[k].same_motion_merged + 1;
-            if pin_count(&kept.joints) > pin_count(&out.kept[k].joints) {
-                out.kept[k] = Kept {
-                    same_motion_merged: merged,
-                    ..kept
-                };
-            } else {
-                out.kept[k].same_motion_merged = merged;
-            }
-            continue;
-        }
-        index.insert(inv);
-        out.kept.push(kept);
     }
     out
 }

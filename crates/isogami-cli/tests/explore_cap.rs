@@ -1,0 +1,151 @@
+//! `explore --max-edges`: requested cells are never dropped silently (a cell over the cap is
+//! an error naming the option), a raised cap runs cells above 16 edges (IH77's minimal cell,
+//! 18 edges), and runs with different caps do not mix in one database.
+
+use isogami_store::{Check, Store};
+use std::path::PathBuf;
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("isogami-cap-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn run(args: &[&str]) -> (Option<i32>, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_isogami"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// Exit 2 with one line on stderr that contains every `needle`, and no database made.
+fn refused(args: &[&str], db: &std::path::Path, needles: &[&str]) {
+    let (code, _, err) = run(args);
+    assert_eq!(code, Some(2), "{args:?}: {err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
+    for n in needles {
+        assert!(err.contains(n), "{args:?}: {err} lacks {n}");
+    }
+    assert!(!db.exists(), "{args:?} made {}", db.display());
+}
+
+#[test]
+fn requested_cells_over_the_cap_are_errors_naming_max_edges() {
+    let d = dir("over");
+    let db = d.join("a.db");
+    let p = db.to_str().unwrap();
+    // Issue 13: this printed "0 work units run" and exited 0.
+    refused(
+        &["explore", "--families", "IH76", "--cells", "3x3", "--db", p],
+        &db,
+        &[
+            "IH76/3x3",
+            "18 unique edges",
+            "--max-edges 16",
+            "--max-edges 18",
+        ],
+    );
+    // Several families: the first offender, how many more, the cap that takes them all.
+    refused(
+        &[
+            "explore",
+            "--families",
+            "IH76,IH41",
+            "--cells",
+            "3x3",
+            "--max-edges",
+            "17",
+            "--db",
+            p,
+        ],
+        &db,
+        &["--max-edges 17", "more requested cell"],
+    );
+    // A named family without any cell under the cap.
+    refused(
+        &["explore", "--quick", "--families", "IH77", "--db", p],
+        &db,
+        &[
+            "IH77",
+            "18 unique edges",
+            "--max-edges 12",
+            "--max-edges 18",
+        ],
+    );
+    // A cell the quick exploration never takes, and caps outside the enumerator's range.
+    refused(
+        &[
+            "explore",
+            "--quick",
+            "--families",
+            "IH90",
+            "--cells",
+            "2x1",
+            "--db",
+            p,
+        ],
+        &db,
+        &["2x1", "--quick"],
+    );
+    for bad in ["0", "25"] {
+        refused(
+            &["explore", "--max-edges", bad, "--db", p],
+            &db,
+            &["--max-edges", "1..=24"],
+        );
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+#[test]
+fn a_raised_cap_runs_ih77_and_caps_do_not_mix() {
+    let d = dir("ih77");
+    let db = d.join("a.db");
+    let p = db.to_str().unwrap();
+    let (code, out, err) = run(&[
+        "explore",
+        "--quick",
+        "--families",
+        "IH77",
+        "--max-edges",
+        "18",
+        "--db",
+        p,
+        "--json",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(out.contains("IH77"), "{out}");
+    let store = Store::open_read(&db, Check::Full).unwrap();
+    let units = store.work_units().unwrap();
+    let ids: Vec<&str> = units.iter().map(|(u, _)| u.id.as_str()).collect();
+    assert_eq!(ids, ["IH77/1x1"]);
+    // Every one of the 2^18 masks went through the reduced checks.
+    let degree = units[0].1.iter().find(|s| s.stage == "degree").unwrap();
+    assert_eq!(degree.count_in, 1 << 18);
+    drop(store);
+    // The same file with another cap: refused, naming the setting; the file is unchanged.
+    let before = std::fs::read(&db).unwrap();
+    let (code, _, err) = run(&[
+        "explore",
+        "--quick",
+        "--families",
+        "IH77",
+        "--max-edges",
+        "20",
+        "--db",
+        p,
+    ]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        err.contains("max_edges 18 in the file, 20 in this run"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(&db).unwrap(), before);
+    std::fs::remove_dir_all(&d).unwrap();
+}
