@@ -1,6 +1,9 @@
 //! Two writers on one database (issue 8 §4): the second `explore` (or a `merge` into the same
 //! file) is refused at once with a clear one-line message, never a raw SQL error; readers keep
 //! working; the lock dies with its process.
+//!
+//! Units run longest first, so the slow unit commits first; the first writer is then paused
+//! (SIGSTOP) while the others try, so the checks never race its remaining quick units.
 
 use isogami_store::{Check, Store};
 use std::path::{Path, PathBuf};
@@ -18,11 +21,12 @@ fn dir(name: &str) -> PathBuf {
     d
 }
 
-/// IH1 and IH2 finish quickly; IH21's minimal cell keeps a writer busy for many seconds.
+/// IH21's minimal cell keeps a writer busy for many seconds and runs first (longest first);
+/// IH27, IH56 and IH28 take a few seconds each after it.
 const SLOW: [&str; 8] = [
     "explore",
     "--families",
-    "IH1,IH2,IH21",
+    "IH21,IH27,IH56,IH28",
     "--cells",
     "1x1",
     "--jobs",
@@ -58,6 +62,26 @@ fn wait_for(what: &str, cond: impl Fn() -> bool) {
     }
 }
 
+/// Sends `signal` (e.g. `STOP`, `CONT`) to a child process.
+fn signal(child: &Child, signal: &str) {
+    let status = Command::new("kill")
+        .arg(format!("-{signal}"))
+        .arg(child.id().to_string())
+        .status()
+        .unwrap();
+    assert!(status.success(), "kill -{signal}");
+}
+
+/// The number N in the summary line's "N already in".
+fn already_in(summary: &str) -> usize {
+    let words: Vec<&str> = summary.split_whitespace().collect();
+    let at = words
+        .windows(2)
+        .position(|w| w == ["already", "in"])
+        .unwrap_or_else(|| panic!("no 'already in' in {summary}"));
+    words[at - 1].trim_end_matches(',').parse().unwrap()
+}
+
 fn assert_busy(out: &Output) {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
@@ -75,6 +99,14 @@ fn a_second_writer_is_refused_while_the_first_runs() {
     let db = d.join("db");
     let mut first = slow_explore(&db);
     wait_for("the first unit", || committed(&db) >= 1);
+    // Paused, it holds the lock and its uncommitted units for as long as the checks take.
+    signal(&first, "STOP");
+    assert!(
+        first.try_wait().unwrap().is_none(),
+        "the first writer ended before its quick units ran"
+    );
+    let before = committed(&db);
+    assert!(before < 4, "the first writer finished every unit");
     // The second explore with the same settings, and a merge into the same file.
     let out = bin().args(SLOW).arg(&db).output().unwrap();
     assert_busy(&out);
@@ -115,7 +147,7 @@ fn a_second_writer_is_refused_while_the_first_runs() {
         .args([
             "explore",
             "--families",
-            "IH1,IH2",
+            "IH21,IH1",
             "--cells",
             "1x1",
             "--jobs",
@@ -131,15 +163,17 @@ fn a_second_writer_is_refused_while_the_first_runs() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    assert!(text.contains("already in"), "{text}");
+    // IH21 (committed before the kill) is not run again; IH1 is new.
+    assert_eq!(already_in(&text), 1, "{text}");
     let units = Store::open_read(&db, Check::Full)
         .unwrap()
         .done_units()
         .unwrap();
     assert!(
-        units.contains("IH1/1x1") && units.contains("IH2/1x1"),
+        units.contains("IH21/1x1") && units.contains("IH1/1x1"),
         "{units:?}"
     );
+    assert_eq!(units.len(), before + 1, "{units:?}");
     std::fs::remove_dir_all(&d).unwrap();
 }
 
