@@ -29,6 +29,10 @@ pub struct CatalogSettings {
     /// topology's, so one tolerance decides the DOF everywhere (see
     /// [`CatalogSettings::deploy_request`]).
     pub deploy: DeploySettings,
+    /// Screen designs that contact locks at the start from their first-order motion before
+    /// deploying them (see [`super::screen`]). Saves time, never changes what is kept (tested),
+    /// so it is not part of the fingerprint. On by default.
+    pub screen: bool,
 }
 
 impl Default for CatalogSettings {
@@ -41,6 +45,7 @@ impl Default for CatalogSettings {
             frame_count: 40,
             topology: TopologyOptions::default(),
             deploy: DeploySettings::default(),
+            screen: true,
         }
     }
 }

@@ -1,6 +1,7 @@
 //! One work unit: a family on one supercell, from joint masks to catalogue entries.
 
 use super::assess::{assess, Assessment};
+use super::screen::locked_at_start;
 use super::settings::CatalogSettings;
 use crate::api;
 use crate::cell::{CellDims, UnitCell};
@@ -88,7 +89,8 @@ fn topology_tallies(r: &TopologyReport) -> Vec<StageTally> {
 }
 
 /// Deploys `design` and characterises it; `None` when it is not admitted (see
-/// [`assess`]: one DOF, not locked, past the threshold). Uses the library's one deploy entry
+/// [`assess`]: one DOF, not locked, past the threshold) or, with `settings.screen`, screened
+/// out as locked at the start without deploying it. Uses the library's one deploy entry
 /// point with the catalogue's settings, so `isogami deploy` with the same settings gives the
 /// same report.
 fn characterise(
@@ -96,6 +98,9 @@ fn characterise(
     topology: &str,
     settings: &CatalogSettings,
 ) -> Result<Option<CatalogEntry>> {
+    if settings.screen && locked_at_start(design, settings) {
+        return Ok(None);
+    }
     let report = match assess(design, settings, &mut |_| true)? {
         Assessment::Admitted(report) => *report,
         Assessment::Rejected(_) => return Ok(None),

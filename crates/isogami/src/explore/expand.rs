@@ -113,6 +113,10 @@ pub struct Expander<'a> {
     rows: Vec<[Vec<f64>; 2]>,
     /// Per edge: the larger squared Frobenius norm of its two row pairs.
     row_weight: Vec<f64>,
+    /// Per edge and end: the squared Frobenius norm of the row pair.
+    row_sq: Vec<[f64; 2]>,
+    /// Per edge, end and row of the pair: the row's Euclidean norm.
+    row_norm: Vec<[[f64; 2]; 2]>,
 }
 
 /// Working state of one depth-first expansion.
@@ -123,6 +127,10 @@ struct Search<'s> {
     q: Vec<f64>,
     /// Lower-triangular factor: selected row i = Σ_j r[i][j] q_j (N × N, row-major).
     r: Vec<f64>,
+    /// R⁻¹ (lower triangular, N × N, row-major); its leading `l_valid` rows are up to date.
+    /// Row i depends only on R's rows 0..=i, so backtracking keeps the rows before it.
+    l: Vec<f64>,
+    l_valid: usize,
     count: usize,
     /// Set when the basis is full but the rigidity certificate failed.
     uncertain_full: bool,
@@ -144,6 +152,8 @@ impl<'a> Expander<'a> {
         let cols = jac.ncols() - 3;
         let mut rows = Vec::with_capacity(m);
         let mut row_weight = Vec::with_capacity(m);
+        let mut row_sq = Vec::with_capacity(m);
+        let mut row_norm = Vec::with_capacity(m);
         for (k, j) in both.joints.chunks(2).enumerate() {
             debug_assert!(j.iter().all(|j| j.edge == k));
             let pair = |idx: usize| -> Vec<f64> {
@@ -156,6 +166,13 @@ impl<'a> Expander<'a> {
             let (a, b) = (pair(0), pair(1));
             let sq = |v: &Vec<f64>| v.iter().map(|x| x * x).sum::<f64>();
             row_weight.push(sq(&a).max(sq(&b)));
+            row_sq.push([sq(&a), sq(&b)]);
+            let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+            let n = cols;
+            row_norm.push([
+                [norm(&a[..n]), norm(&a[n..])],
+                [norm(&b[..n]), norm(&b[n..])],
+            ]);
             rows.push([a, b]);
         }
         Ok(Expander {
@@ -165,6 +182,8 @@ impl<'a> Expander<'a> {
             cols,
             rows,
             row_weight,
+            row_sq,
+            row_norm,
         })
     }
 
@@ -185,6 +204,8 @@ impl<'a> Expander<'a> {
             choice: vec![JointChoice::None; m],
             q: vec![0.0; n * n],
             r: vec![0.0; n * n],
+            l: vec![0.0; n * n],
+            l_valid: 0,
             count: 0,
             uncertain_full: false,
             threshold_sq: self.settings.rel_tol * bound.max(1.0),
@@ -222,8 +243,9 @@ impl<'a> Expander<'a> {
         for (end, choice) in [JointChoice::A, JointChoice::B].into_iter().enumerate() {
             let (count, uncertain) = (s.count, s.uncertain_full);
             let pair = &self.rows[edge][end];
-            self.add_row(s, &pair[..n]);
-            self.add_row(s, &pair[n..]);
+            let norms = self.row_norm[edge][end];
+            self.add_row(s, &pair[..n], norms[0]);
+            self.add_row(s, &pair[n..], norms[1]);
             let pruned = if s.count == n && count < n {
                 if self.certified(s, n) {
                     s.stats.pruned_rigid += 1;
@@ -259,10 +281,7 @@ impl<'a> Expander<'a> {
             let frob: f64 = s
                 .edges
                 .iter()
-                .map(|&e| {
-                    let end = usize::from(s.choice[e] == JointChoice::B);
-                    self.rows[e][end].iter().map(|x| x * x).sum::<f64>()
-                })
+                .map(|&e| self.row_sq[e][usize::from(s.choice[e] == JointChoice::B)])
                 .sum();
             let threshold = self.settings.rel_tol * frob.max(1.0);
             if self.certified_with(s, n - 1, threshold) {
@@ -304,9 +323,11 @@ impl<'a> Expander<'a> {
         let n = self.cols;
         let k = s.count;
         // Start from the coordinate axis least covered by the basis (its residual is ≥ 1/√N).
-        let covered = |c: usize| -> f64 { (0..k).map(|i| s.q[i * n + c].powi(2)).sum() };
+        let covered: Vec<f64> = (0..n)
+            .map(|c| (0..k).map(|i| s.q[i * n + c].powi(2)).sum())
+            .collect();
         let axis = (0..n)
-            .min_by(|&a, &b| covered(a).total_cmp(&covered(b)))
+            .min_by(|&a, &b| covered[a].total_cmp(&covered[b]))
             .unwrap_or(0);
         let mut v = vec![0.0; n];
         v[axis] = 1.0;
@@ -336,23 +357,27 @@ impl<'a> Expander<'a> {
         full
     }
 
-    /// Projects `row` against the basis (twice) and appends it when independent.
-    fn add_row(&self, s: &mut Search<'_>, row: &[f64]) {
+    /// Projects `row` (Euclidean norm `norm`) against the basis (twice) and appends it when
+    /// independent. Works in place in the free slot `count` of Q and R (no allocation).
+    fn add_row(&self, s: &mut Search<'_>, row: &[f64], norm: f64) {
         let n = self.cols;
         let k = s.count;
         if k == n {
             return;
         }
-        let norm = row.iter().map(|x| x * x).sum::<f64>().sqrt();
         if norm == 0.0 {
             return;
         }
-        let mut v = row.to_vec();
-        let mut coef = vec![0.0; k];
+        // Slot k's R row changes: R⁻¹'s row k (and any after it) must be recomputed.
+        s.l_valid = s.l_valid.min(k);
+        let (basis, rest) = s.q.split_at_mut(k * n);
+        let v = &mut rest[..n];
+        v.copy_from_slice(row);
+        let coef = &mut s.r[k * n..k * n + k];
+        coef.fill(0.0);
         for _pass in 0..2 {
-            for (j, c) in coef.iter_mut().enumerate() {
-                let qj = &s.q[j * n..(j + 1) * n];
-                let d: f64 = qj.iter().zip(&v).map(|(a, b)| a * b).sum();
+            for (c, qj) in coef.iter_mut().zip(basis.chunks_exact(n)) {
+                let d = dot(qj, v);
                 *c += d;
                 for (x, y) in v.iter_mut().zip(qj) {
                     *x -= d * y;
@@ -363,11 +388,10 @@ impl<'a> Expander<'a> {
         if rho <= DEPENDENT_REL_TOL * norm {
             return;
         }
-        for (dst, x) in s.q[k * n..(k + 1) * n].iter_mut().zip(&v) {
-            *dst = x / rho;
+        for x in v.iter_mut() {
+            *x /= rho;
         }
         let rrow = &mut s.r[k * n..(k + 1) * n];
-        rrow[..k].copy_from_slice(&coef);
         rrow[k] = rho;
         for x in &mut rrow[k + 1..] {
             *x = 0.0;
@@ -376,34 +400,56 @@ impl<'a> Expander<'a> {
     }
 
     /// The rigidity certificate of a full basis (see module docs).
-    fn certified(&self, s: &Search<'_>, n: usize) -> bool {
-        self.certified_with(s, n, s.threshold_sq)
+    fn certified(&self, s: &mut Search<'_>, n: usize) -> bool {
+        let threshold = s.threshold_sq;
+        self.certified_with(s, n, threshold)
     }
 
     /// True when the leading `size` selected rows have σ_min(R)² ≥ margin · `threshold`, via
     /// σ_min(R) ≥ 1/‖R⁻¹‖_F.
-    fn certified_with(&self, s: &Search<'_>, size: usize, threshold: f64) -> bool {
+    fn certified_with(&self, s: &mut Search<'_>, size: usize, threshold: f64) -> bool {
         let n = self.cols;
-        let r = &s.r;
-        // Solve R x = e_c for every column c by forward substitution; accumulate ‖R⁻¹‖_F².
-        let mut inv_sq = 0.0;
-        let mut x = vec![0.0; size];
-        for c in 0..size {
-            for i in 0..size {
-                if i < c {
-                    x[i] = 0.0;
-                    continue;
-                }
+        // Rows of R⁻¹ by forward substitution, column by column within a row: entry (i, c)
+        // is (δ_ic − Σ_{j=c}^{i−1} r[i][j] · l[j][c]) / r[i][i], the same operations in the
+        // same order as solving R x = e_c, so the values do not depend on when they are made.
+        for i in s.l_valid..size {
+            for c in 0..=i {
                 let mut acc = if i == c { 1.0 } else { 0.0 };
-                for (j, xj) in x.iter().enumerate().take(i).skip(c) {
-                    acc -= r[i * n + j] * xj;
+                for j in c..i {
+                    acc -= s.r[i * n + j] * s.l[j * n + c];
                 }
-                x[i] = acc / r[i * n + i];
-                inv_sq += x[i] * x[i];
+                s.l[i * n + c] = acc / s.r[i * n + i];
+            }
+        }
+        s.l_valid = s.l_valid.max(size);
+        // ‖R⁻¹‖_F² summed column by column (the order of the per-column solves).
+        let mut inv_sq = 0.0;
+        for c in 0..size {
+            for i in c..size {
+                let x = s.l[i * n + c];
+                inv_sq += x * x;
             }
         }
         inv_sq.is_finite() && inv_sq > 0.0 && 1.0 / inv_sq >= RIGID_MARGIN * threshold
     }
+}
+
+/// Dot product with four independent accumulators (a fixed order, so deterministic; about
+/// four times faster than one running sum, whose additions cannot overlap).
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut acc = [0.0f64; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for ((s, p), q) in acc.iter_mut().zip(x).zip(y) {
+            *s += p * q;
+        }
+    }
+    let mut tail = 0.0;
+    for (x, y) in ra.iter().zip(rb) {
+        tail += x * y;
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
 #[cfg(test)]
@@ -411,6 +457,17 @@ mod tests {
     use super::*;
     use crate::cell::CellDims;
     use crate::tiling::{Family, Tiling};
+
+    #[test]
+    fn dot_agrees_with_a_running_sum() {
+        for len in [0, 1, 3, 4, 5, 13, 25, 37] {
+            let a: Vec<f64> = (0..len).map(|i| (i as f64 * 0.7).sin()).collect();
+            let b: Vec<f64> = (0..len).map(|i| 1.0 / (1.0 + i as f64)).collect();
+            let plain: f64 = a.iter().zip(&b).map(|(x, y)| x * y).sum();
+            assert!((dot(&a, &b) - plain).abs() <= 1e-14, "{len}");
+        }
+        assert_eq!(dot(&[1.0, 2.0, 3.0, 4.0, 5.0], &[1.0; 5]), 15.0);
+    }
 
     #[test]
     fn rotating_squares_mask_keeps_the_named_design() {
