@@ -256,10 +256,13 @@ fn forget_unit(db: &Path, unit: &str) {
     for sql in [
         "DELETE FROM designs WHERE work_unit = ?1",
         "DELETE FROM stage_counts WHERE work_unit = ?1",
+        "DELETE FROM unit_memory WHERE work_unit = ?1",
         "DELETE FROM work_units WHERE id = ?1",
     ] {
         assert!(
-            c.execute(sql, [unit]).unwrap() > 0 || sql.contains("designs"),
+            c.execute(sql, [unit]).unwrap() > 0
+                || sql.contains("designs")
+                || sql.contains("unit_memory"),
             "{sql}"
         );
     }
@@ -388,5 +391,51 @@ fn merge_proves_the_shards_complete_and_reruns_add_nothing() {
     ]);
     assert_eq!(code, Some(2));
     assert!(err.contains("holds shard 1/3"), "{err}");
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+#[test]
+fn db_units_lists_every_unit_with_its_time_and_peak_memory() {
+    let d = dir("units");
+    let db = d.join("u.db");
+    explore_families("IH83,IH84,IH90", &db, &[]);
+    let db_arg = db.to_str().unwrap();
+    let (code, json, err) = run(&["db", "units", "--db", db_arg, "--json"]);
+    assert_eq!(code, Some(0), "{err}");
+    let units: Vec<serde_json::Value> = serde_json::from_str(&json).unwrap();
+    let store = Store::open_read(&db, Check::Full).unwrap();
+    let stored = store.work_units().unwrap();
+    assert_eq!(units.len(), stored.len());
+    let seconds: Vec<f64> = units
+        .iter()
+        .map(|u| u["seconds"].as_f64().unwrap())
+        .collect();
+    assert!(seconds.windows(2).all(|w| w[0] >= w[1]), "{seconds:?}");
+    for u in &units {
+        let id = u["id"].as_str().unwrap();
+        let designs = store.designs_of_unit(id).unwrap().len() as u64;
+        assert_eq!(u["designs"].as_u64(), Some(designs), "{id}");
+        if cfg!(target_os = "linux") {
+            assert!(u["peak_rss_bytes"].as_u64().unwrap() > 1 << 20, "{id}");
+        }
+    }
+    let (code, table, _) = run(&["db", "units", "--db", db_arg, "--top", "1"]);
+    assert_eq!(code, Some(0));
+    assert!(table.contains(units[0]["id"].as_str().unwrap()), "{table}");
+    assert!(!table.contains(units[1]["id"].as_str().unwrap()), "{table}");
+    let (code, stats, _) = run(&["db", "stats", "--db", db_arg]);
+    assert_eq!(code, Some(0));
+    assert!(
+        stats.contains("largest peak memory") || !cfg!(target_os = "linux"),
+        "{stats}"
+    );
+    let (code, _, err) = run(&[
+        "db",
+        "units",
+        "--db",
+        d.join("missing.db").to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(2));
+    assert_eq!(err.lines().count(), 1, "{err}");
     std::fs::remove_dir_all(&d).unwrap();
 }

@@ -12,6 +12,7 @@
 
 use crate::error::{StoreError, StoreResult};
 use crate::open::{Check, RunInfo, StoreWriter};
+use crate::peak_memory::PeakMemory;
 use crate::records::UnitRecords;
 use crate::shard::record_plan;
 use crate::stats::DbStats;
@@ -182,26 +183,37 @@ pub fn explore_into(
     // unit left helps the others with theirs.
     let order = WorkUnit::longest_first(&todo);
     let next = AtomicUsize::new(0);
+    let memory = PeakMemory::default();
+    let sampled = AtomicBool::new(false);
     std::thread::scope(|scope| -> StoreResult<()> {
-        let (order, next, stop) = (&order, &next, &stop);
+        let (order, next, stop, memory) = (&order, &next, &stop, &memory);
+        scope.spawn(|| memory.sample_until(&sampled));
+        // The sampler stops however the loop below ends (an early return included).
+        let _stop_sampler = SetOnDrop(&sampled);
         scope.spawn(move || {
             pool.broadcast(|_| loop {
                 if cancel.load(Ordering::Relaxed) || stop.load(Ordering::Relaxed) {
                     return;
                 }
-                let Some(unit) = order.get(next.fetch_add(1, Ordering::Relaxed)) else {
+                let k = next.fetch_add(1, Ordering::Relaxed);
+                let Some(unit) = order.get(k) else {
                     return;
                 };
                 let start = Instant::now();
+                memory.begin(k);
                 let outcome = run_unit(unit.family, unit.dims, settings);
-                let _ = tx.send((unit, outcome, start.elapsed().as_secs_f64()));
+                let peak = memory.end(k);
+                let _ = tx.send((unit, outcome, start.elapsed().as_secs_f64(), peak));
             });
             drop(tx);
         });
-        for (unit, outcome, seconds) in rx {
-            let records = outcome
-                .map_err(|e| e.to_string())
-                .and_then(|o| UnitRecords::from_outcome(&o, seconds).map_err(|e| e.to_string()));
+        for (unit, outcome, seconds, peak) in rx {
+            let records = outcome.map_err(|e| e.to_string()).and_then(|o| {
+                let mut records =
+                    UnitRecords::from_outcome(&o, seconds).map_err(|e| e.to_string())?;
+                records.unit.peak_rss_bytes = peak;
+                Ok(records)
+            });
             let ok = match records {
                 Ok(records) => {
                     if let Err(e) = store.commit_unit(&records) {
@@ -239,4 +251,13 @@ pub fn explore_into(
         cancelled: cancel.load(Ordering::Relaxed) && finished < to_run,
         stats,
     })
+}
+
+/// Sets its flag when dropped.
+struct SetOnDrop<'a>(&'a AtomicBool);
+
+impl Drop for SetOnDrop<'_> {
+    fn drop(&mut self) {
+        self.0.store(true, Ordering::Relaxed);
+    }
 }

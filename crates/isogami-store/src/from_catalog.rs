@@ -165,6 +165,7 @@ impl UnitRecords {
             cell: outcome.dims.to_string(),
             kind: "topology+shapes".into(),
             seconds: positive_zero(seconds),
+            peak_rss_bytes: None,
         };
         let stages = outcome
             .stages

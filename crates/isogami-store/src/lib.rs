@@ -43,6 +43,7 @@ mod inverse_results;
 mod lock;
 mod merge;
 mod open;
+mod peak_memory;
 pub mod query;
 mod read;
 mod records;
@@ -70,4 +71,4 @@ pub use records::{
 };
 pub use schema::SCHEMA_VERSION;
 pub use shard::{check_shard_set, ShardRecord, ShardSetError, ShardStatus};
-pub use stats::{DbStats, FamilyStats};
+pub use stats::{DbStats, FamilyStats, UnitSummary};

@@ -345,6 +345,7 @@ impl StoreWriter {
             _lock: lock,
         };
         writer.check_file(check).map_err(as_damage)?;
+        writer.conn.execute_batch(crate::schema::UNIT_MEMORY)?;
         if let Some(run) = run {
             match writer.settings()? {
                 None => {

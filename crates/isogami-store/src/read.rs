@@ -3,11 +3,13 @@
 use crate::error::{StoreError, StoreResult};
 use crate::open::Store;
 use crate::records::{DesignRecord, DesignSummary, StageCount, StoredDesign, WorkUnitRecord};
-use crate::rows::{data_values, read_design, unit_values, verify, DESIGN_COLUMNS};
+use crate::rows::{
+    data_values, read_design, unit_memory_values, unit_values, verify, DESIGN_COLUMNS,
+};
 use isogami::deploy::DeploymentReport;
 use isogami::linkage::LinkageAnalysis;
 use rusqlite::OptionalExtension;
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 /// `designs` columns, checksum, then the `design_data` columns (report, linkages, checksum).
 fn record_select(filter: &str) -> String {
@@ -83,18 +85,21 @@ impl Store {
                         cell: r.get(2)?,
                         kind: r.get(3)?,
                         seconds: r.get(4)?,
+                        peak_rss_bytes: None,
                     },
                     r.get(5)?,
                 ))
             })?
             .collect::<Result<_, _>>()?;
+        let memory = self.unit_memory()?;
         let mut st = self.conn.prepare(
             "SELECT stage, count_in, count_out, seconds FROM stage_counts
              WHERE work_unit = ?1 ORDER BY position",
         )?;
         units
             .into_iter()
-            .map(|(u, stored)| {
+            .map(|(mut u, stored)| {
+                u.peak_rss_bytes = memory.get(&u.id).copied();
                 let stages: Vec<StageCount> = st
                     .query_map([&u.id], |r| {
                         Ok(StageCount {
@@ -109,6 +114,36 @@ impl Store {
                     format!("work unit {}", u.id)
                 })?;
                 Ok((u, stages))
+            })
+            .collect()
+    }
+
+    /// Peak memory per work unit id, checksum-verified; empty when the database has no
+    /// `unit_memory` table (made before it existed).
+    fn unit_memory(&self) -> StoreResult<HashMap<String, u64>> {
+        let exists: bool = self.conn.query_row(
+            "SELECT count(*) > 0 FROM sqlite_master WHERE type = 'table' AND name = 'unit_memory'",
+            [],
+            |r| r.get(0),
+        )?;
+        if !exists {
+            return Ok(HashMap::new());
+        }
+        let mut stmt = self
+            .conn
+            .prepare("SELECT work_unit, peak_rss_bytes, checksum FROM unit_memory")?;
+        let rows: Vec<(String, i64, i64)> = stmt
+            .query_map([], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)))?
+            .collect::<Result<_, _>>()?;
+        rows.into_iter()
+            .map(|(unit, bytes, stored)| {
+                verify(&unit_memory_values(&unit, bytes), stored, || {
+                    format!("memory row of work unit {unit}")
+                })?;
+                let bytes = u64::try_from(bytes).map_err(|_| {
+                    StoreError::Damaged(format!("work unit {unit}: negative peak memory"))
+                })?;
+                Ok((unit, bytes))
             })
             .collect()
     }

@@ -20,6 +20,12 @@ pub struct WorkUnitRecord {
     pub kind: String,
     /// Wall time.
     pub seconds: f64,
+    /// Peak resident memory of the exploring process while the unit ran, in bytes (the unit's
+    /// own peak when it ran alone, e.g. `--jobs 1` or a big unit at the end of a run; an upper
+    /// bound when other units ran beside it). None where it cannot be measured (not Linux) and
+    /// in databases made before it was recorded. Stored in the `unit_memory` table.
+    #[serde(default)]
+    pub peak_rss_bytes: Option<u64>,
 }
 
 /// Count in, count out and time of one filtering stage of a work unit.

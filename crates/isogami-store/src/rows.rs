@@ -270,6 +270,11 @@ pub(crate) fn unit_values(unit: &WorkUnitRecord, stages: &[StageCount]) -> Vec<V
     v
 }
 
+/// The values of a `unit_memory` row covered by its checksum.
+pub(crate) fn unit_memory_values(unit: &str, peak_rss_bytes: i64) -> [Value; 2] {
+    [text(unit), Value::Integer(peak_rss_bytes)]
+}
+
 /// The values of a `meta` row covered by its checksum.
 pub(crate) fn meta_values(key: &str, value: &str) -> [Value; 2] {
     [text(key), text(value)]

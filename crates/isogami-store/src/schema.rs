@@ -14,6 +14,10 @@
 //!   design, kept apart so that list queries scan a dense table; checksum over the spec and
 //!   both documents.
 //!
+//! - `unit_memory` (optional): a work unit's peak resident memory, one row per unit that has
+//!   it, with a checksum. Writers create it when missing, so databases made before it existed
+//!   read as before (their units have no figure) and needed no new schema version.
+//!
 //! The file is marked with SQLite's `application_id` so that other programs' databases are
 //! told apart before anything is read, and uses a rollback journal (not WAL) so that readers
 //! never create files beside it.
@@ -33,6 +37,15 @@ pub(crate) const TABLES: [&str; 5] = [
     "designs",
     "design_data",
 ];
+
+/// The optional per-unit memory table (see the module docs); a writer creates it when missing.
+pub(crate) const UNIT_MEMORY: &str = "
+CREATE TABLE IF NOT EXISTS unit_memory (
+    work_unit      TEXT PRIMARY KEY REFERENCES work_units(id),
+    peak_rss_bytes INTEGER NOT NULL,
+    checksum       INTEGER NOT NULL
+);
+";
 
 /// Shape parameter columns p0…p5 (isohedral families have at most six parameters).
 pub(crate) const PARAM_SLOTS: usize = 6;

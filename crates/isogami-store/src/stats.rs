@@ -2,7 +2,7 @@
 
 use crate::error::StoreResult;
 use crate::open::Store;
-use crate::records::StageCount;
+use crate::records::{StageCount, WorkUnitRecord};
 use crate::shard::ShardStatus;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -16,6 +16,22 @@ pub struct FamilyStats {
     pub designs: u64,
     /// Stage totals in pipeline order.
     pub stages: Vec<StageCount>,
+    /// Largest peak memory of its work units in bytes (see
+    /// [`WorkUnitRecord::peak_rss_bytes`](crate::WorkUnitRecord)); None when none was measured.
+    pub peak_rss_bytes: Option<u64>,
+}
+
+/// One work unit's figures, for sizing runs (`isogami db units`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct UnitSummary {
+    /// Unit id, e.g. `IH22/3x1`.
+    pub id: String,
+    /// Wall time in seconds.
+    pub seconds: f64,
+    /// Peak memory in bytes, when measured.
+    pub peak_rss_bytes: Option<u64>,
+    /// Designs it kept.
+    pub designs: u64,
 }
 
 /// Whole-database summary.
@@ -41,6 +57,12 @@ pub struct DbStats {
     pub stages: Vec<StageCount>,
     /// Per family.
     pub families: BTreeMap<String, FamilyStats>,
+    /// The work unit with the largest peak memory and that peak, when any was measured.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_memory: Option<UnitSummary>,
+    /// The slowest work unit.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slowest: Option<UnitSummary>,
     /// For a database made by `explore --shard`: its shard and how much of it is done.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shard: Option<ShardStatus>,
@@ -71,6 +93,7 @@ impl Store {
             let f = families.entry(u.family.clone()).or_default();
             f.units += 1;
             accumulate(&mut f.stages, st);
+            f.peak_rss_bytes = f.peak_rss_bytes.max(u.peak_rss_bytes);
         }
         let mut by_behaviour = BTreeMap::new();
         let mut by_linkage = BTreeMap::new();
@@ -103,6 +126,16 @@ impl Store {
             [],
             |r| r.get(0),
         )?;
+        let summaries = self.summaries_of(&units)?;
+        let peak_memory = summaries
+            .iter()
+            .filter(|u| u.peak_rss_bytes.is_some())
+            .max_by_key(|u| u.peak_rss_bytes)
+            .cloned();
+        let slowest = summaries
+            .iter()
+            .max_by(|a, b| a.seconds.total_cmp(&b.seconds))
+            .cloned();
         Ok(DbStats {
             schema_version: crate::SCHEMA_VERSION,
             tool_version: self.tool_version()?,
@@ -114,7 +147,40 @@ impl Store {
             by_linkage,
             stages,
             families,
+            peak_memory,
+            slowest,
             shard: self.shard_status()?,
         })
+    }
+
+    /// Every work unit's time, peak memory and kept designs, slowest first (ties by id).
+    pub fn unit_summaries(&self) -> StoreResult<Vec<UnitSummary>> {
+        self.summaries_of(&self.work_units()?)
+    }
+
+    fn summaries_of(
+        &self,
+        units: &[(WorkUnitRecord, Vec<StageCount>)],
+    ) -> StoreResult<Vec<UnitSummary>> {
+        let mut kept: BTreeMap<String, u64> = BTreeMap::new();
+        let mut stmt = self.conn.prepare(
+            "SELECT work_unit, count(*) FROM designs WHERE work_unit IS NOT NULL
+             GROUP BY work_unit",
+        )?;
+        for row in stmt.query_map([], |r| Ok((r.get::<_, String>(0)?, r.get::<_, i64>(1)?)))? {
+            let (unit, n) = row?;
+            kept.insert(unit, n as u64);
+        }
+        let mut out: Vec<UnitSummary> = units
+            .iter()
+            .map(|(u, _)| UnitSummary {
+                designs: kept.get(&u.id).copied().unwrap_or(0),
+                id: u.id.clone(),
+                seconds: u.seconds,
+                peak_rss_bytes: u.peak_rss_bytes,
+            })
+            .collect();
+        out.sort_by(|a, b| b.seconds.total_cmp(&a.seconds).then(a.id.cmp(&b.id)));
+        Ok(out)
     }
 }

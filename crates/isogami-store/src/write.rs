@@ -4,7 +4,10 @@ use crate::checksum;
 use crate::error::{StoreError, StoreResult};
 use crate::open::StoreWriter;
 use crate::records::{DesignRecord, Origin, StageCount, UnitRecords, WorkUnitRecord};
-use crate::rows::{data_values, design_values, unit_values, DESIGN_COLUMNS, DESIGN_COLUMN_COUNT};
+use crate::rows::{
+    data_values, design_values, unit_memory_values, unit_values, DESIGN_COLUMNS,
+    DESIGN_COLUMN_COUNT,
+};
 use rusqlite::types::Value;
 use rusqlite::{params, params_from_iter, Connection};
 
@@ -26,6 +29,17 @@ pub(crate) fn insert_unit(
             checksum::of_values(&unit_values(unit, stages))
         ],
     )?;
+    if let Some(bytes) = unit.peak_rss_bytes {
+        let bytes = i64::try_from(bytes).unwrap_or(i64::MAX);
+        conn.execute(
+            "INSERT OR REPLACE INTO unit_memory(work_unit, peak_rss_bytes, checksum) VALUES (?1, ?2, ?3)",
+            params![
+                unit.id,
+                bytes,
+                checksum::of_values(&unit_memory_values(&unit.id, bytes))
+            ],
+        )?;
+    }
     let mut st = conn.prepare_cached(
         "INSERT INTO stage_counts(work_unit, position, stage, count_in, count_out, seconds)
          VALUES (?1, ?2, ?3, ?4, ?5, ?6)",

@@ -1,4 +1,4 @@
-//! `isogami merge` and `isogami db stats`.
+//! `isogami merge`, `isogami db stats`, `isogami db units` and `isogami db check-shard`.
 
 use crate::output::{emit, print_json, CliResult};
 use isogami::explore::Shard;
@@ -87,6 +87,20 @@ pub enum DbCommand {
         #[arg(long)]
         json: bool,
     },
+    /// List every work unit with its wall time, peak memory (the exploring process's resident
+    /// memory while it ran) and designs kept, slowest first: the figures for sizing a cluster
+    /// run's tasks.
+    Units {
+        /// The database.
+        #[arg(long, default_value = "isogami.db")]
+        db: PathBuf,
+        /// Only the N slowest.
+        #[arg(long, value_name = "N")]
+        top: Option<usize>,
+        /// Print JSON (a list of {id, seconds, peak_rss_bytes, designs}).
+        #[arg(long)]
+        json: bool,
+    },
     /// Check that a database made by `explore --shard I/N` holds every work unit of its shard
     /// (exit 0), or say in one line why not (exit 2): missing, not that shard, incomplete.
     CheckShard {
@@ -115,6 +129,7 @@ pub fn run(cmd: DbCommand) -> CliResult {
                 emit(&stats_table(&stats))
             }
         }
+        DbCommand::Units { db, top, json } => units_table(&db, top, json),
         DbCommand::CheckShard { db, shard, json } => check_shard(&db, &shard, json),
     }
 }
@@ -163,6 +178,36 @@ fn check_shard(db: &Path, shard: &str, json: bool) -> CliResult {
     Ok(())
 }
 
+/// Bytes as MiB with one decimal.
+fn mebibytes(bytes: u64) -> String {
+    format!("{:.1} MiB", bytes as f64 / f64::from(1u32 << 20))
+}
+
+/// `db units`: every work unit's time, peak memory and designs, slowest first.
+fn units_table(db: &Path, top: Option<usize>, json: bool) -> CliResult {
+    let store = Store::open_read(db, Check::Full).map_err(|e| at(db, e))?;
+    let mut units = store.unit_summaries().map_err(|e| at(db, e))?;
+    let total = units.len();
+    let seconds: f64 = units.iter().map(|u| u.seconds).sum();
+    units.truncate(top.unwrap_or(usize::MAX));
+    if json {
+        return print_json(&units);
+    }
+    let mut o = format!(
+        "{total} work units, {seconds:.1} s of unit time in all (slowest first)\n\n{:<14} {:>10} {:>12} {:>8}\n",
+        "unit", "seconds", "peak memory", "designs"
+    );
+    for u in &units {
+        let peak = u.peak_rss_bytes.map_or_else(|| "-".to_string(), mebibytes);
+        let _ = writeln!(
+            o,
+            "{:<14} {:>10.2} {:>12} {:>8}",
+            u.id, u.seconds, peak, u.designs
+        );
+    }
+    emit(&o)
+}
+
 /// The per-stage and per-family report.
 pub fn stats_table(s: &DbStats) -> String {
     let mut o = String::new();
@@ -186,6 +231,14 @@ pub fn stats_table(s: &DbStats) -> String {
             "incomplete"
         };
         let _ = writeln!(o, "{} {state}: {}", shard.record, shard.progress());
+    }
+    if let Some(u) = &s.slowest {
+        let _ = write!(o, "slowest unit {} ({:.1} s)", u.id, u.seconds);
+        if let Some(m) = &s.peak_memory {
+            let bytes = m.peak_rss_bytes.unwrap_or(0);
+            let _ = write!(o, "; largest peak memory {} ({})", m.id, mebibytes(bytes));
+        }
+        let _ = writeln!(o, "; per unit: isogami db units");
     }
     let _ = writeln!(
         o,

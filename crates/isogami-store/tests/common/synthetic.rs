@@ -132,6 +132,7 @@ pub fn units(base: &CatalogEntry, n: usize, seed: u64) -> Vec<UnitRecords> {
                     cell: cell.into(),
                     kind: "topology+shapes".into(),
                     seconds: 0.25,
+                    peak_rss_bytes: (id.len() % 2 == 0).then_some(64 << 20),
                 },
                 stages: vec![StageCount {
                     stage: "degree".into(),
