@@ -315,8 +315,8 @@ pub fn enumerate_topologies(
         details.push(DesignDetails {
             spec: design.to_string(),
             joints: design.joint_count(),
-            gap_decades: k.mobility.gap_decades,
-            area_rate: k.mobility.motion.as_ref().map_or(0.0, |mo| mo.area_rate),
+            gap_decades: k.gap_decades,
+            area_rate: k.area_rate,
             separation: k.separation,
             orbit_size: k.orbit_size,
             same_motion_merged: k.same_motion_merged,

@@ -70,6 +70,21 @@ impl MotionIndex {
             .min()
     }
 
+    /// Number of stored invariants.
+    pub fn len(&self) -> usize {
+        self.items.len()
+    }
+
+    /// True when nothing is stored.
+    pub fn is_empty(&self) -> bool {
+        self.items.is_empty()
+    }
+
+    /// The stored invariants, in id order.
+    pub fn into_items(self) -> Vec<MotionInvariant> {
+        self.items
+    }
+
     /// Stores `inv` and returns its id (ids count up from 0).
     pub fn insert(&mut self, inv: MotionInvariant) -> usize {
         let id = self.items.len();

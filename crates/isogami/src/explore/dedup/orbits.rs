@@ -10,19 +10,23 @@ use crate::cell::UnitCell;
 use crate::explore::separate::{separation, Separation};
 use crate::kinematics::Mechanism;
 use crate::math::Vec2;
-use crate::mobility::{analyze, Mobility, MobilitySettings};
+use crate::mobility::{analyze, MobilitySettings};
 use crate::topology::JointChoice;
 use rayon::prelude::*;
 use std::collections::BTreeSet;
 use std::time::{Duration, Instant};
 
-/// A design that survived deduplication.
+/// A design that survived deduplication: only what the report needs, so that a cell with a
+/// million distinct motions holds about 100 bytes per design plus its invariant (the full
+/// mobility analysis, eigenvalues and modes, would be several kilobytes each).
 #[derive(Debug, Clone)]
 pub struct Kept {
     /// Joint choice per unique edge: the smallest joint string of its symmetry orbit.
     pub joints: Vec<JointChoice>,
-    /// Its mobility, from `mobility::analyze` (dof = 1).
-    pub mobility: Mobility,
+    /// Its mobility's eigenvalue gap in decades, from `mobility::analyze` (dof = 1).
+    pub gap_decades: Option<f64>,
+    /// The cell area's rate of change along its motion.
+    pub area_rate: f64,
     /// Its separation verdict.
     pub separation: Separation,
     /// Size of its symmetry orbit (distinct images under the sheet's symmetries).
@@ -53,6 +57,20 @@ fn pin_count(joints: &[JointChoice]) -> usize {
     joints.iter().map(|j| j.ends().len()).sum()
 }
 
+/// A kept design while the merge runs; its invariant lives in the merge's [`MotionIndex`].
+#[derive(Debug)]
+struct Survivor {
+    joints: Vec<JointChoice>,
+    gap_decades: Option<f64>,
+    area_rate: f64,
+    separation: Separation,
+    orbit_size: usize,
+    same_motion_merged: usize,
+    /// Set when a later, more connected design took this slot: its own invariant (it matched
+    /// the stored one to the tolerance, which stays in the index for lookups).
+    replaced_invariant: Option<MotionInvariant>,
+}
+
 /// Orbit representatives analysed per parallel batch: bounds the memory held by analysed but
 /// not yet merged designs.
 const BATCH: usize = 4096;
@@ -63,8 +81,8 @@ enum Analysed {
     Unconfirmed,
     /// A repeat of a smaller cell's design.
     Repeat,
-    /// A candidate for the motion merge.
-    Candidate(Box<Kept>),
+    /// A candidate for the motion merge, with its invariant.
+    Candidate(Box<Survivor>, MotionInvariant),
 }
 
 fn analyse(
@@ -92,14 +110,18 @@ fn analyse(
     {
         return Analysed::Repeat;
     }
-    Analysed::Candidate(Box::new(Kept {
-        separation: separation(cell, mech, &joints, &v),
-        orbit_size: group.canonical_key(&joints).1,
-        invariant: motion_invariant(cell, mech, &v),
-        joints,
-        mobility: mob,
-        same_motion_merged: 0,
-    }))
+    Analysed::Candidate(
+        Box::new(Survivor {
+            separation: separation(cell, mech, &joints, &v),
+            orbit_size: group.canonical_key(&joints).1,
+            gap_decades: mob.gap_decades,
+            area_rate: mob.motion.as_ref().map_or(0.0, |mo| mo.area_rate),
+            joints,
+            same_motion_merged: 0,
+            replaced_invariant: None,
+        }),
+        motion_invariant(cell, mech, &v),
+    )
 }
 
 /// Steps 2 and 3 of [`super`] on the canonical keys of the symmetry orbits found
@@ -125,6 +147,7 @@ pub fn dedup_orbits(
         work: Duration::ZERO,
     };
     let mut index = MotionIndex::new();
+    let mut survivors: Vec<Survivor> = Vec::new();
     let keys: Vec<u64> = canonical_keys.iter().copied().collect();
     for batch in keys.chunks(BATCH) {
         let analysed: Vec<(Analysed, Duration)> = batch
@@ -137,33 +160,47 @@ pub fn dedup_orbits(
             .collect();
         for (a, time) in analysed {
             out.work += time;
-            let kept = match a {
+            let (kept, invariant) = match a {
                 Analysed::Unconfirmed => {
                     out.unconfirmed += 1;
                     continue;
                 }
                 Analysed::Repeat => continue,
-                Analysed::Candidate(k) => *k,
+                Analysed::Candidate(k, invariant) => (*k, invariant),
             };
             out.after_repeats += 1;
-            if let Some(k) = index.find(&kept.invariant, MOTION_TOL) {
+            if let Some(k) = index.find(&invariant, MOTION_TOL) {
                 // Of designs that move alike, keep the most connected one: the stiffest
                 // realisation of the motion and the one a maker builds (rotating squares with
                 // all eight hinges rather than a six-hinge subset); ties keep the smaller spec.
-                let merged = out.kept[k].same_motion_merged + 1;
-                if pin_count(&kept.joints) > pin_count(&out.kept[k].joints) {
-                    out.kept[k] = Kept {
+                let merged = survivors[k].same_motion_merged + 1;
+                if pin_count(&kept.joints) > pin_count(&survivors[k].joints) {
+                    survivors[k] = Survivor {
                         same_motion_merged: merged,
+                        replaced_invariant: Some(invariant),
                         ..kept
                     };
                 } else {
-                    out.kept[k].same_motion_merged = merged;
+                    survivors[k].same_motion_merged = merged;
                 }
                 continue;
             }
-            index.insert(kept.invariant.clone());
-            out.kept.push(kept);
+            index.insert(invariant);
+            survivors.push(kept);
         }
     }
+    out.kept = survivors
+        .into_iter()
+        .zip(index.into_items())
+        .map(|(s, stored)| Kept {
+            joints: s.joints,
+            gap_decades: s.gap_decades,
+            area_rate: s.area_rate,
+            separation: s.separation,
+            orbit_size: s.orbit_size,
+            same_motion_merged: s.same_motion_merged,
+            invariant: s.replaced_invariant.unwrap_or(stored),
+        })
+        .collect();
     out
 }
