@@ -149,3 +149,65 @@ fn a_raised_cap_runs_ih77_and_caps_do_not_mix() {
     assert_eq!(std::fs::read(&db).unwrap(), before);
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+#[test]
+fn plan_lists_what_a_run_runs_longest_first_and_touches_nothing() {
+    let d = dir("plan");
+    let db = d.join("p.db");
+    let db_arg = db.to_str().unwrap();
+    let common = ["explore", "--quick", "--families", "IH83,IH84,IH90,IH28"];
+    let (code, json, err) = run(&[&common[..], &["--db", db_arg, "--plan", "--json"]].concat());
+    assert_eq!(code, Some(0), "{err}");
+    assert!(!db.exists(), "--plan made {}", db.display());
+    let planned: Vec<serde_json::Value> = serde_json::from_str(&json).unwrap();
+    let costs: Vec<f64> = planned
+        .iter()
+        .map(|p| p["expected_cost"].as_f64().unwrap())
+        .collect();
+    assert!(costs.windows(2).all(|w| w[0] >= w[1]), "{costs:?}");
+    for p in &planned {
+        let (edges, group) = (
+            p["edges"].as_u64().unwrap(),
+            p["symmetry_group"].as_u64().unwrap(),
+        );
+        let cost = 3f64.powi(edges as i32) / group as f64;
+        assert!(
+            (p["expected_cost"].as_f64().unwrap() - cost).abs() <= 1e-9 * cost,
+            "{p}"
+        );
+    }
+    let mut ids: Vec<String> = planned
+        .iter()
+        .map(|p| p["unit"].as_str().unwrap().to_string())
+        .collect();
+    ids.sort();
+    // The run itself does exactly those units.
+    let (code, _, err) = run(&[&common[..], &["--db", db_arg]].concat());
+    assert_eq!(code, Some(0), "{err}");
+    let mut done: Vec<String> = Store::open_read(&db, Check::Full)
+        .unwrap()
+        .done_units()
+        .unwrap()
+        .into_iter()
+        .collect();
+    done.sort();
+    assert_eq!(ids, done);
+    // A bad cap is refused as for a run.
+    let none = d.join("none.db");
+    refused(
+        &[
+            &common[..],
+            &[
+                "--max-edges",
+                "30",
+                "--plan",
+                "--db",
+                none.to_str().unwrap(),
+            ],
+        ]
+        .concat(),
+        &none,
+        &["--max-edges"],
+    );
+    std::fs::remove_dir_all(&d).unwrap();
+}

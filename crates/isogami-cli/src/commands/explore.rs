@@ -49,6 +49,12 @@ pub struct Args {
     /// Print the final report as JSON.
     #[arg(long)]
     json: bool,
+    /// Print the work units this command would run, in the order they would start (longest
+    /// expected first), with each cell's unique edges, symmetry group order and relative
+    /// expected cost (3^edges / group), and run nothing: no database is opened or made.
+    /// `isogami db units` gives the measured figures of a finished run.
+    #[arg(long)]
+    plan: bool,
 }
 
 impl Args {
@@ -67,6 +73,7 @@ impl Args {
             shard: None,
             quick: true,
             json: false,
+            plan: false,
         }
     }
 }
@@ -202,9 +209,52 @@ fn empty_families(request: &ExploreRequest, units: &[WorkUnit]) -> Result<(), St
     Ok(())
 }
 
+/// One planned unit as `--plan --json` prints it.
+#[derive(serde::Serialize)]
+struct PlannedUnit {
+    unit: String,
+    #[serde(flatten)]
+    size: isogami::explore::UnitSize,
+}
+
+/// `explore --plan`: the units in start order with their sizes; nothing runs.
+fn print_plan(request: &ExploreRequest, json: bool) -> CliResult {
+    let plan = request.plan().map_err(|e| plan_error(&e, request))?;
+    let planned: Vec<PlannedUnit> = WorkUnit::longest_first(&plan.units())
+        .into_iter()
+        .filter_map(|u| u.size().map(|size| PlannedUnit { unit: u.id(), size }))
+        .collect();
+    if json {
+        return print_json(&planned);
+    }
+    let total: f64 = planned.iter().map(|p| p.size.expected_cost).sum();
+    let mut o = format!(
+        "{} work units in start order; expected cost relative to the whole plan \
+         (3^edges / symmetry group)\n\n{:<12} {:>5} {:>6} {:>9}\n",
+        planned.len(),
+        "unit",
+        "edges",
+        "group",
+        "share %"
+    );
+    for p in &planned {
+        o.push_str(&format!(
+            "{:<12} {:>5} {:>6} {:>9.3}\n",
+            p.unit,
+            p.size.edges,
+            p.size.symmetry_group,
+            100.0 * p.size.expected_cost / total.max(f64::MIN_POSITIVE)
+        ));
+    }
+    emit(&o)
+}
+
 /// Explores and prints the per-family, per-stage report.
 pub fn run(args: Args) -> CliResult {
     let request = request_of(&args)?;
+    if args.plan {
+        return print_plan(&request, args.json);
+    }
     let bar = ProgressBar::new(0);
     bar.set_style(
         ProgressStyle::with_template(

@@ -38,6 +38,6 @@ pub use pipeline::{
     cells_to_explore, duplicates_across, enumerate_topologies, DesignDetails, StageTimings,
     TopologyOptions, TopologyReport,
 };
-pub use plan::{ExplorePlan, Shard, WorkUnit, MAX_SHARDS};
+pub use plan::{ExplorePlan, Shard, UnitSize, WorkUnit, MAX_SHARDS};
 pub use reduced::{MaskVerdict, ReducedGraph, ReducedResult, MAX_REDUCED_EDGES};
 pub use separate::{edge_rates, separation, EdgeRate, Separation, SeparationRule};

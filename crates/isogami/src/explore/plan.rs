@@ -34,7 +34,29 @@ impl WorkUnit {
     }
 }
 
+/// How big a work unit is, known before running it.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct UnitSize {
+    /// Unique edges of the cell.
+    pub edges: usize,
+    /// Order of the sheet's symmetry group.
+    pub symmetry_group: usize,
+    /// [`WorkUnit::expected_cost`].
+    pub expected_cost: f64,
+}
+
 impl WorkUnit {
+    /// The unit's size, or None when its cell cannot be built.
+    pub fn size(&self) -> Option<UnitSize> {
+        let cell = UnitCell::new(&Tiling::default_for(self.family), self.dims).ok()?;
+        let group = SymmetryGroup::new(&cell).len().max(1);
+        Some(UnitSize {
+            edges: cell.edges.len(),
+            symmetry_group: group,
+            expected_cost: 3f64.powi(cell.edges.len() as i32) / group as f64,
+        })
+    }
+
     /// A relative estimate of the unit's running time, for handing out the longest units
     /// first: 3^m / |G|, with m the cell's unique edges and |G| the order of the sheet's
     /// symmetry group. Each edge is free, jointed at A or jointed at B, and the enumeration
@@ -43,11 +65,7 @@ impl WorkUnit {
     /// thousands of unique topologies are all deployed) first. Not a time: only the order
     /// matters. 0 for a cell that cannot be built (it fails at once).
     pub fn expected_cost(&self) -> f64 {
-        let Ok(cell) = UnitCell::new(&Tiling::default_for(self.family), self.dims) else {
-            return 0.0;
-        };
-        let group = SymmetryGroup::new(&cell).len().max(1);
-        3f64.powi(cell.edges.len() as i32) / group as f64
+        self.size().map_or(0.0, |s| s.expected_cost)
     }
 
     /// `units` ordered by [`WorkUnit::expected_cost`], largest first (ties keep the order
