@@ -15,6 +15,8 @@
 //! | `GET /api/export?design=&format=&…` | a design's export as a download |
 //! | `POST /api/deploy` | a live deployment of a posted design |
 //! | `POST /api/designs` | save a posted design as a user design |
+//! | `GET /api/shape?design=` | generic or special over the shape space; constraints, pinned |
+//! | `POST /api/shape/follow` | move one shape parameter, the others following the constraints |
 //! | `GET /api/inverse` | inverse design's defaults, caps, saving allowed, running job |
 //! | `POST /api/inverse` | start an inverse-design job (202 `{id}`; 409 while one runs) |
 //! | `GET /api/inverse/{id}` | its state, progress, leaders, result |
@@ -26,6 +28,7 @@ mod catalogue;
 mod design;
 mod export;
 mod inverse;
+mod shape;
 
 use crate::error::ApiError;
 use crate::state::AppState;
@@ -47,6 +50,8 @@ pub fn router(state: AppState) -> Router {
         .route("/thumbnail", get(design::thumbnail))
         .route("/gif", get(design::gif))
         .route("/deploy", post(design::deploy_live))
+        .route("/shape", get(shape::mobility))
+        .route("/shape/follow", post(shape::follow_shape))
         .route("/export", get(export::export))
         .route("/export/formats", get(export::formats))
         .route("/inverse", get(inverse::settings).post(inverse::start))
