@@ -104,6 +104,21 @@ class ServerData {
     });
   }
 
+  /** Shape class, constraints and pinned parameters of a design (GET /api/shape). */
+  shape(spec, signal) {
+    return getJson(`./api/shape?design=${encodeURIComponent(spec)}`, { signal });
+  }
+
+  /** Moves shape parameter `index` to `value`, the others following the constraints that
+   * keep one degree of freedom (POST /api/shape/follow). */
+  followShape(spec, index, value) {
+    return getJson('./api/shape/follow', {
+      method: 'POST',
+      headers: { 'content-type': 'application/json' },
+      body: JSON.stringify({ design: spec, index, value }),
+    });
+  }
+
   save(body) {
     return getJson('./api/designs', {
       method: 'POST',

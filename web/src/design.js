@@ -59,6 +59,10 @@ async function main() {
   });
   editor = createEditor($('editor'), {
     live: data.live,
+    // Static copies have no shape analysis: the sliders then say nothing about it.
+    shape: data.live
+      ? { classify: (spec, signal) => data.shape(spec, signal), follow: (spec, i, v) => data.followShape(spec, i, v) }
+      : null,
     reason: 'Live design needs `isogami serve`: this is a static copy of the catalogue. Run `isogami serve --db FILE` to tune designs.',
     onChange: (spec, kerf) => requestDeploy(spec, kerf),
   });

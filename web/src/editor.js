@@ -4,9 +4,16 @@
 // its joint none → A → B → both (welded) → none. Every change composes a spec string
 // FAMILY:PARAMS:CELL:JOINTS and calls `onChange(spec, kerf)`; the design page deploys it.
 // In static mode the controls are shown disabled with the reason.
+//
+// Shape-aware sliders (with `shape`, server mode): the design's shape class is shown over the
+// sliders. A special design keeps one degree of freedom only on some shapes, so moving one
+// of its sliders asks the server to follow (shape.js's FollowQueue) and sets every slider to
+// the answer before deploying; pinned parameters' sliders are disabled with the reason. A
+// "move freely" box restores the plain behaviour (which breaks such a design's motion).
 
 import * as d3 from 'd3';
 import { fmt, h } from './dom.js';
+import { FollowQueue, pinnedSet, shapeStatusText, shouldFollow } from './shape.js';
 
 const CYCLE = { '-': 'a', a: 'b', b: 'x', x: '-' };
 const JOINT_NAMES = { '-': 'no joint', a: 'joint at end A', b: 'joint at end B', x: 'joints at both ends (welded)' };
@@ -29,14 +36,104 @@ export function kerfFromSlider(s) {
   return Number((10 ** s).toPrecision(3));
 }
 
-export function createEditor(container, { live, onChange, reason }) {
+export function createEditor(container, { live, onChange, reason, shape = null }) {
   let design = null; // {family, params, cell, joints}
   let kerf = 0.01;
   let info = null; // FamilyInfo
   let geometry = null;
   let tilesClosed = null;
+  let shapeInfo = null; // GET /api/shape of the design, or {error}
+  let classified = null; // the spec shapeInfo belongs to (or is being fetched for)
+  let classifying = null; // AbortController of the running classification
+  let free = false; // move sliders freely, ignoring the shape constraints
+  let inputs = [];
+  let outputs = [];
 
   const fire = () => onChange(composeSpec(design), kerf);
+
+  const shapeStatus = h('p', { class: 'help shape-status', testid: 'shape-status', 'aria-live': 'polite' });
+  const freeBox = h('input', {
+    type: 'checkbox',
+    id: 'shape-free',
+    testid: 'shape-free',
+    onchange: (e) => {
+      free = e.target.checked;
+      queue.clear();
+      showShape();
+    },
+  });
+  const freeLabel = h(
+    'label',
+    { class: 'shape-free', for: 'shape-free', hidden: true },
+    freeBox,
+    ' move sliders freely (a special design stops moving)',
+  );
+
+  const queue = new FollowQueue((k, value) => shape.follow(composeSpec(design), k, value), {
+    onAnswer: (answer) => {
+      design.params = [...answer.params];
+      classified = composeSpec(design); // same class along the constraints
+      showParams();
+      const moved = answer.adjusted.filter((x) => Math.abs(x) > 1e-9).length;
+      shapeStatus.textContent = `${shapeStatusText(shapeInfo)} (${moved} parameter${moved === 1 ? '' : 's'} moved)`;
+      fire();
+    },
+    onError: (e) => {
+      // Back to the last design that moves; say why.
+      showParams();
+      shapeStatus.textContent = `${e.message}${e.hint ? ` — ${e.hint}` : ''}`;
+    },
+  });
+
+  /** Sliders and their numbers from `design.params` (after a follow or a refusal). */
+  function showParams() {
+    design.params.forEach((value, k) => {
+      const input = inputs[k];
+      if (!input) return;
+      input.min = String(Math.min(Number(input.min), value));
+      input.max = String(Math.max(Number(input.max), value));
+      input.value = String(value);
+      outputs[k].textContent = fmt(value);
+      outputs[k].title = String(value);
+    });
+  }
+
+  /** Class words, pinned sliders and the free box from `shapeInfo`. */
+  function showShape() {
+    shapeStatus.textContent = shapeStatusText(shapeInfo, { free });
+    freeLabel.hidden = !(shapeInfo && shapeInfo.class === 'special');
+    const pinned = pinnedSet(shapeInfo, { free });
+    inputs.forEach((input, k) => {
+      input.disabled = !live || pinned.has(k);
+      input.title = pinned.has(k)
+        ? `v${k} is pinned: no change of it keeps this sheet moving (tick "move sliders freely" to move it anyway)`
+        : '';
+    });
+  }
+
+  /** Classifies the design being edited unless it already is (server mode only). */
+  async function classify() {
+    if (!shape || !live || !design || !design.params.length) {
+      shapeInfo = null;
+      showShape();
+      return;
+    }
+    const spec = composeSpec(design);
+    if (spec === classified) return;
+    classified = spec;
+    if (classifying) classifying.abort();
+    const controller = new AbortController();
+    classifying = controller;
+    try {
+      const answer = await shape.classify(spec, controller.signal);
+      if (classified !== spec) return;
+      shapeInfo = answer;
+    } catch (e) {
+      if (e.name === 'AbortError' || classified !== spec) return;
+      shapeInfo = { error: e.message };
+    }
+    showShape();
+  }
 
   const sliders = h('div', { class: 'sliders' });
   const kerfBox = h('div', { class: 'slider' });
@@ -45,6 +142,8 @@ export function createEditor(container, { live, onChange, reason }) {
   container.replaceChildren(
     ...(live ? [] : [h('p', { class: 'notice notice-static', testid: 'live-unavailable' }, reason)]),
     h('h3', {}, 'Shape parameters'),
+    shapeStatus,
+    freeLabel,
     sliders,
     h('h3', {}, 'Kerf'),
     kerfBox,
@@ -55,6 +154,8 @@ export function createEditor(container, { live, onChange, reason }) {
 
   function renderSliders() {
     const defaults = info ? info.default_params : design.params;
+    inputs = [];
+    outputs = [];
     sliders.replaceChildren(
       ...design.params.map((value, k) => {
         const [lo, hi] = paramRange(defaults[k] ?? value);
@@ -72,12 +173,20 @@ export function createEditor(container, { live, onChange, reason }) {
           disabled: !live,
           testid: `param-v${k}`,
           oninput: (e) => {
-            design.params[k] = Number(Number(e.target.value).toFixed(4));
-            out.textContent = fmt(design.params[k]);
-            out.title = String(design.params[k]);
+            const target = Number(Number(e.target.value).toFixed(4));
+            out.textContent = fmt(target);
+            out.title = String(target);
+            if (shouldFollow(shapeInfo, { free })) {
+              queue.move(k, target);
+              return;
+            }
+            design.params[k] = target;
             fire();
+            classifySoon();
           },
         });
+        inputs.push(input);
+        outputs.push(out);
         return h('div', { class: 'slider' }, h('label', { for: id }, `v${k}`), input, out);
       }),
     );
@@ -102,6 +211,13 @@ export function createEditor(container, { live, onChange, reason }) {
       }),
       out,
     );
+  }
+
+  let classifyTimer = null;
+  /** Classifies again shortly after the topology or a freely moved shape changed. */
+  function classifySoon() {
+    clearTimeout(classifyTimer);
+    classifyTimer = setTimeout(classify, 250);
   }
 
   function renderCell() {
@@ -164,6 +280,7 @@ export function createEditor(container, { live, onChange, reason }) {
       chars[e.i] = CYCLE[chars[e.i]] ?? '-';
       design.joints = chars.join('');
       renderCell();
+      classifySoon();
       const again = cellBox.querySelector(`[data-testid="edge-${e.i}"]`);
       if (again) again.focus();
       fire();
@@ -199,12 +316,20 @@ export function createEditor(container, { live, onChange, reason }) {
       takeGeometry(view);
       renderSliders();
       renderCell();
+      classified = null;
+      shapeInfo = null;
+      showShape();
+      classify();
     },
     /** Redraws the cell of a fresh deployment of the design being edited, leaving the sliders
      * alone (the user may still be dragging one). */
     showGeometry(view) {
       takeGeometry(view);
       renderCell();
+    },
+    /** The shape classification shown (GET /api/shape), or null. */
+    shapeClass() {
+      return shapeInfo;
     },
     /** The design as edited. */
     current() {
