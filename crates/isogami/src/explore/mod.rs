@@ -15,15 +15,19 @@
 //!    one design per motion.
 //! 5. [`pipeline`] — the stages strung together with counts and timings per stage, and the
 //!    list of cells (a×b up to 4×4 with at most 16 unique edges) to explore per family.
-//! 6. [`plan`] — the run's deterministic list of work units (family × cell) and the slice of
+//! 6. [`motion_classes`] — after the run: topologies of different cells and families whose
+//!    motions match, grouped (distinct motions across the whole database).
+//! 7. [`plan`] — the run's deterministic list of work units (family × cell) and the slice of
 //!    it that shard I of N takes.
 //!
-//! Plain data in and out, deterministic, single-threaded, no I/O. Deployment of the kept
+//! Plain data in and out, deterministic (parallel work never changes a result), no I/O.
+//! Deployment of the kept
 //! designs, the expansion threshold and shape sampling (§4.2) are later stages.
 
 pub mod dedup;
 mod error;
 pub mod expand;
+pub mod motion_classes;
 pub mod pipeline;
 pub mod plan;
 pub mod reduced;
@@ -34,6 +38,7 @@ pub use dedup::{
 };
 pub use error::ExploreError;
 pub use expand::{ExpandStats, Expander, Leaf};
+pub use motion_classes::{motion_classes, topology_motion};
 pub use pipeline::{
     cells_to_explore, duplicates_across, enumerate_topologies, DesignDetails, StageTimings,
     TopologyOptions, TopologyReport,
