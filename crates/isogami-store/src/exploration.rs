@@ -241,6 +241,13 @@ pub fn explore_into(
         }
         Ok(())
     })?;
+    // The classes span the whole file: recomputed when units came in (or were never made), so
+    // a rerun that adds nothing leaves the file as it was.
+    let unclassed =
+        store.design_count()? > 0 && store.motion_counts()?.is_none_or(|c| c.topologies == 0);
+    if committed > 0 || unclassed {
+        store.refresh_motion_classes()?;
+    }
     let stats = store.stats()?;
     Ok(ExploreOutcome {
         planned,

@@ -42,6 +42,7 @@ mod from_catalog;
 mod inverse_results;
 mod lock;
 mod merge;
+mod motions;
 mod open;
 mod peak_memory;
 pub mod query;
@@ -64,6 +65,7 @@ pub use file::sidecar_paths;
 pub use from_catalog::POISSON_OPEN_FRACTION;
 pub use inverse_results::SavedDesign;
 pub use merge::MergeReport;
+pub use motions::{MotionClass, MotionCounts, MotionVariant};
 pub use open::{Check, RunInfo, Store, StoreWriter};
 pub use query::{DesignQuery, Facet, FacetCount, FacetValue, Measure, Page, SortKey};
 pub use records::{

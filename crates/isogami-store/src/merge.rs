@@ -68,6 +68,9 @@ impl StoreWriter {
             }
         }
         tx.commit()?;
+        if report.units_added + report.user_designs_added > 0 {
+            self.refresh_motion_classes()?;
+        }
         Ok(report)
     }
 }

@@ -345,7 +345,7 @@ impl StoreWriter {
             _lock: lock,
         };
         writer.check_file(check).map_err(as_damage)?;
-        writer.conn.execute_batch(crate::schema::UNIT_MEMORY)?;
+        writer.conn.execute_batch(crate::schema::OPTIONAL_TABLES)?;
         if let Some(run) = run {
             match writer.settings()? {
                 None => {

@@ -275,6 +275,11 @@ pub(crate) fn unit_memory_values(unit: &str, peak_rss_bytes: i64) -> [Value; 2] 
     [text(unit), Value::Integer(peak_rss_bytes)]
 }
 
+/// The values of a `motion_classes` row covered by its checksum.
+pub(crate) fn motion_class_values(topology: &str, representative: &str) -> [Value; 2] {
+    [text(topology), text(representative)]
+}
+
 /// The values of a `meta` row covered by its checksum.
 pub(crate) fn meta_values(key: &str, value: &str) -> [Value; 2] {
     [text(key), text(value)]

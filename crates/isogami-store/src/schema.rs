@@ -18,6 +18,10 @@
 //!   it, with a checksum. Writers create it when missing, so databases made before it existed
 //!   read as before (their units have no figure) and needed no new schema version.
 //!
+//! - `motion_classes` (optional): per topology, the representative of its class of topologies
+//!   that move alike across cells and families (`motions.rs`), with a checksum; recomputed by
+//!   writers, absent in files made before it existed.
+//!
 //! The file is marked with SQLite's `application_id` so that other programs' databases are
 //! told apart before anything is read, and uses a rollback journal (not WAL) so that readers
 //! never create files beside it.
@@ -38,13 +42,20 @@ pub(crate) const TABLES: [&str; 5] = [
     "design_data",
 ];
 
-/// The optional per-unit memory table (see the module docs); a writer creates it when missing.
-pub(crate) const UNIT_MEMORY: &str = "
+/// The optional tables (see the module docs); a writer creates them when missing.
+pub(crate) const OPTIONAL_TABLES: &str = "
 CREATE TABLE IF NOT EXISTS unit_memory (
     work_unit      TEXT PRIMARY KEY REFERENCES work_units(id),
     peak_rss_bytes INTEGER NOT NULL,
     checksum       INTEGER NOT NULL
 );
+CREATE TABLE IF NOT EXISTS motion_classes (
+    topology       TEXT PRIMARY KEY,
+    representative TEXT NOT NULL,
+    checksum       INTEGER NOT NULL
+);
+CREATE INDEX IF NOT EXISTS motion_classes_representative ON motion_classes(representative);
+CREATE INDEX IF NOT EXISTS designs_topology ON designs(topology);
 ";
 
 /// Shape parameter columns p0…p5 (isohedral families have at most six parameters).

@@ -57,6 +57,9 @@ pub struct DbStats {
     pub stages: Vec<StageCount>,
     /// Per family.
     pub families: BTreeMap<String, FamilyStats>,
+    /// Distinct motions across cells and families (None when not computed yet).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub motions: Option<crate::MotionCounts>,
     /// The work unit with the largest peak memory and that peak, when any was measured.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub peak_memory: Option<UnitSummary>,
@@ -149,6 +152,7 @@ impl Store {
             families,
             peak_memory,
             slowest,
+            motions: self.motion_counts()?,
             shard: self.shard_status()?,
         })
     }

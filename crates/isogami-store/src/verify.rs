@@ -10,6 +10,7 @@ impl Store {
     /// Verifies every row of the database (SQLite's own check runs when opening).
     pub(crate) fn verify_rows(&self) -> StoreResult<()> {
         self.work_units()?;
+        self.motion_classes()?;
         let orphans: i64 = self.conn.query_row(
             "SELECT (SELECT count(*) FROM designs WHERE id NOT IN (SELECT design FROM design_data))
                   + (SELECT count(*) FROM design_data WHERE design NOT IN (SELECT id FROM designs))

@@ -1,4 +1,5 @@
-//! `isogami merge`, `isogami db stats`, `isogami db units` and `isogami db check-shard`.
+//! `isogami merge`, `isogami db stats`, `isogami db units`, `isogami db motions` and
+//! `isogami db check-shard`.
 
 use crate::output::{emit, print_json, CliResult};
 use isogami::explore::Shard;
@@ -101,6 +102,20 @@ pub enum DbCommand {
         #[arg(long)]
         json: bool,
     },
+    /// List the distinct motions: classes of topologies (in different cells or families) that
+    /// move alike, biggest first, each with its topologies, families, cells and an example
+    /// design.
+    Motions {
+        /// The database.
+        #[arg(long, default_value = "isogami.db")]
+        db: PathBuf,
+        /// Also list the motions found only once (by default only shared ones are listed).
+        #[arg(long)]
+        all: bool,
+        /// Print JSON (every class with its variants).
+        #[arg(long)]
+        json: bool,
+    },
     /// Check that a database made by `explore --shard I/N` holds every work unit of its shard
     /// (exit 0), or say in one line why not (exit 2): missing, not that shard, incomplete.
     CheckShard {
@@ -130,6 +145,7 @@ pub fn run(cmd: DbCommand) -> CliResult {
             }
         }
         DbCommand::Units { db, top, json } => units_table(&db, top, json),
+        DbCommand::Motions { db, all, json } => motions_table(&db, all, json),
         DbCommand::CheckShard { db, shard, json } => check_shard(&db, &shard, json),
     }
 }
@@ -208,6 +224,50 @@ fn units_table(db: &Path, top: Option<usize>, json: bool) -> CliResult {
     emit(&o)
 }
 
+/// `db motions`: the classes of topologies that move alike.
+fn motions_table(db: &Path, all: bool, json: bool) -> CliResult {
+    let store = Store::open_read(db, Check::Full).map_err(|e| at(db, e))?;
+    let classes = store
+        .motion_classes()
+        .map_err(|e| at(db, e))?
+        .ok_or_else(|| {
+            format!(
+                "{}: no motion classes yet (made by an older isogami); run `isogami explore` \
+                 with the same settings on it once to add them",
+                db.display()
+            )
+        })?;
+    if json {
+        return print_json(&classes);
+    }
+    let shared = classes.iter().filter(|c| c.variants.len() > 1).count();
+    let mut o = format!(
+        "{} topologies, {} distinct motions, {shared} found in several cells or families\n",
+        classes.iter().map(|c| c.variants.len()).sum::<usize>(),
+        classes.len()
+    );
+    for (k, c) in classes.iter().enumerate() {
+        if c.variants.len() < 2 && !all {
+            continue;
+        }
+        let _ = writeln!(
+            o,
+            "\nmotion {} ({} topologies, {} families)",
+            k + 1,
+            c.variants.len(),
+            c.families()
+        );
+        for v in &c.variants {
+            let _ = writeln!(
+                o,
+                "  {:<6} {:<4} {:>3} designs  {}",
+                v.family, v.cell, v.designs, v.topology
+            );
+        }
+    }
+    emit(&o)
+}
+
 /// The per-stage and per-family report.
 pub fn stats_table(s: &DbStats) -> String {
     let mut o = String::new();
@@ -231,6 +291,14 @@ pub fn stats_table(s: &DbStats) -> String {
             "incomplete"
         };
         let _ = writeln!(o, "{} {state}: {}", shard.record, shard.progress());
+    }
+    if let Some(m) = &s.motions {
+        let _ = writeln!(
+            o,
+            "{} topologies, {} distinct motions ({} found in several cells or families, {} across \
+             families); per class: isogami db motions",
+            m.topologies, m.motions, m.shared, m.across_families
+        );
     }
     if let Some(u) = &s.slowest {
         let _ = write!(o, "slowest unit {} ({:.1} s)", u.id, u.seconds);
