@@ -104,6 +104,11 @@ class ServerData {
     });
   }
 
+  /** The class of topologies that move like the stored design `spec` ({class: … | null}). */
+  motion(spec) {
+    return getJson(`./api/motion?spec=${encodeURIComponent(spec)}`);
+  }
+
   /** Shape class, constraints and pinned parameters of a design (GET /api/shape). */
   shape(spec, signal) {
     return getJson(`./api/shape?design=${encodeURIComponent(spec)}`, { signal });

@@ -17,6 +17,7 @@ import { designSearch, parseDesignState } from './url.js';
 import { download, fileStem, frameSvg, trajectoryCsv } from './export.js';
 import { facetLabel } from './schema.js';
 import { createExportPanel } from './export-panel.js';
+import { createMotionPanel } from './motion-panel.js';
 
 const $ = (id) => document.getElementById(id);
 const PLAY_SECONDS = 4; // t from 0 to 1 at speed 1
@@ -57,6 +58,7 @@ async function main() {
     current: () => (view ? { spec: view.spec, kerf: view.report.kerf, t: state.t } : null),
     initial: { rows: state.rows, cols: state.cols },
   });
+  motionPanel = createMotionPanel($('motion-section'), $('motion-variants'), { data });
   editor = createEditor($('editor'), {
     live: data.live,
     // Static copies have no shape analysis: the sliders then say nothing about it.
@@ -70,6 +72,7 @@ async function main() {
 }
 
 let plots;
+let motionPanel;
 
 /** The stored design, or a live deployment when it is not stored or another kerf is asked. */
 async function load() {
@@ -168,6 +171,7 @@ function showView(v, { fromEditor }) {
   renderLegend();
   if (fromEditor) editor.showGeometry(v);
   else editor.sync(v, families);
+  motionPanel.show(v.spec, v.origin !== null && v.origin !== undefined);
   document.title = `${v.spec} · isogami`;
   setStatus(fromEditor ? `re-simulated: ${frames.length} frames, ${v.report.steps} steps` : '');
   document.body.dataset.deployments = String(Number(document.body.dataset.deployments || 0) + 1);

@@ -439,3 +439,34 @@ fn db_units_lists_every_unit_with_its_time_and_peak_memory() {
     assert_eq!(err.lines().count(), 1, "{err}");
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+#[test]
+fn db_motions_lists_shared_motions_and_stats_counts_them() {
+    let d = dir("motions");
+    let db = d.join("m.db");
+    explore_families("IH28,IH29,IH83,IH90", &db, &[]);
+    let db_arg = db.to_str().unwrap();
+    let (code, json, err) = run(&["db", "motions", "--db", db_arg, "--json"]);
+    assert_eq!(code, Some(0), "{err}");
+    let classes: Vec<serde_json::Value> = serde_json::from_str(&json).unwrap();
+    let sizes: Vec<usize> = classes
+        .iter()
+        .map(|c| c["variants"].as_array().unwrap().len())
+        .collect();
+    assert!(sizes.windows(2).all(|w| w[0] >= w[1]), "{sizes:?}");
+    let shared = sizes.iter().filter(|&&n| n > 1).count();
+    assert!(shared >= 2, "{sizes:?}");
+    let (code, table, _) = run(&["db", "motions", "--db", db_arg]);
+    assert_eq!(code, Some(0));
+    assert_eq!(table.matches("\nmotion ").count(), shared, "{table}");
+    let (_, all, _) = run(&["db", "motions", "--db", db_arg, "--all"]);
+    assert_eq!(all.matches("\nmotion ").count(), classes.len(), "{all}");
+    let (_, stats, _) = run(&["db", "stats", "--db", db_arg]);
+    let line = format!(
+        "{} topologies, {} distinct motions ({shared} found in several",
+        sizes.iter().sum::<usize>(),
+        classes.len()
+    );
+    assert!(stats.contains(&line), "{stats}");
+    std::fs::remove_dir_all(&d).unwrap();
+}

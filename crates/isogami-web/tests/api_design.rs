@@ -397,3 +397,42 @@ async fn read_only_servers_and_refused_saves_leave_the_database_as_it_was() {
     assert_eq!(std::fs::read(&db).unwrap(), bytes, "database changed");
     assert_eq!(summaries(&db).len(), summaries(&catalogue().db).len());
 }
+
+#[tokio::test]
+async fn a_stored_design_has_its_motion_class_and_a_live_one_none() {
+    let app = app();
+    let rows = summaries(&catalogue().db);
+    for s in &rows {
+        let reply = get(&app, &format!("/api/motion?spec={}", enc(&s.spec)))
+            .await
+            .ok();
+        assert_eq!(reply["topology"], s.topology.as_str());
+        let class = &reply["class"];
+        let variants = class["variants"].as_array().unwrap();
+        let mine: Vec<&Value> = variants
+            .iter()
+            .filter(|v| v["topology"] == s.topology.as_str())
+            .collect();
+        assert_eq!(mine.len(), 1, "{}: {class}", s.spec);
+        // Its example is a stored design of that topology.
+        let example = mine[0]["example"].as_str().unwrap();
+        let of_example = rows.iter().find(|r| r.spec == example).unwrap();
+        assert_eq!(of_example.topology, s.topology);
+        assert_eq!(
+            mine[0]["designs"].as_u64().unwrap() as usize,
+            rows.iter().filter(|r| r.topology == s.topology).count()
+        );
+    }
+    assert!(!rows.is_empty());
+    let live = nudged(rows.iter().find(|r| !r.params.is_empty()).unwrap(), 0.01);
+    let reply = get(&app, &format!("/api/motion?spec={}", enc(&live)))
+        .await
+        .ok();
+    assert_eq!(reply["class"], Value::Null);
+    assert_eq!(reply["topology"], Value::Null);
+    assert_error(
+        &get(&app, "/api/motion").await,
+        StatusCode::BAD_REQUEST,
+        "no spec",
+    );
+}

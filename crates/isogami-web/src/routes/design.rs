@@ -59,6 +59,25 @@ pub async fn stored(
     Ok(Json(stored_view(&state, spec).await?))
 }
 
+/// `GET /api/motion?spec=`: the class of topologies (in other cells and families) that move
+/// like the stored design's topology, as `{"topology": spec | null, "class": MotionClass |
+/// null}`; nulls for a design that is not stored, a class null for a database whose classes
+/// are not computed.
+pub async fn motion(
+    State(state): State<AppState>,
+    RawQuery(raw): RawQuery,
+) -> ApiResult<Json<serde_json::Value>> {
+    let spec = spec_param(raw.as_deref(), &[])?;
+    let (topology, class) = state
+        .read(move |s| {
+            let key = resolve_design(&spec).map_or(spec.clone(), |d| d.to_string());
+            let topology = s.design(&key)?.map(|d| d.summary.topology);
+            Ok((topology, s.motion_class_of(&key)?))
+        })
+        .await?;
+    Ok(Json(json!({ "topology": topology, "class": class })))
+}
+
 /// `GET /api/thumbnail?spec=`.
 pub async fn thumbnail(
     State(state): State<AppState>,

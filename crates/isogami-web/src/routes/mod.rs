@@ -10,6 +10,7 @@
 //! | `GET /api/scatter?x=&y=&filters` | two measures of every matching design |
 //! | `GET /api/design?spec=` | the design view of a stored design |
 //! | `GET /api/thumbnail?spec=` | its thumbnail (SVG) |
+//! | `GET /api/motion?spec=` | the same motion in other cells and families (its class) |
 //! | `GET /api/gif?spec=[&kerf=]` | its deployment as an animated GIF |
 //! | `GET /api/export/formats` | export formats, their settings fields, defaults and limits |
 //! | `GET /api/export?design=&format=&…` | a design's export as a download |
@@ -48,6 +49,7 @@ pub fn router(state: AppState) -> Router {
         .route("/scatter", get(catalogue::scatter))
         .route("/design", get(design::stored))
         .route("/thumbnail", get(design::thumbnail))
+        .route("/motion", get(design::motion))
         .route("/gif", get(design::gif))
         .route("/deploy", post(design::deploy_live))
         .route("/shape", get(shape::mobility))

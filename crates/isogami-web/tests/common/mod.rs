@@ -67,6 +67,8 @@ pub fn catalogue() -> &'static Catalogue {
                 .commit_unit(&UnitRecords::from_outcome(&outcome, 0.25).unwrap())
                 .unwrap();
         }
+        // As `explore_into` does after committing units.
+        writer.refresh_motion_classes().unwrap();
         drop(writer);
         Catalogue {
             db,
