@@ -285,3 +285,10 @@ export async function downloadText(page, click) {
   const path = await dl.path();
   return { name: dl.suggestedFilename(), text: await readFile(path, 'utf8') };
 }
+
+/** Opens the design page of `spec` on the server at `base` and waits for its first
+ * deployment to be shown. */
+export async function openDesign(page, base, spec, extra = '') {
+  await page.goto(`${base}/design.html?spec=${encodeURIComponent(spec)}${extra}`);
+  await page.waitForFunction(() => Number(document.body.dataset.deployments || 0) >= 1);
+}

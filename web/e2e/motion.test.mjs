@@ -5,7 +5,9 @@
 
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { allApiRows, byTestId, getJson, launchBrowser, newPage, problems, startServer } from './harness.mjs';
+import {
+  allApiRows, byTestId, getJson, launchBrowser, newPage, openDesign as openHarnessDesign, problems, startServer,
+} from './harness.mjs';
 
 let server;
 let browser;
@@ -31,10 +33,7 @@ after(async () => {
   await server?.stop();
 });
 
-async function openDesign(page, spec) {
-  await page.goto(`${server.base}/design.html?spec=${encodeURIComponent(spec)}`);
-  await page.waitForFunction(() => Number(document.body.dataset.deployments || 0) >= 1);
-}
+const openDesign = (page, spec) => openHarnessDesign(page, server.base, spec);
 
 test('a shared motion lists its other cells and families, and the links lead back', async () => {
   const page = await newPage(browser);

@@ -5,7 +5,9 @@
 
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { byTestId, launchBrowser, newPage, problems as allProblems, startServer } from './harness.mjs';
+import {
+  byTestId, launchBrowser, newPage, openDesign as openHarnessDesign, problems as allProblems, startServer,
+} from './harness.mjs';
 
 // These designs are not in the database: the page asks for the stored one first (404), then
 // deploys it live.
@@ -31,10 +33,7 @@ after(async () => {
   await server?.stop();
 });
 
-async function openDesign(page, spec) {
-  await page.goto(`${server.base}/design.html?spec=${encodeURIComponent(spec)}`);
-  await page.waitForFunction(() => Number(document.body.dataset.deployments || 0) >= 1);
-}
+const openDesign = (page, spec) => openHarnessDesign(page, server.base, spec);
 
 const deployments = (page) => page.evaluate(() => Number(document.body.dataset.deployments || 0));
 const paramsOf = (spec) => spec.split(':')[1].split(',').map(Number);

@@ -45,7 +45,17 @@ impl ApiError {
         }
     }
 
-    /// 400: a query parameter or body field that cannot be used.
+    /// The status of a posted body that could not be read (missing, oversized), `bad_body`.
+    pub fn bad_body(e: &axum::extract::rejection::BytesRejection) -> ApiError {
+        ApiError::new(
+            e.status(),
+            "bad_body",
+            format!("request body: {}", e.body_text()),
+            "send at most 64 KiB of JSON",
+        )
+    }
+
+    /// 400 `bad_parameter`: a request value that cannot be used, with the message.
     pub fn bad_parameter(message: impl Into<String>) -> ApiError {
         ApiError::new(
             StatusCode::BAD_REQUEST,

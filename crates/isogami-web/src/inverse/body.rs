@@ -62,14 +62,7 @@ fn over_limit(what: &str, value: usize, cap: usize) -> ApiError {
 impl InverseBody {
     /// Reads a posted body, with a 4xx JSON error for a missing, oversized or malformed one.
     pub fn from_request(body: Result<Bytes, BytesRejection>) -> ApiResult<InverseBody> {
-        let bytes = body.map_err(|e| {
-            ApiError::new(
-                e.status(),
-                "bad_body",
-                format!("request body: {}", e.body_text()),
-                "send at most 64 KiB of JSON",
-            )
-        })?;
+        let bytes = body.map_err(|e| ApiError::bad_body(&e))?;
         serde_json::from_slice(&bytes).map_err(|e| {
             ApiError::bad_parameter(format!(
                 "request body is not {{\"target\": …, \"top\": …, \"budget\": …}}: {e}"

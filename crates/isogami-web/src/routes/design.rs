@@ -142,14 +142,7 @@ pub async fn gif(State(state): State<AppState>, RawQuery(raw): RawQuery) -> ApiR
 
 /// The JSON body of a POST, with a 4xx JSON error for a missing, oversized or malformed one.
 fn body_json(body: Result<Bytes, BytesRejection>) -> ApiResult<LiveRequest> {
-    let bytes = body.map_err(|e| {
-        ApiError::new(
-            e.status(),
-            "bad_body",
-            format!("request body: {}", e.body_text()),
-            "send at most 64 KiB of JSON",
-        )
-    })?;
+    let bytes = body.map_err(|e| ApiError::bad_body(&e))?;
     serde_json::from_slice(&bytes).map_err(|e| {
         ApiError::bad_parameter(format!(
             "request body is not {{\"design\": …, \"kerf\": …, \"frames\": …}}: {e}"

@@ -125,14 +125,7 @@ pub async fn follow_shape(
     State(state): State<AppState>,
     body: Result<Bytes, BytesRejection>,
 ) -> ApiResult<Json<FollowAnswer>> {
-    let bytes = body.map_err(|e| {
-        ApiError::new(
-            e.status(),
-            "bad_body",
-            format!("request body: {}", e.body_text()),
-            "send at most 64 KiB of JSON",
-        )
-    })?;
+    let bytes = body.map_err(|e| ApiError::bad_body(&e))?;
     let request: FollowRequest = serde_json::from_slice(&bytes).map_err(|e| {
         ApiError::bad_parameter(format!(
             "request body is not {{\"design\": …, \"index\": …, \"value\": …}}: {e}"
