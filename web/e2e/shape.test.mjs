@@ -87,6 +87,9 @@ test('a special design follows its constraint and keeps deploying; moved freely 
   assert.equal((await free.res.json()).kind, 'rigid');
   await page.locator('.notice[data-kind="rigid"]').waitFor({ state: 'visible' });
   assert.equal(follows.length, sent, 'no follow request while moving freely');
+  // The rigid design is no longer special, yet the box stays to be unticked.
+  await page.waitForFunction(() => /degrees of freedom/.test(document.querySelector('[data-testid="shape-status"]').textContent));
+  assert.equal(await byTestId(page, 'shape-free').isVisible(), true);
   assert.deepEqual(problems(page, [/^422 POST \S+\/api\/deploy$/, /^422 GET \S+\/api\/shape\?/]), []);
 });
 

@@ -101,7 +101,9 @@ export function createEditor(container, { live, onChange, reason, shape = null }
   /** Class words, pinned sliders and the free box from `shapeInfo`. */
   function showShape() {
     shapeStatus.textContent = shapeStatusText(shapeInfo, { free });
-    freeLabel.hidden = !(shapeInfo && shapeInfo.class === 'special');
+    // Shown for a special design, and kept while ticked (a free move may have made the design
+    // rigid, so it is no longer special, and the user must be able to untick it).
+    freeLabel.hidden = !(free || (shapeInfo && shapeInfo.class === 'special'));
     const pinned = pinnedSet(shapeInfo, { free });
     inputs.forEach((input, k) => {
       input.disabled = !live || pinned.has(k);
