@@ -10,10 +10,12 @@
 //! different machines. Plain data out; storing is the caller's business.
 
 mod assess;
+pub mod part;
 pub mod screen;
 mod settings;
 mod unit;
 
 pub use assess::{assess, Assessment, Rejection};
+pub use part::{combine_parts, run_unit_part, PartClass, PartOutcome};
 pub use settings::CatalogSettings;
 pub use unit::{run_unit, CatalogEntry, StageTally, UnitOutcome};

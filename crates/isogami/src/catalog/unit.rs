@@ -1,22 +1,23 @@
 //! One work unit: a family on one supercell, from joint masks to catalogue entries.
 
 use super::assess::{assess, Assessment};
+use super::part::{combine_parts, run_unit_part};
 use super::screen::locked_at_start;
 use super::settings::CatalogSettings;
 use crate::api;
 use crate::cell::{CellDims, UnitCell};
 use crate::deploy::DeploymentReport;
 use crate::error::Result;
-use crate::explore::{enumerate_topologies, TopologyReport};
+use crate::explore::{TopologyReport, UnitPart};
 use crate::linkage::LinkageAnalysis;
 use crate::tiling::{shape_grid, Family, Tiling};
 use crate::topology::Design;
 use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
 /// Count in, count out and time of one stage.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StageTally {
     /// Stage name.
     pub stage: String,
@@ -29,9 +30,10 @@ pub struct StageTally {
 }
 
 /// One kept design.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct CatalogEntry {
     /// The design (sampled shape).
+    #[serde(with = "design_wire")]
     pub design: Design,
     /// Spec of its topology at the default shape.
     pub topology: String,
@@ -54,7 +56,7 @@ pub struct UnitOutcome {
     pub entries: Vec<CatalogEntry>,
 }
 
-fn tally(stage: &str, count_in: u64, count_out: u64, seconds: f64) -> StageTally {
+pub(super) fn tally(stage: &str, count_in: u64, count_out: u64, seconds: f64) -> StageTally {
     StageTally {
         stage: stage.to_string(),
         count_in,
@@ -64,7 +66,7 @@ fn tally(stage: &str, count_in: u64, count_out: u64, seconds: f64) -> StageTally
 }
 
 /// The enumeration's stages as tallies.
-fn topology_tallies(r: &TopologyReport) -> Vec<StageTally> {
+pub(super) fn topology_tallies(r: &TopologyReport) -> Vec<StageTally> {
     let t = &r.timings;
     let reduced = t.reduced.as_secs_f64();
     vec![
@@ -116,7 +118,7 @@ fn characterise(
 
 /// Characterises every design of `work` on the current rayon pool; results in the order of
 /// `work` (the first error in that order wins), with the seconds of work summed over threads.
-fn characterise_all(
+pub(super) fn characterise_all(
     work: &[(Design, String)],
     settings: &CatalogSettings,
 ) -> Result<(Vec<Option<CatalogEntry>>, f64)> {
@@ -135,74 +137,118 @@ fn characterise_all(
     Ok((entries, seconds))
 }
 
-/// Runs one work unit. Deterministic: the same inputs give the same outcome, whatever the
-/// number of threads of the current rayon pool, on which the enumeration, the deployments and
-/// the shape samples run in parallel. Stage seconds are seconds of work summed over threads.
-pub fn run_unit(family: Family, dims: CellDims, settings: &CatalogSettings) -> Result<UnitOutcome> {
-    settings.validate()?;
-    let topo = enumerate_topologies(family, dims, &settings.topology)?;
-    let mut stages = topology_tallies(&topo);
+/// The admitted shape samples of each deployed topology.
+pub(super) struct Sampled {
+    /// Per topology (same order as given): its admitted samples, in grid order; empty for a
+    /// topology that was not kept.
+    pub entries: Vec<Vec<CatalogEntry>>,
+    /// Seconds of work summed over threads.
+    pub seconds: f64,
+    /// Shapes tried per kept topology, its default shape included.
+    pub per_topology: u64,
+}
 
-    let work: Vec<(Design, String)> = topo
-        .designs
-        .iter()
-        .map(|d| (d.clone(), d.to_string()))
-        .collect();
-    let (deployed, seconds) = characterise_all(&work, settings)?;
-    let kept_topologies: Vec<CatalogEntry> = deployed.into_iter().flatten().collect();
-    stages.push(tally(
-        "deploy_threshold",
-        topo.designs.len() as u64,
-        kept_topologies.len() as u64,
-        seconds,
-    ));
-
+/// Samples the family's shape grid for every kept topology of `deployed` (`None`: not kept)
+/// and deploys every sample; shapes whose cell cannot be built are tried, never kept.
+pub(super) fn sample_shapes(
+    family: Family,
+    dims: CellDims,
+    deployed: &[Option<CatalogEntry>],
+    settings: &CatalogSettings,
+) -> Result<Sampled> {
     let grid = shape_grid(
         family,
         settings.shape_levels,
         settings.shape_span,
         settings.samples,
     );
-    // Every kept topology on every grid shape but the first (the default shape, deployed
-    // above); shapes whose cell cannot be built are counted as sampled, never kept.
-    let mut sampled = 0u64;
     let mut work = Vec::new();
-    let mut slots: Vec<Vec<usize>> = Vec::with_capacity(kept_topologies.len());
-    for kept in &kept_topologies {
-        sampled += 1;
+    let mut slots: Vec<Vec<usize>> = Vec::with_capacity(deployed.len());
+    for kept in deployed {
         let mut mine = Vec::new();
-        for params in grid.iter().skip(1) {
-            sampled += 1;
-            // Parameters that the grid found valid build; a shape whose cell cannot be built
-            // with this joint list is simply not kept.
-            let builds = Tiling::new(family, params).is_ok_and(|t| UnitCell::new(&t, dims).is_ok());
-            if !builds {
-                continue;
+        if let Some(kept) = kept {
+            // Every grid shape but the first (the default shape, deployed already).
+            for params in grid.iter().skip(1) {
+                let builds =
+                    Tiling::new(family, params).is_ok_and(|t| UnitCell::new(&t, dims).is_ok());
+                if !builds {
+                    continue;
+                }
+                mine.push(work.len());
+                work.push((
+                    Design {
+                        family,
+                        params: params.clone(),
+                        dims,
+                        joints: kept.design.joints.clone(),
+                    },
+                    kept.topology.clone(),
+                ));
             }
-            mine.push(work.len());
-            work.push((
-                Design {
-                    family,
-                    params: params.clone(),
-                    dims,
-                    joints: kept.design.joints.clone(),
-                },
-                kept.topology.clone(),
-            ));
         }
         slots.push(mine);
     }
     let (mut samples, seconds) = characterise_all(&work, settings)?;
-    let mut entries = Vec::new();
-    for (kept, mine) in kept_topologies.into_iter().zip(slots) {
-        entries.push(kept);
-        entries.extend(mine.into_iter().filter_map(|k| samples[k].take()));
-    }
-    stages.push(tally("shapes", sampled, entries.len() as u64, seconds));
-    Ok(UnitOutcome {
+    let entries = slots
+        .into_iter()
+        .map(|mine| mine.into_iter().filter_map(|k| samples[k].take()).collect())
+        .collect();
+    Ok(Sampled {
+        entries,
+        seconds,
+        per_topology: 1 + grid.len().saturating_sub(1) as u64,
+    })
+}
+
+/// Runs one work unit. Deterministic: the same inputs give the same outcome, whatever the
+/// number of threads of the current rayon pool, on which the enumeration, the deployments and
+/// the shape samples run in parallel. Stage seconds are seconds of work summed over threads.
+/// The same as joining the parts of the unit split into any number of parts
+/// ([`super::part`]); this is the join of one whole part.
+pub fn run_unit(family: Family, dims: CellDims, settings: &CatalogSettings) -> Result<UnitOutcome> {
+    combine_parts(vec![run_unit_part(
         family,
         dims,
-        stages,
-        entries,
-    })
+        UnitPart::WHOLE,
+        settings,
+    )?])
+}
+
+/// A design as plain data for serialisation (parameters bit for bit, unlike the spec text);
+/// read back only when its cell builds with its joints.
+mod design_wire {
+    use crate::cell::CellDims;
+    use crate::tiling::Family;
+    use crate::topology::{Design, JointChoice};
+    use serde::{de::Error, Deserialize, Deserializer, Serialize, Serializer};
+
+    #[derive(Serialize, Deserialize)]
+    struct Wire {
+        family: Family,
+        params: Vec<f64>,
+        dims: CellDims,
+        joints: Vec<JointChoice>,
+    }
+
+    pub fn serialize<S: Serializer>(d: &Design, s: S) -> Result<S::Ok, S::Error> {
+        Wire {
+            family: d.family,
+            params: d.params.clone(),
+            dims: d.dims,
+            joints: d.joints.clone(),
+        }
+        .serialize(s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Design, D::Error> {
+        let w = Wire::deserialize(d)?;
+        let design = Design {
+            family: w.family,
+            params: w.params,
+            dims: w.dims,
+            joints: w.joints,
+        };
+        design.cell().map_err(D::Error::custom)?;
+        Ok(design)
+    }
 }

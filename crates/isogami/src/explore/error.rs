@@ -57,6 +57,20 @@ pub enum ExploreError {
     #[error(transparent)]
     Kinematics(#[from] KinematicsError),
     /// A shard that is not `I/N` with `0 <= I < N <= MAX_SHARDS`.
+    /// A unit split into parts that is not 1..=MAX_PARTS parts, or a part index not below the
+    /// part count.
+    #[error("unit parts '{text}': expected N parts with 1 <= N <= {max} (part I/N with I < N)", max = super::plan::MAX_PARTS)]
+    Parts {
+        /// What was given.
+        text: String,
+    },
+    /// Parts that cannot be joined into one unit: of different units or part counts, a part
+    /// missing or given twice, or enumerations that disagree on the unit's whole-mask counts.
+    #[error("cannot join unit parts: {detail}")]
+    PartsMismatch {
+        /// What does not fit.
+        detail: String,
+    },
     #[error("shard '{text}': expected I/N with 0 <= I < N <= {max}, e.g. 0/4", max = super::plan::MAX_SHARDS)]
     Shard {
         /// The shard as given.

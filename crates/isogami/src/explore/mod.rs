@@ -40,9 +40,9 @@ pub use error::ExploreError;
 pub use expand::{ExpandStats, Expander, Leaf};
 pub use motion_classes::{motion_classes, topology_motion};
 pub use pipeline::{
-    cells_to_explore, duplicates_across, enumerate_topologies, DesignDetails, StageTimings,
-    TopologyOptions, TopologyReport,
+    cells_to_explore, duplicates_across, enumerate_topologies, enumerate_topology_part,
+    DesignDetails, StageTimings, TopologyOptions, TopologyReport,
 };
-pub use plan::{ExplorePlan, Shard, UnitSize, WorkUnit, MAX_SHARDS};
+pub use plan::{ExplorePlan, Shard, UnitPart, UnitSize, WorkItem, WorkUnit, MAX_PARTS, MAX_SHARDS};
 pub use reduced::{MaskVerdict, ReducedGraph, ReducedResult, MAX_REDUCED_EDGES};
 pub use separate::{edge_rates, separation, EdgeRate, Separation, SeparationRule};

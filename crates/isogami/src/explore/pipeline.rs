@@ -17,6 +17,7 @@
 use super::dedup::{dedup_orbits, MotionIndex, MotionInvariant, SymmetryGroup, MOTION_TOL};
 use super::error::ExploreError;
 use super::expand::{ExpandStats, Expander};
+use super::plan::UnitPart;
 use super::reduced::{ReducedGraph, MAX_REDUCED_EDGES};
 use super::separate::{separation, Separation, SeparationRule};
 use crate::cell::{CellDims, UnitCell};
@@ -122,6 +123,12 @@ pub struct DesignDetails {
     pub same_motion_merged: usize,
     /// Its motion invariant (comparable across cells and families with the same edge count).
     pub invariant: MotionInvariant,
+    /// Its canonical key (keys order like specs within a cell).
+    pub key: u64,
+    /// Key of the first design of its motion class (see `dedup::Kept`).
+    pub first_key: u64,
+    /// The first design's invariant when it is not this design's (see `dedup::Kept`).
+    pub first_invariant: Option<MotionInvariant>,
 }
 
 /// The result of enumerating the topologies of one family and cell.
@@ -214,6 +221,21 @@ pub fn enumerate_topologies(
     dims: CellDims,
     options: &TopologyOptions,
 ) -> Result<TopologyReport, ExploreError> {
+    enumerate_topology_part(family, dims, options, UnitPart::WHOLE)
+}
+
+/// [`enumerate_topologies`] on one part of the cell's masks: the masks expanded are one per
+/// symmetry orbit, and part I of N takes those at positions I, I + N, … of that list. The
+/// parts' orbits are disjoint (an orbit of configurations lies over one orbit of masks), so
+/// their counts add up; the reduced checks' counts and `configurations_expanded` cover every
+/// mask in every part. `designs` and `details` are the part's own deduplication: a design of
+/// one part may repeat the motion of another part's, which `catalog::combine_parts` merges.
+pub fn enumerate_topology_part(
+    family: Family,
+    dims: CellDims,
+    options: &TopologyOptions,
+    part: UnitPart,
+) -> Result<TopologyReport, ExploreError> {
     let start = Instant::now();
     let tiling = Tiling::default_for(family);
     let cell = UnitCell::new(&tiling, dims)?;
@@ -253,6 +275,11 @@ pub fn enumerate_topologies(
             let (canonical, size) = group.mask_orbit(mask);
             (canonical == mask).then_some((mask, size as u64))
         })
+        .collect::<Vec<_>>()
+        .into_iter()
+        .enumerate()
+        .filter(|(k, _)| part.takes(*k))
+        .map(|(_, m)| m)
         .collect();
     let masks_expanded = canonical.len() as u64;
     let orbit_time = t.elapsed();
@@ -321,6 +348,9 @@ pub fn enumerate_topologies(
             orbit_size: k.orbit_size,
             same_motion_merged: k.same_motion_merged,
             invariant: k.invariant.clone(),
+            key: k.key,
+            first_key: k.first_key,
+            first_invariant: k.first_invariant.clone(),
         });
         designs.push(design);
     }

@@ -18,6 +18,79 @@ use std::str::FromStr;
 /// The largest shard count accepted.
 pub const MAX_SHARDS: usize = 100_000;
 
+/// The most parts a unit's masks can be split into.
+pub const MAX_PARTS: usize = 4096;
+
+/// Part `index` of `count` of one unit's masks (see
+/// [`enumerate_topology_part`](super::pipeline::enumerate_topology_part)): how one big unit is
+/// split across processes or cluster tasks. [`UnitPart::WHOLE`] is the unit undivided.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+pub struct UnitPart {
+    index: usize,
+    count: usize,
+}
+
+impl UnitPart {
+    /// The whole unit (part 0 of 1).
+    pub const WHOLE: UnitPart = UnitPart { index: 0, count: 1 };
+
+    /// Part `index` of `count`; refused unless `index < count <= MAX_PARTS`.
+    pub fn new(index: usize, count: usize) -> Result<UnitPart, ExploreError> {
+        if count == 0 || index >= count || count > MAX_PARTS {
+            return Err(ExploreError::Parts {
+                text: format!("{index}/{count}"),
+            });
+        }
+        Ok(UnitPart { index, count })
+    }
+
+    /// 0-based index.
+    pub fn index(&self) -> usize {
+        self.index
+    }
+
+    /// Number of parts.
+    pub fn count(&self) -> usize {
+        self.count
+    }
+
+    /// Whether the mask at `position` of the unit's list of expanded masks is in this part.
+    pub fn takes(&self, position: usize) -> bool {
+        position % self.count == self.index
+    }
+}
+
+impl fmt::Display for UnitPart {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}
+
+/// One item of a plan: a unit, or one part of a unit split into parts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct WorkItem {
+    /// The unit.
+    pub unit: WorkUnit,
+    /// Which part of it ([`UnitPart::WHOLE`] for the unit undivided).
+    pub part: UnitPart,
+}
+
+impl WorkItem {
+    /// `IH28/2x1` for a whole unit, `IH28/2x1 part 1/3` for a part.
+    pub fn id(&self) -> String {
+        if self.part.count() == 1 {
+            self.unit.id()
+        } else {
+            format!("{} part {}", self.unit, self.part)
+        }
+    }
+
+    /// The unit's expected cost shared equally by its parts.
+    pub fn expected_cost(&self) -> f64 {
+        self.unit.expected_cost() / self.part.count() as f64
+    }
+}
+
 /// One unit of work: every topology of a family on one supercell, then its shape samples.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct WorkUnit {
@@ -140,13 +213,18 @@ impl FromStr for Shard {
     }
 }
 
-/// An exploration's plan: every unit of the run in order, and the shard this process runs.
+/// An exploration's plan: every unit of the run in order, how many parts each unit's masks
+/// are split into, and the shard this process runs.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ExplorePlan {
     /// Every unit of the whole (unsharded) run, in the deterministic order.
     pub all: Vec<WorkUnit>,
     /// The shard this process runs; `None` for the whole plan.
     pub shard: Option<Shard>,
+    /// Parts every unit is split into (1: whole units). The plan's items are each unit's
+    /// parts in turn, and shards take items, so N shards spread one big unit's P parts over
+    /// min(N, P) tasks.
+    pub parts: usize,
 }
 
 impl ExplorePlan {
@@ -203,17 +281,52 @@ impl ExplorePlan {
                 needed: over.iter().map(|(_, m)| *m).max().unwrap_or(edges),
             });
         }
-        Ok(ExplorePlan { all, shard })
+        Ok(ExplorePlan {
+            all,
+            shard,
+            parts: 1,
+        })
     }
 
-    /// The units this process runs: the shard's slice of [`ExplorePlan::all`], in order.
-    pub fn units(&self) -> Vec<WorkUnit> {
+    /// The same plan with every unit split into `parts` parts (1..=[`MAX_PARTS`]).
+    pub fn split(self, parts: usize) -> Result<ExplorePlan, ExploreError> {
+        UnitPart::new(0, parts).map_err(|_| ExploreError::Parts {
+            text: parts.to_string(),
+        })?;
+        Ok(ExplorePlan { parts, ..self })
+    }
+
+    /// Every item of the whole run: each unit's parts in turn, in unit order.
+    pub fn all_items(&self) -> Vec<WorkItem> {
         self.all
             .iter()
+            .flat_map(|&unit| {
+                (0..self.parts).map(move |k| WorkItem {
+                    unit,
+                    part: UnitPart {
+                        index: k,
+                        count: self.parts,
+                    },
+                })
+            })
+            .collect()
+    }
+
+    /// The items this process runs: the shard's slice of [`ExplorePlan::all_items`], in order.
+    pub fn items(&self) -> Vec<WorkItem> {
+        self.all_items()
+            .into_iter()
             .enumerate()
             .filter(|(k, _)| self.shard.is_none_or(|s| s.takes(*k)))
-            .map(|(_, u)| *u)
+            .map(|(_, item)| item)
             .collect()
+    }
+
+    /// The units this process runs at least a part of, in order.
+    pub fn units(&self) -> Vec<WorkUnit> {
+        let mut units: Vec<WorkUnit> = self.items().into_iter().map(|i| i.unit).collect();
+        units.dedup();
+        units
     }
 }
 

@@ -10,14 +10,14 @@ use crate::cell::UnitCell;
 use crate::explore::separate::edge_rates;
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Mat2, Vec2};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Entry-wise tolerance of the normalised motion invariant, and of the periodicity test of
 /// the repeat check (on the unit motion vector).
 pub const MOTION_TOL: f64 = 1e-6;
 
 /// A tile-fixing-independent, order-independent fingerprint of a first-order motion.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MotionInvariant {
     /// Normalised entries (see the module docs).
     pub values: Vec<f64>,

@@ -35,6 +35,15 @@ pub struct Kept {
     pub same_motion_merged: usize,
     /// Its motion invariant.
     pub invariant: MotionInvariant,
+    /// Its key (`SymmetryGroup::key` of `joints`): keys order like joint strings.
+    pub key: u64,
+    /// Key of the first design of its motion class in key order (itself unless a more
+    /// connected later design took the slot).
+    pub first_key: u64,
+    /// The first design's invariant, which the merge looks the class up by, when the slot was
+    /// taken by a later design (`None`: it is `invariant`). Merging the deduplications of
+    /// several mask parts needs it (`catalog::combine_parts`).
+    pub first_invariant: Option<MotionInvariant>,
 }
 
 /// Counts and survivors of deduplication.
@@ -69,6 +78,10 @@ struct Survivor {
     /// Set when a later, more connected design took this slot: its own invariant (it matched
     /// the stored one to the tolerance, which stays in the index for lookups).
     replaced_invariant: Option<MotionInvariant>,
+    /// Its canonical key.
+    key: u64,
+    /// The key of the class's first design.
+    first_key: u64,
 }
 
 /// Orbit representatives analysed per parallel batch: bounds the memory held by analysed but
@@ -119,6 +132,8 @@ fn analyse(
             joints,
             same_motion_merged: 0,
             replaced_invariant: None,
+            key,
+            first_key: key,
         }),
         motion_invariant(cell, mech, &v),
     )
@@ -178,6 +193,7 @@ pub fn dedup_orbits(
                     survivors[k] = Survivor {
                         same_motion_merged: merged,
                         replaced_invariant: Some(invariant),
+                        first_key: survivors[k].first_key,
                         ..kept
                     };
                 } else {
@@ -192,14 +208,23 @@ pub fn dedup_orbits(
     out.kept = survivors
         .into_iter()
         .zip(index.into_items())
-        .map(|(s, stored)| Kept {
-            joints: s.joints,
-            gap_decades: s.gap_decades,
-            area_rate: s.area_rate,
-            separation: s.separation,
-            orbit_size: s.orbit_size,
-            same_motion_merged: s.same_motion_merged,
-            invariant: s.replaced_invariant.unwrap_or(stored),
+        .map(|(s, stored)| {
+            let (invariant, first_invariant) = match s.replaced_invariant {
+                Some(own) => (own, Some(stored)),
+                None => (stored, None),
+            };
+            Kept {
+                joints: s.joints,
+                gap_decades: s.gap_decades,
+                area_rate: s.area_rate,
+                separation: s.separation,
+                orbit_size: s.orbit_size,
+                same_motion_merged: s.same_motion_merged,
+                invariant,
+                key: s.key,
+                first_key: s.first_key,
+                first_invariant,
+            }
         })
         .collect();
     out
