@@ -12,14 +12,15 @@
 
 use crate::error::{StoreError, StoreResult};
 use crate::open::{Check, RunInfo, StoreWriter};
+use crate::parts::StoredPart;
 use crate::peak_memory::PeakMemory;
 use crate::records::UnitRecords;
 use crate::shard::record_plan;
 use crate::stats::DbStats;
-use isogami::catalog::{run_unit, CatalogSettings};
+use isogami::catalog::{combine_parts, run_unit_part, CatalogSettings};
 use isogami::cell::CellDims;
 use isogami::error::{Requirement, SettingsError};
-use isogami::explore::{ExploreError, ExplorePlan, Shard, WorkUnit};
+use isogami::explore::{ExploreError, ExplorePlan, Shard, WorkItem};
 use isogami::tiling::Family;
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -42,6 +43,10 @@ pub struct ExploreRequest {
     pub shard: Option<Shard>,
     /// Worker threads, 1..=[`MAX_JOBS`].
     pub jobs: usize,
+    /// Parts every unit's masks are split into (1: whole units). A part waits in the file
+    /// until its unit's other parts arrive (from this run, or from other shards by `merge`),
+    /// then the unit is joined exactly as if run whole ([`StoredPart`](crate::StoredPart)).
+    pub parts: usize,
 }
 
 impl ExploreRequest {
@@ -54,7 +59,8 @@ impl ExploreRequest {
             self.cells.as_deref(),
             &self.settings.topology,
             self.shard,
-        )
+        )?
+        .split(self.parts)
     }
 }
 
@@ -71,10 +77,11 @@ pub enum ExploreEvent<'a> {
         /// Units left to run.
         to_run: usize,
     },
-    /// A unit finished (committed when `ok`, else reported as a failure).
+    /// A work item (a unit, or a part of one) finished (committed when `ok`, else reported as
+    /// a failure).
     UnitFinished {
-        /// The unit.
-        unit: &'a WorkUnit,
+        /// The item.
+        unit: &'a WorkItem,
         /// Whether it was committed.
         ok: bool,
         /// Units finished so far in this run, this one included.
@@ -143,7 +150,7 @@ pub fn explore_into(
 ) -> StoreResult<ExploreOutcome> {
     check_request(request)?;
     let plan = request.plan()?;
-    let units = plan.units();
+    let items = plan.items();
     let fingerprint = request.settings.fingerprint();
     let run = RunInfo {
         tool_version: env!("CARGO_PKG_VERSION"),
@@ -152,12 +159,13 @@ pub fn explore_into(
     let mut store = StoreWriter::open(db, Some(run), Check::Full)?;
     record_plan(&store, &plan)?;
     let done = store.done_units()?;
-    let todo: Vec<WorkUnit> = units
+    let waiting = store.waiting_parts()?;
+    let todo: Vec<WorkItem> = items
         .iter()
-        .filter(|u| !done.contains(&u.id()))
+        .filter(|i| !done.contains(&i.unit.id()) && !waiting.contains(&i.id()))
         .copied()
         .collect();
-    let planned = units.len();
+    let planned = items.len();
     let skipped = planned - todo.len();
     let to_run = todo.len();
     progress(&ExploreEvent::Started {
@@ -177,11 +185,11 @@ pub fn explore_into(
     let mut finished = 0usize;
     // Set when a commit fails: the workers start nothing more.
     let stop = AtomicBool::new(false);
-    // One unit at a time, longest expected first: every worker takes the next unit when it
-    // finishes one, so no worker sits idle while units are left, and the cheap units fill the
-    // end. Inside a unit the library works in parallel on the same pool, so a worker with no
-    // unit left helps the others with theirs.
-    let order = WorkUnit::longest_first(&todo);
+    // One item at a time, longest expected first: every worker takes the next item when it
+    // finishes one, so no worker sits idle while items are left, and the cheap ones fill the
+    // end. Inside an item the library works in parallel on the same pool, so a worker with no
+    // item left helps the others with theirs.
+    let order = longest_first(&todo);
     let next = AtomicUsize::new(0);
     let memory = PeakMemory::default();
     let sampled = AtomicBool::new(false);
@@ -196,44 +204,63 @@ pub fn explore_into(
                     return;
                 }
                 let k = next.fetch_add(1, Ordering::Relaxed);
-                let Some(unit) = order.get(k) else {
+                let Some(item) = order.get(k) else {
                     return;
                 };
                 let start = Instant::now();
                 memory.begin(k);
-                let outcome = run_unit(unit.family, unit.dims, settings);
+                let outcome = run_unit_part(item.unit.family, item.unit.dims, item.part, settings);
                 let peak = memory.end(k);
-                let _ = tx.send((unit, outcome, start.elapsed().as_secs_f64(), peak));
+                let _ = tx.send((item, outcome, start.elapsed().as_secs_f64(), peak));
             });
             drop(tx);
         });
-        for (unit, outcome, seconds, peak) in rx {
-            let records = outcome.map_err(|e| e.to_string()).and_then(|o| {
-                let mut records =
-                    UnitRecords::from_outcome(&o, seconds).map_err(|e| e.to_string())?;
-                records.unit.peak_rss_bytes = peak;
-                Ok(records)
-            });
-            let ok = match records {
-                Ok(records) => {
-                    if let Err(e) = store.commit_unit(&records) {
-                        stop.store(true, Ordering::Relaxed);
-                        return Err(e);
+        for (item, outcome, seconds, peak) in rx {
+            let ok = match outcome {
+                Ok(outcome) => {
+                    let part = StoredPart {
+                        outcome,
+                        seconds,
+                        peak_rss_bytes: peak,
+                    };
+                    match commit_item(&mut store, part) {
+                        Ok(()) => {
+                            committed += 1;
+                            true
+                        }
+                        // A part that cannot be joined with its siblings is this item's
+                        // failure; anything else is the database's and stops the run.
+                        Err(StoreError::Plan(e)) => {
+                            failures.push(UnitFailure {
+                                unit: item.id(),
+                                message: e.to_string(),
+                            });
+                            false
+                        }
+                        Err(StoreError::InvalidRecord { spec, problem }) => {
+                            failures.push(UnitFailure {
+                                unit: item.id(),
+                                message: format!("design {spec} cannot be stored: {problem}"),
+                            });
+                            false
+                        }
+                        Err(e) => {
+                            stop.store(true, Ordering::Relaxed);
+                            return Err(e);
+                        }
                     }
-                    committed += 1;
-                    true
                 }
-                Err(message) => {
+                Err(e) => {
                     failures.push(UnitFailure {
-                        unit: unit.id(),
-                        message,
+                        unit: item.id(),
+                        message: e.to_string(),
                     });
                     false
                 }
             };
             finished += 1;
             progress(&ExploreEvent::UnitFinished {
-                unit,
+                unit: item,
                 ok,
                 finished,
                 to_run,
@@ -258,6 +285,26 @@ pub fn explore_into(
         cancelled: cancel.load(Ordering::Relaxed) && finished < to_run,
         stats,
     })
+}
+
+/// Commits a finished item: a whole unit at once, a part through the parts table (which joins
+/// its unit when it was the last part).
+fn commit_item(store: &mut StoreWriter, part: StoredPart) -> StoreResult<()> {
+    if part.outcome.part.count() > 1 {
+        store.commit_part(&part)?;
+        return Ok(());
+    }
+    let outcome = combine_parts(vec![part.outcome])?;
+    let mut records = UnitRecords::from_outcome(&outcome, part.seconds)?;
+    records.unit.peak_rss_bytes = part.peak_rss_bytes;
+    store.commit_unit(&records)
+}
+
+/// `items` ordered by expected cost, largest first (ties keep the order given).
+fn longest_first(items: &[WorkItem]) -> Vec<WorkItem> {
+    let mut costed: Vec<(f64, WorkItem)> = items.iter().map(|i| (i.expected_cost(), *i)).collect();
+    costed.sort_by(|a, b| b.0.total_cmp(&a.0));
+    costed.into_iter().map(|(_, i)| i).collect()
 }
 
 /// Sets its flag when dropped.

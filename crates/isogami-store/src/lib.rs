@@ -44,6 +44,7 @@ mod lock;
 mod merge;
 mod motions;
 mod open;
+mod parts;
 mod peak_memory;
 pub mod query;
 mod read;
@@ -67,6 +68,7 @@ pub use inverse_results::SavedDesign;
 pub use merge::MergeReport;
 pub use motions::{MotionClass, MotionCounts, MotionVariant};
 pub use open::{Check, RunInfo, Store, StoreWriter};
+pub use parts::StoredPart;
 pub use query::{DesignQuery, Facet, FacetCount, FacetValue, Measure, Page, SortKey};
 pub use records::{
     DesignRecord, DesignSummary, Origin, StageCount, StoredDesign, UnitRecords, WorkUnitRecord,

@@ -2,6 +2,7 @@
 
 use crate::error::{StoreError, StoreResult};
 use crate::open::{put_meta, Store, StoreWriter};
+use crate::parts::merge_parts;
 use crate::write::{insert_design, insert_unit};
 
 /// What a merge added.
@@ -17,11 +18,16 @@ pub struct MergeReport {
     pub user_designs_added: u64,
     /// User designs whose spec the target already had (skipped).
     pub user_designs_skipped: u64,
+    /// Parts of split units copied (`explore --unit-parts`).
+    pub parts_added: u64,
+    /// Split units whose last part came in: joined and committed (counted in `units_added`).
+    pub units_joined: u64,
 }
 
 impl StoreWriter {
     /// Copies every work unit of `other` that this database lacks, with its stage counts and
-    /// designs, and every user design whose spec it lacks, in one transaction. Both must have
+    /// designs, every part of a split unit it lacks (joining the units whose parts are then
+    /// all here), and every user design whose spec it lacks, in one transaction. Both must have
     /// the same settings (a target without settings takes the other's). Rows are copied
     /// through the checked reads, so a damaged row in `other` stops the merge before anything
     /// is written.
@@ -60,6 +66,11 @@ impl StoreWriter {
             }
             report.units_added += 1;
         }
+        let (parts, joined, designs) = merge_parts(&tx, other)?;
+        report.parts_added = parts;
+        report.units_joined = joined;
+        report.units_added += joined;
+        report.designs_added += designs;
         for d in other.user_designs()? {
             match insert_design(&tx, &d, None) {
                 Ok(()) => report.user_designs_added += 1,

@@ -22,6 +22,10 @@
 //!   that move alike across cells and families (`motions.rs`), with a checksum; recomputed by
 //!   writers, absent in files made before it existed.
 //!
+//! - `unit_parts` (optional): parts of work units split with `explore --unit-parts`, waiting
+//!   for their siblings (`parts.rs`): the library's part outcome as JSON with its seconds and
+//!   peak memory, and a checksum. Empty once every split unit is complete.
+//!
 //! The file is marked with SQLite's `application_id` so that other programs' databases are
 //! told apart before anything is read, and uses a rollback journal (not WAL) so that readers
 //! never create files beside it.
@@ -56,6 +60,16 @@ CREATE TABLE IF NOT EXISTS motion_classes (
 );
 CREATE INDEX IF NOT EXISTS motion_classes_representative ON motion_classes(representative);
 CREATE INDEX IF NOT EXISTS designs_topology ON designs(topology);
+CREATE TABLE IF NOT EXISTS unit_parts (
+    work_unit      TEXT NOT NULL,
+    part           INTEGER NOT NULL,
+    parts          INTEGER NOT NULL,
+    seconds        REAL NOT NULL,
+    peak_rss_bytes INTEGER,
+    data           TEXT NOT NULL,
+    checksum       INTEGER NOT NULL,
+    PRIMARY KEY (work_unit, part)
+);
 ";
 
 /// Shape parameter columns p0…p5 (isohedral families have at most six parameters).

@@ -10,7 +10,7 @@
 use crate::checksum;
 use crate::error::{StoreError, StoreResult};
 use crate::open::{meta, put_meta, Store};
-use isogami::explore::{ExplorePlan, WorkUnit};
+use isogami::explore::{ExplorePlan, WorkItem};
 use rusqlite::types::Value;
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -27,11 +27,11 @@ pub struct ShardRecord {
     pub index: usize,
     /// Number of shards of the run.
     pub count: usize,
-    /// Work units of the whole run (all shards).
+    /// Work items of the whole run (all shards): its units, or with `--unit-parts` their parts.
     pub plan_units: usize,
-    /// CRC-32 (hex) of the whole run's unit ids in order: equal in every shard of one run.
+    /// CRC-32 (hex) of the whole run's item ids in order: equal in every shard of one run.
     pub plan_digest: String,
-    /// This shard's work units, in order.
+    /// This shard's work items (unit ids, or `IH1/2x4 part 1/3` for parts), in order.
     pub units: Vec<String>,
 }
 
@@ -39,13 +39,14 @@ impl ShardRecord {
     /// The record of a sharded plan (`None` for a whole run).
     pub fn of_plan(plan: &ExplorePlan) -> Option<ShardRecord> {
         let shard = plan.shard?;
-        let ids: Vec<Value> = plan.all.iter().map(|u| Value::Text(u.id())).collect();
+        let all = plan.all_items();
+        let ids: Vec<Value> = all.iter().map(|u| Value::Text(u.id())).collect();
         Some(ShardRecord {
             index: shard.index(),
             count: shard.count(),
-            plan_units: plan.all.len(),
+            plan_units: all.len(),
             plan_digest: format!("{:08x}", checksum::of_values(&ids)),
-            units: plan.units().iter().map(WorkUnit::id).collect(),
+            units: plan.items().iter().map(WorkItem::id).collect(),
         })
     }
 
@@ -128,10 +129,19 @@ impl Store {
             return Ok(None);
         };
         let done = self.done_units()?;
+        let waiting = self.waiting_parts()?;
+        // A part is done while it waits for its siblings, and once its unit is joined.
+        let is_done = |id: &str| {
+            done.contains(id)
+                || waiting.contains(id)
+                || id
+                    .split_once(" part ")
+                    .is_some_and(|(unit, _)| done.contains(unit))
+        };
         let missing: Vec<String> = record
             .units
             .iter()
-            .filter(|u| !done.contains(*u))
+            .filter(|u| !is_done(u))
             .cloned()
             .collect();
         Ok(Some(ShardStatus {

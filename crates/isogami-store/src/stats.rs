@@ -69,6 +69,13 @@ pub struct DbStats {
     /// For a database made by `explore --shard`: its shard and how much of it is done.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shard: Option<ShardStatus>,
+    /// Parts of split units (`explore --unit-parts`) waiting for their units' other parts.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub waiting_parts: u64,
+}
+
+fn is_zero(n: &u64) -> bool {
+    *n == 0
 }
 
 /// Adds a unit's stages into running totals, keeping first-seen order.
@@ -154,6 +161,7 @@ impl Store {
             slowest,
             motions: self.motion_counts()?,
             shard: self.shard_status()?,
+            waiting_parts: self.waiting_part_count()?,
         })
     }
 

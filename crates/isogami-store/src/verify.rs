@@ -11,6 +11,7 @@ impl Store {
     pub(crate) fn verify_rows(&self) -> StoreResult<()> {
         self.work_units()?;
         self.motion_classes()?;
+        self.parts()?;
         let orphans: i64 = self.conn.query_row(
             "SELECT (SELECT count(*) FROM designs WHERE id NOT IN (SELECT design FROM design_data))
                   + (SELECT count(*) FROM design_data WHERE design NOT IN (SELECT id FROM designs))

@@ -21,6 +21,7 @@ fn request(jobs: usize) -> ExploreRequest {
         cells: None,
         shard: None,
         jobs,
+        parts: 1,
     }
 }
 
@@ -206,6 +207,7 @@ fn one_and_two_jobs_store_the_same_designs() {
         cells: None,
         shard: None,
         jobs,
+        parts: 1,
     };
     let plan = req(1).plan().unwrap();
     assert!(plan.all.len() >= 6, "{} units", plan.all.len());

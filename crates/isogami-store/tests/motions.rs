@@ -25,6 +25,7 @@ fn request(jobs: usize, shard: Option<Shard>) -> ExploreRequest {
         cells: None,
         shard,
         jobs,
+        parts: 1,
     }
 }
 

@@ -24,6 +24,7 @@ fn request(families: &[u32], shard: Option<(usize, usize)>) -> ExploreRequest {
         cells: None,
         shard: shard.map(|(i, n)| Shard::new(i, n).unwrap()),
         jobs: 1,
+        parts: 1,
     }
 }
 

@@ -20,6 +20,7 @@ fn explore(db: &std::path::Path) {
         cells: None,
         shard: None,
         jobs: 2,
+        parts: 1,
     };
     explore_into(db, &request, &mut |_| {}, &AtomicBool::new(false)).unwrap();
 }

@@ -7,7 +7,6 @@ use isogami::catalog::{combine_parts, run_unit, run_unit_part, CatalogSettings, 
 use isogami::cell::CellDims;
 use isogami::explore::{ExploreError, UnitPart};
 use isogami::tiling::Family;
-use isogami::Error;
 
 fn fam(n: u32) -> Family {
     Family::from_number(n).unwrap()
@@ -90,10 +89,7 @@ fn parts_of_different_units_or_counts_or_missing_are_refused() {
     let three = parts(fam(28), dims, 3);
     let refused = |ps: Vec<PartOutcome>, word: &str| {
         let e = combine_parts(ps).unwrap_err();
-        assert!(
-            matches!(&e, Error::Explore(ExploreError::PartsMismatch { .. })),
-            "{e:?}"
-        );
+        assert!(matches!(&e, ExploreError::PartsMismatch { .. }), "{e:?}");
         assert!(e.to_string().contains(word), "{e}");
     };
     refused(three[..2].to_vec(), "part 2/3 is missing");

@@ -59,6 +59,13 @@ pub fn merge(args: MergeArgs) -> CliResult {
             r.units_skipped,
             r.designs_added
         );
+        if r.parts_added > 0 {
+            let _ = write!(
+                o,
+                ", {} parts of split units ({} units joined)",
+                r.parts_added, r.units_joined
+            );
+        }
         if r.user_designs_added + r.user_designs_skipped > 0 {
             let _ = write!(
                 o,
@@ -291,6 +298,14 @@ pub fn stats_table(s: &DbStats) -> String {
             "incomplete"
         };
         let _ = writeln!(o, "{} {state}: {}", shard.record, shard.progress());
+    }
+    if s.waiting_parts > 0 {
+        let _ = writeln!(
+            o,
+            "{} part(s) of split units wait for their units' other parts (isogami merge the \
+             other shards, or rerun the same explore)",
+            s.waiting_parts
+        );
     }
     if let Some(m) = &s.motions {
         let _ = writeln!(

@@ -6,7 +6,7 @@ use crate::output::{emit, print_json, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami::catalog::CatalogSettings;
 use isogami::cell::{CellDims, UnitCell};
-use isogami::explore::{ExploreError, Shard, WorkUnit, MAX_REDUCED_EDGES};
+use isogami::explore::{ExploreError, Shard, WorkUnit, MAX_PARTS, MAX_REDUCED_EDGES};
 use isogami::tiling::{Family, Tiling};
 use isogami_store::{explore_into, ExploreEvent, ExploreRequest, MAX_JOBS};
 use std::path::PathBuf;
@@ -39,9 +39,16 @@ pub struct Args {
     /// Worker threads (default: all cores).
     #[arg(long)]
     jobs: Option<usize>,
-    /// Run only the I-th of N disjoint slices of the work units (0-based), e.g. 0/4.
+    /// Run only the I-th of N disjoint slices of the work units (0-based), e.g. 0/4. With
+    /// --unit-parts the slices are of the units' parts.
     #[arg(long)]
     shard: Option<String>,
+    /// Split every unit's masks into P parts (1..=4096), so that one big unit spreads over
+    /// --shard tasks (or over reruns). A part waits in the database until the unit's other
+    /// parts are there (`isogami merge` brings the other shards' parts), then the unit is
+    /// joined exactly as if run whole.
+    #[arg(long, default_value_t = 1)]
+    unit_parts: usize,
     /// A small exploration that finishes in minutes: minimal cells with at most 12 edges,
     /// four shape samples per topology.
     #[arg(long)]
@@ -71,6 +78,7 @@ impl Args {
             db,
             jobs: None,
             shard: None,
+            unit_parts: 1,
             quick: true,
             json: false,
             plan: false,
@@ -143,7 +151,14 @@ fn request_of(args: &Args) -> Result<ExploreRequest, String> {
         cells,
         shard,
         jobs,
+        parts: args.unit_parts,
     };
+    if args.unit_parts == 0 || args.unit_parts > MAX_PARTS {
+        return Err(format!(
+            "--unit-parts must lie in 1..={MAX_PARTS}, got {}",
+            args.unit_parts
+        ));
+    }
     let plan = request.plan().map_err(|e| plan_error(&e, &request))?;
     if args.families.trim() != "all" {
         empty_families(&request, &plan.all)?;
@@ -220,26 +235,36 @@ struct PlannedUnit {
 /// `explore --plan`: the units in start order with their sizes; nothing runs.
 fn print_plan(request: &ExploreRequest, json: bool) -> CliResult {
     let plan = request.plan().map_err(|e| plan_error(&e, request))?;
-    let planned: Vec<PlannedUnit> = WorkUnit::longest_first(&plan.units())
+    let mut planned: Vec<PlannedUnit> = plan
+        .items()
         .into_iter()
-        .filter_map(|u| u.size().map(|size| PlannedUnit { unit: u.id(), size }))
+        .filter_map(|item| {
+            let mut size = item.unit.size()?;
+            size.expected_cost /= item.part.count() as f64;
+            Some(PlannedUnit {
+                unit: item.id(),
+                size,
+            })
+        })
         .collect();
+    // Longest first, ties in plan order (the order the run starts them).
+    planned.sort_by(|a, b| b.size.expected_cost.total_cmp(&a.size.expected_cost));
     if json {
         return print_json(&planned);
     }
     let total: f64 = planned.iter().map(|p| p.size.expected_cost).sum();
     let mut o = format!(
-        "{} work units in start order; expected cost relative to the whole plan \
-         (3^edges / symmetry group)\n\n{:<12} {:>5} {:>6} {:>9}\n",
+        "{} work items in start order; expected cost relative to the whole plan \
+         (3^edges / symmetry group)\n\n{:<20} {:>5} {:>6} {:>9}\n",
         planned.len(),
-        "unit",
+        "item",
         "edges",
         "group",
         "share %"
     );
     for p in &planned {
         o.push_str(&format!(
-            "{:<12} {:>5} {:>6} {:>9.3}\n",
+            "{:<20} {:>5} {:>6} {:>9.3}\n",
             p.unit,
             p.size.edges,
             p.size.symmetry_group,
@@ -283,8 +308,13 @@ pub fn run(args: Args) -> CliResult {
         let mut o = String::new();
         outln!(
             o,
-            "{} work units run, {} already in {}, {} failed",
+            "{} {} run, {} already in {}, {} failed",
             outcome.committed,
+            if request.parts > 1 {
+                "unit parts"
+            } else {
+                "work units"
+            },
             outcome.skipped,
             args.db.display(),
             failures.len()

@@ -172,7 +172,7 @@ fn check_parts(parts: &[PartOutcome]) -> std::result::Result<(), ExploreError> {
 
 /// Joins every part of one unit into the unit's outcome, equal to running it undivided (see
 /// the module docs); an error when the parts are not all the parts of one unit.
-pub fn combine_parts(parts: Vec<PartOutcome>) -> Result<UnitOutcome> {
+pub fn combine_parts(parts: Vec<PartOutcome>) -> std::result::Result<UnitOutcome, ExploreError> {
     check_parts(&parts)?;
     let (family, dims) = (parts[0].family, parts[0].dims);
     let per_topology = parts[0].shapes_per_topology;

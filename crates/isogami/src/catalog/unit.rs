@@ -206,12 +206,8 @@ pub(super) fn sample_shapes(
 /// The same as joining the parts of the unit split into any number of parts
 /// ([`super::part`]); this is the join of one whole part.
 pub fn run_unit(family: Family, dims: CellDims, settings: &CatalogSettings) -> Result<UnitOutcome> {
-    combine_parts(vec![run_unit_part(
-        family,
-        dims,
-        UnitPart::WHOLE,
-        settings,
-    )?])
+    let whole = run_unit_part(family, dims, UnitPart::WHOLE, settings)?;
+    Ok(combine_parts(vec![whole])?)
 }
 
 /// A design as plain data for serialisation (parameters bit for bit, unlike the spec text);

@@ -1,0 +1,189 @@
+//! `explore --unit-parts P`: every unit's masks split into P parts. A run that holds every part
+//! joins each unit exactly as if it ran whole; shards that each hold some parts merge into the
+//! same database, also one shard at a time; reruns skip what is stored; mixing part counts is
+//! refused with one line.
+
+use isogami_store::{Check, Store};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const FAMILIES: &str = "IH28,IH6,IH90,IH41";
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_isogami"))
+}
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("isogami-parts-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn run(args: &[&str]) -> Output {
+    bin().args(args).output().unwrap()
+}
+
+fn ok(out: Output) -> String {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+fn explore(db: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "explore",
+        "--quick",
+        "--families",
+        FAMILIES,
+        "--db",
+        db.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    run(&args)
+}
+
+/// Unit ids, (spec, report) per design, stage counts per unit, motion classes.
+type Content = (
+    Vec<String>,
+    Vec<(String, String)>,
+    Vec<Vec<(String, u64, u64)>>,
+    String,
+);
+
+fn content(db: &Path) -> Content {
+    let s = Store::open_read(db, Check::Full).unwrap();
+    let units = s.work_units().unwrap();
+    let designs = units
+        .iter()
+        .flat_map(|(u, _)| s.designs_of_unit(&u.id).unwrap())
+        .map(|d| (d.summary().spec.clone(), d.report_json().to_string()))
+        .collect();
+    let stages = units
+        .iter()
+        .map(|(_, st)| {
+            st.iter()
+                .map(|x| (x.stage.clone(), x.count_in, x.count_out))
+                .collect()
+        })
+        .collect();
+    let classes = format!("{:?}", s.motion_classes().unwrap());
+    (
+        units.iter().map(|(u, _)| u.id.clone()).collect(),
+        designs,
+        stages,
+        classes,
+    )
+}
+
+fn stats(db: &Path) -> serde_json::Value {
+    let text = ok(run(&[
+        "db",
+        "stats",
+        "--db",
+        db.to_str().unwrap(),
+        "--json",
+    ]));
+    serde_json::from_str(&text).unwrap()
+}
+
+fn merge(into: &Path, inputs: &[&Path], extra: &[&str]) -> Output {
+    let mut args = vec!["merge", "--into", into.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    args.extend(inputs.iter().map(|p| p.to_str().unwrap()));
+    run(&args)
+}
+
+#[test]
+fn parts_in_one_run_or_over_shards_equal_whole_units() {
+    let d = dir("equal");
+    let whole = d.join("whole.db");
+    ok(explore(&whole, &["--jobs", "2"]));
+    let want = content(&whole);
+    assert!(want.1.len() > 5, "{} designs", want.1.len());
+
+    // Every part in one run: each unit is joined when its last part is stored.
+    let split = d.join("split.db");
+    let text = ok(explore(&split, &["--jobs", "2", "--unit-parts", "3"]));
+    assert!(text.contains("unit parts run"), "{text}");
+    assert_eq!(content(&split), want);
+    assert!(stats(&split).get("waiting_parts").is_none());
+
+    // Two shards of 3 parts per unit: no shard holds a whole unit; each waits.
+    let shards: Vec<PathBuf> = (0..2).map(|i| d.join(format!("s{i}.db"))).collect();
+    for (i, s) in shards.iter().enumerate() {
+        ok(explore(
+            s,
+            &[
+                "--unit-parts",
+                "3",
+                "--shard",
+                &format!("{i}/2"),
+                "--jobs",
+                "1",
+            ],
+        ));
+        let st = stats(s);
+        assert_eq!(st["work_units"], 0, "{st}");
+        assert!(st["waiting_parts"].as_u64().unwrap() > 0, "{st}");
+        assert_eq!(st["shard"]["missing"].as_array().unwrap().len(), 0, "{st}");
+        // A rerun skips every stored part.
+        let again = ok(explore(
+            s,
+            &["--unit-parts", "3", "--shard", &format!("{i}/2")],
+        ));
+        assert!(again.starts_with("0 unit parts run"), "{again}");
+        ok(run(&[
+            "db",
+            "check-shard",
+            "--db",
+            s.to_str().unwrap(),
+            "--shard",
+            &format!("{i}/2"),
+        ]));
+    }
+    let merged = d.join("merged.db");
+    let out = ok(merge(&merged, &[&shards[0], &shards[1]], &[]));
+    assert!(out.contains("units joined"), "{out}");
+    assert_eq!(content(&merged), want);
+    assert!(stats(&merged).get("waiting_parts").is_none());
+
+    // One shard at a time: parts wait in the target until the other shard's arrive.
+    let stepwise = d.join("stepwise.db");
+    ok(merge(&stepwise, &[&shards[1]], &["--allow-incomplete"]));
+    let st = stats(&stepwise);
+    assert_eq!(st["work_units"], 0, "{st}");
+    assert!(st["waiting_parts"].as_u64().unwrap() > 0);
+    ok(merge(&stepwise, &[&shards[0]], &["--allow-incomplete"]));
+    assert_eq!(content(&stepwise), want);
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+#[test]
+fn bad_part_counts_are_refused_in_one_line() {
+    let d = dir("bad");
+    let db = d.join("a.db");
+    for bad in ["0", "4097", "x"] {
+        let out = explore(&db, &["--unit-parts", bad]);
+        assert_eq!(out.status.code(), Some(2), "--unit-parts {bad}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+        assert!(err.contains("unit-parts"), "{err}");
+        assert!(!db.exists());
+    }
+    // Parts of 3 waiting in a plain database (one shard merged alone), then a run that
+    // splits the same units in 2: each of its parts is refused, naming the option.
+    let shard = d.join("s0.db");
+    ok(explore(&shard, &["--unit-parts", "3", "--shard", "0/2"]));
+    let target = d.join("t.db");
+    ok(merge(&target, &[&shard], &["--allow-incomplete"]));
+    let out = explore(&target, &["--unit-parts", "2"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("use the same --unit-parts"), "{err}");
+    assert_eq!(stats(&target)["work_units"], 0);
+    std::fs::remove_dir_all(&d).unwrap();
+}
