@@ -3,26 +3,14 @@
 //! same database, also one shard at a time; reruns skip what is stored; mixing part counts is
 //! refused with one line.
 
+mod common;
+
+use common::{isogami as run, scratch as dir};
 use isogami_store::{Check, Store};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 const FAMILIES: &str = "IH28,IH6,IH90,IH41";
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_isogami"))
-}
-
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("isogami-parts-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn run(args: &[&str]) -> Output {
-    bin().args(args).output().unwrap()
-}
 
 fn ok(out: Output) -> String {
     assert!(

@@ -21,49 +21,66 @@ pub const MAX_SHARDS: usize = 100_000;
 /// The most parts a unit's masks can be split into.
 pub const MAX_PARTS: usize = 4096;
 
-/// Part `index` of `count` of one unit's masks (see
-/// [`enumerate_topology_part`](super::pipeline::enumerate_topology_part)): how one big unit is
-/// split across processes or cluster tasks. [`UnitPart::WHOLE`] is the unit undivided.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
-pub struct UnitPart {
-    index: usize,
-    count: usize,
+/// Defines a slice type "`index` of `count`" (0-based, `count` at most `$max`): one of
+/// `count` disjoint slices of a list taking positions index, index + count, …
+macro_rules! slice_type {
+    ($(#[$doc:meta])* $name:ident, $max:expr, $error:ident, $what:literal) => {
+        $(#[$doc])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+        pub struct $name {
+            index: usize,
+            count: usize,
+        }
+
+        impl $name {
+            #[doc = concat!("Slice `index` of `count`; refused unless `index < count <= ", stringify!($max), "`.")]
+            pub fn new(index: usize, count: usize) -> Result<$name, ExploreError> {
+                if count == 0 || index >= count || count > $max {
+                    return Err(ExploreError::$error {
+                        text: format!("{index}/{count}"),
+                    });
+                }
+                Ok($name { index, count })
+            }
+
+            /// 0-based index.
+            pub fn index(&self) -> usize {
+                self.index
+            }
+
+            #[doc = concat!("Number of ", $what, ".")]
+            pub fn count(&self) -> usize {
+                self.count
+            }
+
+            /// Whether the item at `position` of the sliced list is in this slice.
+            pub fn takes(&self, position: usize) -> bool {
+                position % self.count == self.index
+            }
+        }
+
+        impl fmt::Display for $name {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write!(f, "{}/{}", self.index, self.count)
+            }
+        }
+    };
 }
+
+slice_type!(
+    /// Part `index` of `count` of one unit's masks (see
+    /// [`enumerate_topology_part`](super::pipeline::enumerate_topology_part)): how one big
+    /// unit is split across processes or cluster tasks; it takes the expanded masks at
+    /// positions index, index + count, … [`UnitPart::WHOLE`] is the unit undivided.
+    UnitPart,
+    MAX_PARTS,
+    Parts,
+    "parts"
+);
 
 impl UnitPart {
     /// The whole unit (part 0 of 1).
     pub const WHOLE: UnitPart = UnitPart { index: 0, count: 1 };
-
-    /// Part `index` of `count`; refused unless `index < count <= MAX_PARTS`.
-    pub fn new(index: usize, count: usize) -> Result<UnitPart, ExploreError> {
-        if count == 0 || index >= count || count > MAX_PARTS {
-            return Err(ExploreError::Parts {
-                text: format!("{index}/{count}"),
-            });
-        }
-        Ok(UnitPart { index, count })
-    }
-
-    /// 0-based index.
-    pub fn index(&self) -> usize {
-        self.index
-    }
-
-    /// Number of parts.
-    pub fn count(&self) -> usize {
-        self.count
-    }
-
-    /// Whether the mask at `position` of the unit's list of expanded masks is in this part.
-    pub fn takes(&self, position: usize) -> bool {
-        position % self.count == self.index
-    }
-}
-
-impl fmt::Display for UnitPart {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}/{}", self.index, self.count)
-    }
 }
 
 /// One item of a plan: a unit, or one part of a unit split into parts.
@@ -158,45 +175,13 @@ impl fmt::Display for WorkUnit {
     }
 }
 
-/// Shard `index` of `count` (0-based): one of `count` disjoint slices of a plan.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct Shard {
-    index: usize,
-    count: usize,
-}
-
-impl Shard {
-    /// Shard `index` of `count`; refused unless `index < count <= MAX_SHARDS`.
-    pub fn new(index: usize, count: usize) -> Result<Shard, ExploreError> {
-        if count == 0 || index >= count || count > MAX_SHARDS {
-            return Err(ExploreError::Shard {
-                text: format!("{index}/{count}"),
-            });
-        }
-        Ok(Shard { index, count })
-    }
-
-    /// 0-based index.
-    pub fn index(&self) -> usize {
-        self.index
-    }
-
-    /// Number of shards.
-    pub fn count(&self) -> usize {
-        self.count
-    }
-
-    /// Whether the unit at `position` of the whole plan belongs to this shard.
-    pub fn takes(&self, position: usize) -> bool {
-        position % self.count == self.index
-    }
-}
-
-impl fmt::Display for Shard {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}/{}", self.index, self.count)
-    }
-}
+slice_type!(
+    /// Shard `index` of `count` (0-based): one of `count` disjoint slices of a plan's items.
+    Shard,
+    MAX_SHARDS,
+    Shard,
+    "shards"
+);
 
 impl FromStr for Shard {
     type Err = ExploreError;
