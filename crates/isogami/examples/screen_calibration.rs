@@ -7,10 +7,10 @@
 //! ```
 //!
 //! `--rows` prints one line per topology: unit, spec, closing rate (+, −), locked (0/1),
-//! steps, largest principal expansion, deployment seconds. Deployments run in parallel.
+//! steps, largest principal expansion, end reason, deployment seconds. Deployments run in parallel.
 
 use isogami::api;
-use isogami::catalog::screen::{closing_rates, BLOCKING_RATE};
+use isogami::catalog::screen::{closing_rates, screen_rate};
 use isogami::catalog::CatalogSettings;
 use isogami::cell::CellDims;
 use isogami::deploy::EndReason;
@@ -26,6 +26,7 @@ struct Row {
     locked: bool,
     steps: usize,
     max_expansion: f64,
+    end: String,
     seconds: f64,
 }
 
@@ -66,6 +67,7 @@ fn main() {
                     locked: matches!(report.end_reason, EndReason::Locked) || report.steps < 2,
                     steps: report.steps,
                     max_expansion: report.max_expansion,
+                    end: format!("{:?}", report.end_reason),
                     seconds: t.elapsed().as_secs_f64(),
                 })
             })
@@ -75,7 +77,7 @@ fn main() {
     if print_rows {
         for r in &rows {
             println!(
-                "{} {} {:.6e} {:.6e} {} {} {:.4} {:.4}",
+                "{} {} {:.6e} {:.6e} {} {} {:.4} {} {:.4}",
                 r.unit,
                 r.spec,
                 r.rates[0],
@@ -83,11 +85,14 @@ fn main() {
                 u8::from(r.locked),
                 r.steps,
                 r.max_expansion,
+                r.end,
                 r.seconds
             );
         }
     }
-    let blocked = |r: &Row| r.rates.iter().all(|&x| x >= BLOCKING_RATE);
+    let kerf = settings.deploy.contact.kerf;
+    let rate = screen_rate(&settings);
+    let blocked = |r: &Row| r.rates.iter().all(|&x| x >= rate);
     let admitted = |r: &Row| !r.locked && r.max_expansion >= settings.threshold;
     let screened: Vec<&Row> = rows.iter().filter(|r| blocked(r)).collect();
     let total_time: f64 = rows.iter().map(|r| r.seconds).sum();
@@ -102,15 +107,24 @@ fn main() {
         .filter(|r| admitted(r))
         .map(|r| r.rates[0].min(r.rates[1]))
         .fold(0.0, f64::max);
+    // The reach: expansion reached per kerf / r of arc, r the smaller closing rate, over the
+    // designs that are not locked although both signs close some cut (r > 0.01).
+    let reach = rows
+        .iter()
+        .filter(|r| !r.locked && r.rates[0].min(r.rates[1]) > 0.01)
+        .map(|r| r.max_expansion * r.rates[0].min(r.rates[1]) / kerf)
+        .filter(|x| x.is_finite())
+        .fold(0.0, f64::max);
     println!(
         "{} topologies, {} locked, {} admitted (largest smaller closing rate of an admitted \
-         design {admitted_smaller_rate:.2e})",
+         design {admitted_smaller_rate:.2e}); largest reach {reach:.3} (expansion per kerf / r \
+         of arc, designs not locked whose two signs close some cut at r > 0.01)",
         rows.len(),
         rows.iter().filter(|r| r.locked).count(),
         rows.iter().filter(|r| admitted(r)).count(),
     );
     println!(
-        "screened (both signs close at >= {BLOCKING_RATE}): {}, of which locked {}, admitted \
+        "screened (both signs close at >= {rate}): {}, of which locked {}, admitted \
          {}; largest expansion among them {largest:.4}",
         screened.len(),
         screened.iter().filter(|r| r.locked).count(),

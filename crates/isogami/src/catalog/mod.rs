@@ -5,7 +5,8 @@
 //! each unique topology at the default shape and keep those that expand past the threshold,
 //! then sample the family's shape parameters for each kept topology, deploy every sample and
 //! keep those past the threshold, each with its deployment report and linkage analysis. Designs
-//! that contact locks at the start are screened out cheaply before deployment ([`screen`]). Work
+//! whose cuts shut too soon along both signs are screened out cheaply before deployment
+//! ([`screen`]). Work
 //! units are deterministic and independent, so they can run in any order, in parallel, or on
 //! different machines. Plain data out; storing is the caller's business.
 

@@ -29,8 +29,8 @@ pub struct CatalogSettings {
     /// topology's, so one tolerance decides the DOF everywhere (see
     /// [`CatalogSettings::deploy_request`]).
     pub deploy: DeploySettings,
-    /// Screen designs that contact locks at the start from their first-order motion before
-    /// deploying them (see [`super::screen`]). Saves time, never changes what is kept (tested),
+    /// Screen out designs whose cuts shut, along both signs of their first-order motion, too
+    /// soon to open past the threshold, before deploying them (see [`super::screen`]). Saves time, never changes what is kept (tested),
     /// so it is not part of the fingerprint. On by default.
     pub screen: bool,
 }

@@ -2,7 +2,7 @@
 
 use super::assess::{assess, Assessment};
 use super::part::{combine_parts, run_unit_part};
-use super::screen::locked_at_start;
+use super::screen::cannot_reach_threshold;
 use super::settings::CatalogSettings;
 use crate::api;
 use crate::cell::{CellDims, UnitCell};
@@ -92,7 +92,8 @@ pub(super) fn topology_tallies(r: &TopologyReport) -> Vec<StageTally> {
 
 /// Deploys `design` and characterises it; `None` when it is not admitted (see
 /// [`assess`]: one DOF, not locked, past the threshold) or, with `settings.screen`, screened
-/// out as locked at the start without deploying it. Uses the library's one deploy entry
+/// out from its first-order motion without deploying it (a cut shuts too soon along both
+/// signs). Uses the library's one deploy entry
 /// point with the catalogue's settings, so `isogami deploy` with the same settings gives the
 /// same report.
 fn characterise(
@@ -100,7 +101,7 @@ fn characterise(
     topology: &str,
     settings: &CatalogSettings,
 ) -> Result<Option<CatalogEntry>> {
-    if settings.screen && locked_at_start(design, settings) {
+    if settings.screen && cannot_reach_threshold(design, settings) {
         return Ok(None);
     }
     let report = match assess(design, settings, &mut |_| true)? {
