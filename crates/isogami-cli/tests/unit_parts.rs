@@ -173,5 +173,12 @@ fn bad_part_counts_are_refused_in_one_line() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("use the same --unit-parts"), "{err}");
     assert_eq!(stats(&target)["work_units"], 0);
+    // Whole units then replace the waiting parts: nothing is left waiting, and the file
+    // equals a whole run.
+    ok(explore(&target, &[]));
+    assert!(stats(&target).get("waiting_parts").is_none());
+    let whole = d.join("whole.db");
+    ok(explore(&whole, &[]));
+    assert_eq!(content(&target), content(&whole));
     std::fs::remove_dir_all(&d).unwrap();
 }

@@ -175,7 +175,7 @@ fn complete_unit(conn: &Connection, unit: &str) -> StoreResult<Option<u64>> {
     for d in &records.designs {
         insert_design(conn, d, Some(&records.unit.id))?;
     }
-    conn.execute("DELETE FROM unit_parts WHERE work_unit = ?1", [unit])?;
+    // insert_unit has deleted the unit's part rows.
     Ok(Some(records.designs.len() as u64))
 }
 

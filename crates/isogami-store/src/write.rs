@@ -11,7 +11,8 @@ use crate::rows::{
 use rusqlite::types::Value;
 use rusqlite::{params, params_from_iter, Connection};
 
-/// Inserts a work unit and its stage rows.
+/// Inserts a work unit and its stage rows, and drops any parts of it still waiting (left by a
+/// run that split the unit, when the unit then came whole).
 pub(crate) fn insert_unit(
     conn: &Connection,
     unit: &WorkUnitRecord,
@@ -40,6 +41,7 @@ pub(crate) fn insert_unit(
             ],
         )?;
     }
+    conn.execute("DELETE FROM unit_parts WHERE work_unit = ?1", [&unit.id])?;
     let mut st = conn.prepare_cached(
         "INSERT INTO stage_counts(work_unit, position, stage, count_in, count_out, seconds)
          VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
