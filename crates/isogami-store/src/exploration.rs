@@ -5,19 +5,18 @@
 //! (creating it if new; its settings must match; a shard's database records which shard it
 //! holds, see [`ShardRecord`](crate::ShardRecord)), skips the units it already holds, runs the
 //! rest on a pool of `jobs` threads — handed out one at a time, longest expected first
-//! ([`WorkUnit::longest_first`]), each unit itself parallel on the same pool — and commits each
+//! ([`WorkItem::longest_first`]), each unit itself parallel on the same pool — and commits each
 //! finished unit from the calling thread in its own transaction (one writer). What is stored
 //! does not depend on `jobs` (only the commit order and timings do). A unit that fails is reported, not committed, so a rerun
 //! retries it. A killed run keeps every unit it had committed.
 
 use crate::error::{StoreError, StoreResult};
 use crate::open::{Check, RunInfo, StoreWriter};
-use crate::parts::StoredPart;
+use crate::parts::{unit_records, StoredPart};
 use crate::peak_memory::PeakMemory;
-use crate::records::UnitRecords;
 use crate::shard::record_plan;
 use crate::stats::DbStats;
-use isogami::catalog::{combine_parts, run_unit_part, CatalogSettings};
+use isogami::catalog::{run_unit_part, CatalogSettings};
 use isogami::cell::CellDims;
 use isogami::error::{Requirement, SettingsError};
 use isogami::explore::{ExploreError, ExplorePlan, Shard, WorkItem};
@@ -189,7 +188,7 @@ pub fn explore_into(
     // finishes one, so no worker sits idle while items are left, and the cheap ones fill the
     // end. Inside an item the library works in parallel on the same pool, so a worker with no
     // item left helps the others with theirs.
-    let order = longest_first(&todo);
+    let order = WorkItem::longest_first(&todo);
     let next = AtomicUsize::new(0);
     let memory = PeakMemory::default();
     let sampled = AtomicBool::new(false);
@@ -228,19 +227,13 @@ pub fn explore_into(
                             committed += 1;
                             true
                         }
-                        // A part that cannot be joined with its siblings is this item's
-                        // failure; anything else is the database's and stops the run.
-                        Err(StoreError::Plan(e)) => {
+                        // A part that cannot be joined with its siblings, or a design that
+                        // cannot be stored, is this item's failure; anything else is the
+                        // database's and stops the run.
+                        Err(e @ (StoreError::Plan(_) | StoreError::InvalidRecord { .. })) => {
                             failures.push(UnitFailure {
                                 unit: item.id(),
                                 message: e.to_string(),
-                            });
-                            false
-                        }
-                        Err(StoreError::InvalidRecord { spec, problem }) => {
-                            failures.push(UnitFailure {
-                                unit: item.id(),
-                                message: format!("design {spec} cannot be stored: {problem}"),
                             });
                             false
                         }
@@ -294,17 +287,7 @@ fn commit_item(store: &mut StoreWriter, part: StoredPart) -> StoreResult<()> {
         store.commit_part(&part)?;
         return Ok(());
     }
-    let outcome = combine_parts(vec![part.outcome])?;
-    let mut records = UnitRecords::from_outcome(&outcome, part.seconds)?;
-    records.unit.peak_rss_bytes = part.peak_rss_bytes;
-    store.commit_unit(&records)
-}
-
-/// `items` ordered by expected cost, largest first (ties keep the order given).
-fn longest_first(items: &[WorkItem]) -> Vec<WorkItem> {
-    let mut costed: Vec<(f64, WorkItem)> = items.iter().map(|i| (i.expected_cost(), *i)).collect();
-    costed.sort_by(|a, b| b.0.total_cmp(&a.0));
-    costed.into_iter().map(|(_, i)| i).collect()
+    store.commit_unit(&unit_records(vec![part])?)
 }
 
 /// Sets its flag when dropped.

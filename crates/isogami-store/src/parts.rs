@@ -11,7 +11,7 @@ use crate::checksum;
 use crate::error::{StoreError, StoreResult};
 use crate::open::{Store, StoreWriter};
 use crate::records::UnitRecords;
-use crate::write::{insert_design, insert_unit};
+use crate::write::insert_records;
 use isogami::catalog::{combine_parts, PartOutcome};
 use isogami::explore::{ExploreError, UnitPart, WorkItem, WorkUnit};
 use rusqlite::types::Value;
@@ -166,17 +166,21 @@ fn complete_unit(conn: &Connection, unit: &str) -> StoreResult<Option<u64>> {
     if done.is_some() || parts.len() < first.outcome.part.count() {
         return Ok(None);
     }
+    let records = unit_records(parts)?;
+    // insert_unit, through insert_records, deletes the unit's part rows.
+    insert_records(conn, &records)?;
+    Ok(Some(records.designs.len() as u64))
+}
+
+/// The unit records of every part of one unit, joined by the library: seconds summed, the
+/// largest peak memory.
+pub(crate) fn unit_records(parts: Vec<StoredPart>) -> StoreResult<UnitRecords> {
     let seconds = parts.iter().fold(0.0, |a, p| a + p.seconds);
     let peak = parts.iter().filter_map(|p| p.peak_rss_bytes).max();
     let outcome = combine_parts(parts.into_iter().map(|p| p.outcome).collect())?;
     let mut records = UnitRecords::from_outcome(&outcome, seconds)?;
     records.unit.peak_rss_bytes = peak;
-    insert_unit(conn, &records.unit, &records.stages)?;
-    for d in &records.designs {
-        insert_design(conn, d, Some(&records.unit.id))?;
-    }
-    // insert_unit has deleted the unit's part rows.
-    Ok(Some(records.designs.len() as u64))
+    Ok(records)
 }
 
 impl Store {

@@ -59,6 +59,15 @@ pub(crate) fn insert_unit(
     Ok(())
 }
 
+/// Inserts a finished unit: its row, stage rows and designs (inside the caller's transaction).
+pub(crate) fn insert_records(conn: &Connection, records: &UnitRecords) -> StoreResult<()> {
+    insert_unit(conn, &records.unit, &records.stages)?;
+    for d in &records.designs {
+        insert_design(conn, d, Some(&records.unit.id))?;
+    }
+    Ok(())
+}
+
 /// Inserts a design's summary row and its data row.
 pub(crate) fn insert_design(
     conn: &Connection,
@@ -113,10 +122,7 @@ impl StoreWriter {
             });
         }
         let tx = self.store.conn.transaction()?;
-        insert_unit(&tx, &records.unit, &records.stages)?;
-        for d in &records.designs {
-            insert_design(&tx, d, Some(&records.unit.id))?;
-        }
+        insert_records(&tx, records)?;
         tx.commit()?;
         Ok(())
     }

@@ -6,7 +6,7 @@ use crate::output::{emit, print_json, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami::catalog::CatalogSettings;
 use isogami::cell::{CellDims, UnitCell};
-use isogami::explore::{ExploreError, Shard, WorkUnit, MAX_PARTS, MAX_REDUCED_EDGES};
+use isogami::explore::{ExploreError, Shard, WorkItem, WorkUnit, MAX_PARTS, MAX_REDUCED_EDGES};
 use isogami::tiling::{Family, Tiling};
 use isogami_store::{explore_into, ExploreEvent, ExploreRequest, MAX_JOBS};
 use std::path::PathBuf;
@@ -153,12 +153,6 @@ fn request_of(args: &Args) -> Result<ExploreRequest, String> {
         jobs,
         parts: args.unit_parts,
     };
-    if args.unit_parts == 0 || args.unit_parts > MAX_PARTS {
-        return Err(format!(
-            "--unit-parts must lie in 1..={MAX_PARTS}, got {}",
-            args.unit_parts
-        ));
-    }
     let plan = request.plan().map_err(|e| plan_error(&e, &request))?;
     if args.families.trim() != "all" {
         empty_families(&request, &plan.all)?;
@@ -200,6 +194,9 @@ fn plan_error(e: &ExploreError, request: &ExploreRequest) -> String {
                 "an exploration"
             }
         ),
+        ExploreError::Parts { text } => {
+            format!("--unit-parts must lie in 1..={MAX_PARTS}, got {text}")
+        }
         other => format!("--cells: {other}"),
     }
 }
@@ -235,20 +232,15 @@ struct PlannedUnit {
 /// `explore --plan`: the units in start order with their sizes; nothing runs.
 fn print_plan(request: &ExploreRequest, json: bool) -> CliResult {
     let plan = request.plan().map_err(|e| plan_error(&e, request))?;
-    let mut planned: Vec<PlannedUnit> = plan
-        .items()
+    let planned: Vec<PlannedUnit> = WorkItem::longest_first(&plan.items())
         .into_iter()
         .filter_map(|item| {
-            let mut size = item.unit.size()?;
-            size.expected_cost /= item.part.count() as f64;
-            Some(PlannedUnit {
+            item.size().map(|size| PlannedUnit {
                 unit: item.id(),
                 size,
             })
         })
         .collect();
-    // Longest first, ties in plan order (the order the run starts them).
-    planned.sort_by(|a, b| b.size.expected_cost.total_cmp(&a.size.expected_cost));
     if json {
         return print_json(&planned);
     }

@@ -102,9 +102,29 @@ impl WorkItem {
         }
     }
 
-    /// The unit's expected cost shared equally by its parts.
+    /// The unit's size, its expected cost shared equally by its parts; None when the cell
+    /// cannot be built.
+    pub fn size(&self) -> Option<UnitSize> {
+        let size = self.unit.size()?;
+        Some(UnitSize {
+            expected_cost: size.expected_cost / self.part.count() as f64,
+            ..size
+        })
+    }
+
+    /// The unit's expected cost ([`WorkUnit::expected_cost`]) shared equally by its parts.
     pub fn expected_cost(&self) -> f64 {
-        self.unit.expected_cost() / self.part.count() as f64
+        self.size().map_or(0.0, |s| s.expected_cost)
+    }
+
+    /// `items` ordered by [`WorkItem::expected_cost`], largest first (ties keep the order
+    /// given): the order in which a scheduler that hands out one item at a time keeps every
+    /// core busy to the end.
+    pub fn longest_first(items: &[WorkItem]) -> Vec<WorkItem> {
+        let mut costed: Vec<(f64, WorkItem)> =
+            items.iter().map(|i| (i.expected_cost(), *i)).collect();
+        costed.sort_by(|a, b| b.0.total_cmp(&a.0));
+        costed.into_iter().map(|(_, i)| i).collect()
     }
 }
 
@@ -156,16 +176,6 @@ impl WorkUnit {
     /// matters. 0 for a cell that cannot be built (it fails at once).
     pub fn expected_cost(&self) -> f64 {
         self.size().map_or(0.0, |s| s.expected_cost)
-    }
-
-    /// `units` ordered by [`WorkUnit::expected_cost`], largest first (ties keep the order
-    /// given): the order in which a scheduler that hands out one unit at a time keeps every
-    /// core busy to the end.
-    pub fn longest_first(units: &[WorkUnit]) -> Vec<WorkUnit> {
-        let mut costed: Vec<(f64, WorkUnit)> =
-            units.iter().map(|u| (u.expected_cost(), *u)).collect();
-        costed.sort_by(|a, b| b.0.total_cmp(&a.0));
-        costed.into_iter().map(|(_, u)| u).collect()
     }
 }
 
@@ -459,7 +469,10 @@ mod tests {
     fn longest_first_orders_by_expected_cost_and_keeps_every_unit() {
         let families = [fam("IH21"), fam("IH22"), fam("IH76"), fam("IH90")];
         let plan = ExplorePlan::new(&families, None, &TopologyOptions::default(), None).unwrap();
-        let order = WorkUnit::longest_first(&plan.all);
+        let order: Vec<WorkUnit> = WorkItem::longest_first(&plan.items())
+            .into_iter()
+            .map(|i| i.unit)
+            .collect();
         let mut a: Vec<String> = order.iter().map(WorkUnit::id).collect();
         let mut b: Vec<String> = plan.all.iter().map(WorkUnit::id).collect();
         a.sort();
