@@ -4,18 +4,30 @@
 //! The choices are assigned depth-first, one jointed edge at a time (end A, then end B). Each
 //! joint adds two rows to the Jacobian of the closed state (non-dimensional model, tile 0's
 //! three columns removed — exactly the matrix whose H = JᵀJ `mobility::analyze` decomposes,
-//! N = 3n + 1 columns). An orthonormal basis of the rows added so far is kept by classical
-//! Gram–Schmidt with re-orthogonalisation (CGS2), with the triangular factor R of the rows it
-//! selected, so adding a joint costs O(N · rank) and backtracking is a truncation.
+//! N = 3n + 1 columns). The search keeps three things about the rows added so far:
+//!
+//! - an orthonormal basis C of their orthogonal complement (N − rank vectors). A new row's
+//!   residual is its projection on C; the rows are sparse (a joint touches two tiles and the
+//!   lattice), so that costs O(nnz · (N − rank)). When the row is independent, one Householder
+//!   reflection of C's coordinates turns its first vector into the new basis direction and the
+//!   others into the new complement: O(N · (N − rank)). Deep in the tree, where almost every
+//!   node is, the complement is small (a surviving node has N − rank ≤ 2·left + 1, see below),
+//!   so adding a joint there costs O(N) instead of the O(N · rank) of Gram–Schmidt;
+//! - the orthonormal basis Q of the rows' span, one vector per independent row (the Householder
+//!   step gives it), and the triangular factor R with selected row i = Σ_j r[i][j] q_j (its
+//!   entries are the sparse products q_j · row);
+//! - R⁻¹ row by row, for the certificates below.
+//!
+//! Backtracking truncates Q and R and restores C from a copy kept per depth.
 //!
 //! Adding joints only removes motions, which gives two prunes, both safe:
 //!
-//! - **too flexible**: a row whose residual after projection is below `1e-9 ·` its norm counts
-//!   as dependent. With `r` the basis size and `left` the edges still undecided, every
-//!   completion has rank ≤ r + 2·left; if N − r − 2·left > 1 no completion can have dof = 1.
-//!   (The dropped residuals are ≤ 3e-9, four decades below the smallest zero threshold
-//!   `analyze` can use, √1e-9 ≈ 3.2e-5 on singular values, so the count is an upper bound
-//!   of `analyze`'s numerical rank.)
+//! - **too flexible**: a row whose residual is below `1e-9 ·` its norm counts as dependent.
+//!   With `r` the basis size and `left` the edges still undecided, every completion has
+//!   rank ≤ r + 2·left; if N − r − 2·left > 1 no completion can have dof = 1. (The dropped
+//!   residuals are ≤ 3e-9, four decades below the smallest zero threshold `analyze` can use,
+//!   √1e-9 ≈ 3.2e-5 on singular values, so the count is an upper bound of `analyze`'s
+//!   numerical rank.)
 //! - **rigid**: once the basis has N rows, R is square and σ_min(J) ≥ σ_min(R) ≥ 1/‖R⁻¹‖_F.
 //!   Adding rows never lowers the smallest eigenvalue of H, and `analyze`'s threshold for any
 //!   completion is at most `rel_tol · max(B, 1)` with B the sum over the mask's edges of the
@@ -26,8 +38,8 @@
 //! eigen-decomposition when it is clear: the N − 1 selected rows have σ_min(R)² ≥ 2 · the zero
 //! threshold `analyze` would use for this matrix (rel_tol · max(‖J‖_F², 1) ≥ rel_tol · λ_max),
 //! so N − 1 eigenvalues are non-zero, while the N-th is at most the dropped residuals (≤ 3e-9),
-//! far below any threshold. The motion is then the unit vector orthogonal to the basis, signed
-//! as `analyze` signs it (opening area, else largest component positive). Every other leaf
+//! far below any threshold. The motion is then the complement's one vector, signed as
+//! `analyze` signs it (opening area, else largest component positive). Every other leaf
 //! that may have dof = 1 (basis of N − 1 rows without the certificate, or N rows without the
 //! rigidity certificate) is handed to `mobility::analyze` itself. `Leaf::analysed` says which.
 //! Plain data in and out (joint choices, motion vectors); no separation or symmetry
@@ -108,9 +120,9 @@ pub struct Expander<'a> {
     settings: MobilitySettings,
     /// Reduced column count N = 3n + 1.
     cols: usize,
-    /// rows[edge][end]: the two Jacobian rows (each N long, concatenated) of a joint at that
-    /// end (0 = A, 1 = B).
-    rows: Vec<[Vec<f64>; 2]>,
+    /// rows[edge][end][i]: row i of the two Jacobian rows of a joint at that end (0 = A,
+    /// 1 = B), as its non-zero entries (column, value).
+    rows: Vec<[[SparseRow; 2]; 2]>,
     /// Per edge: the larger squared Frobenius norm of its two row pairs.
     row_weight: Vec<f64>,
     /// Per edge and end: the squared Frobenius norm of the row pair.
@@ -119,17 +131,29 @@ pub struct Expander<'a> {
     row_norm: Vec<[[f64; 2]; 2]>,
 }
 
+/// The non-zero entries (column, value) of one Jacobian row.
+type SparseRow = Vec<(usize, f64)>;
+
 /// Working state of one depth-first expansion.
 struct Search<'s> {
     edges: Vec<usize>,
     choice: Vec<JointChoice>,
     /// Orthonormal basis rows, `count` of them, each N long.
     q: Vec<f64>,
+    /// Orthonormal basis of the complement of Q: N − `count` vectors, each N long.
+    comp: Vec<f64>,
+    /// Copies of `comp` on the current path, one per depth, for backtracking.
+    saved: Vec<f64>,
+    /// Scratch vectors (N long): a row's coordinates in the complement, and C · v.
+    coords: Vec<f64>,
+    image: Vec<f64>,
     /// Lower-triangular factor: selected row i = Σ_j r[i][j] q_j (N × N, row-major).
     r: Vec<f64>,
     /// R⁻¹ (lower triangular, N × N, row-major); its leading `l_valid` rows are up to date.
     /// Row i depends only on R's rows 0..=i, so backtracking keeps the rows before it.
     l: Vec<f64>,
+    /// Squared Euclidean norm of each row of R⁻¹ (valid with the row).
+    l_sq: Vec<f64>,
     l_valid: usize,
     count: usize,
     /// Set when the basis is full but the rigidity certificate failed.
@@ -173,7 +197,17 @@ impl<'a> Expander<'a> {
                 [norm(&a[..n]), norm(&a[n..])],
                 [norm(&b[..n]), norm(&b[n..])],
             ]);
-            rows.push([a, b]);
+            let sparse = |v: &[f64]| -> SparseRow {
+                v.iter()
+                    .enumerate()
+                    .filter(|(_, x)| **x != 0.0)
+                    .map(|(c, x)| (c, *x))
+                    .collect()
+            };
+            rows.push([
+                [sparse(&a[..n]), sparse(&a[n..])],
+                [sparse(&b[..n]), sparse(&b[n..])],
+            ]);
         }
         Ok(Expander {
             cell,
@@ -200,11 +234,20 @@ impl<'a> Expander<'a> {
         let edges: Vec<usize> = (0..m).filter(|&k| mask >> k & 1 == 1).collect();
         let bound: f64 = edges.iter().map(|&k| self.row_weight[k]).sum();
         let n = self.cols;
+        let mut comp = vec![0.0; n * n];
+        for c in 0..n {
+            comp[c * n + c] = 1.0;
+        }
         let mut s = Search {
             choice: vec![JointChoice::None; m],
             q: vec![0.0; n * n],
+            comp,
+            saved: Vec::with_capacity(n * n * 4),
+            coords: vec![0.0; n],
+            image: vec![0.0; n],
             r: vec![0.0; n * n],
             l: vec![0.0; n * n],
+            l_sq: vec![0.0; n],
             l_valid: 0,
             count: 0,
             uncertain_full: false,
@@ -240,12 +283,19 @@ impl<'a> Expander<'a> {
             return;
         }
         let edge = s.edges[depth];
+        // Keep this node's complement for the second branch.
+        let base = s.saved.len();
+        let size = (n - s.count) * n;
+        s.saved.extend_from_slice(&s.comp[..size]);
         for (end, choice) in [JointChoice::A, JointChoice::B].into_iter().enumerate() {
             let (count, uncertain) = (s.count, s.uncertain_full);
+            if end == 1 && count < n {
+                s.comp[..size].copy_from_slice(&s.saved[base..base + size]);
+            }
             let pair = &self.rows[edge][end];
             let norms = self.row_norm[edge][end];
-            self.add_row(s, &pair[..n], norms[0]);
-            self.add_row(s, &pair[n..], norms[1]);
+            self.add_row(s, &pair[0], norms[0]);
+            self.add_row(s, &pair[1], norms[1]);
             let pruned = if s.count == n && count < n {
                 if self.certified(s, n) {
                     s.stats.pruned_rigid += 1;
@@ -265,6 +315,7 @@ impl<'a> Expander<'a> {
             s.count = count;
             s.uncertain_full = uncertain;
         }
+        s.saved.truncate(base);
     }
 
     fn leaf(&self, s: &mut Search<'_>) {
@@ -317,29 +368,12 @@ impl<'a> Expander<'a> {
         }
     }
 
-    /// The unit vector orthogonal to a basis of N − 1 rows, as a full state vector signed the
-    /// way `mobility` signs motions.
+    /// The unit vector orthogonal to a basis of N − 1 rows (the complement's one vector), as
+    /// a full state vector signed the way `mobility` signs motions.
     fn null_vector(&self, s: &Search<'_>) -> DVec {
         let n = self.cols;
-        let k = s.count;
-        // Start from the coordinate axis least covered by the basis (its residual is ≥ 1/√N).
-        let covered: Vec<f64> = (0..n)
-            .map(|c| (0..k).map(|i| s.q[i * n + c].powi(2)).sum())
-            .collect();
-        let axis = (0..n)
-            .min_by(|&a, &b| covered[a].total_cmp(&covered[b]))
-            .unwrap_or(0);
-        let mut v = vec![0.0; n];
-        v[axis] = 1.0;
-        for _pass in 0..2 {
-            for i in 0..k {
-                let qi = &s.q[i * n..(i + 1) * n];
-                let d: f64 = qi.iter().zip(&v).map(|(a, b)| a * b).sum();
-                for (x, y) in v.iter_mut().zip(qi) {
-                    *x -= d * y;
-                }
-            }
-        }
+        debug_assert_eq!(s.count + 1, n);
+        let v = &s.comp[..n];
         let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
         let mut full = DVec::zeros(n + 3);
         for (c, x) in v.iter().enumerate() {
@@ -357,44 +391,63 @@ impl<'a> Expander<'a> {
         full
     }
 
-    /// Projects `row` (Euclidean norm `norm`) against the basis (twice) and appends it when
-    /// independent. Works in place in the free slot `count` of Q and R (no allocation).
-    fn add_row(&self, s: &mut Search<'_>, row: &[f64], norm: f64) {
+    /// Appends `row` (Euclidean norm `norm`) to the basis when its residual, its projection on
+    /// the complement, is not below `DEPENDENT_REL_TOL · norm`; the complement loses that
+    /// direction (one Householder reflection of its coordinates). No allocation.
+    fn add_row(&self, s: &mut Search<'_>, row: &[(usize, f64)], norm: f64) {
         let n = self.cols;
         let k = s.count;
-        if k == n {
+        if k == n || norm == 0.0 {
             return;
         }
-        if norm == 0.0 {
+        let d = n - k;
+        // The row's coordinates in the complement (sparse products).
+        let u = &mut s.coords[..d];
+        for (x, cj) in u.iter_mut().zip(s.comp.chunks_exact(n)) {
+            *x = row.iter().map(|&(c, v)| cj[c] * v).sum();
+        }
+        let rho = u.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if rho <= DEPENDENT_REL_TOL * norm {
             return;
         }
         // Slot k's R row changes: R⁻¹'s row k (and any after it) must be recomputed.
         s.l_valid = s.l_valid.min(k);
-        let (basis, rest) = s.q.split_at_mut(k * n);
-        let v = &mut rest[..n];
-        v.copy_from_slice(row);
-        let coef = &mut s.r[k * n..k * n + k];
-        coef.fill(0.0);
-        for _pass in 0..2 {
-            for (c, qj) in coef.iter_mut().zip(basis.chunks_exact(n)) {
-                let d = dot(qj, v);
-                *c += d;
-                for (x, y) in v.iter_mut().zip(qj) {
-                    *x -= d * y;
-                }
-            }
-        }
-        let rho = v.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if rho <= DEPENDENT_REL_TOL * norm {
-            return;
-        }
-        for x in v.iter_mut() {
-            *x /= rho;
-        }
+        // R's new row: the row's coefficients on the basis, then its residual.
+        let (basis, _) = s.q.split_at(k * n);
         let rrow = &mut s.r[k * n..(k + 1) * n];
+        for (x, qj) in rrow.iter_mut().zip(basis.chunks_exact(n)) {
+            *x = row.iter().map(|&(c, v)| qj[c] * v).sum();
+        }
         rrow[k] = rho;
         for x in &mut rrow[k + 1..] {
             *x = 0.0;
+        }
+        // Householder reflection H = I − β v vᵀ with v = u + sign(u₀) ρ e₀, so H u = −sign(u₀) ρ e₀:
+        // (C H)'s first vector is −sign(u₀) C u / ρ, the new basis direction, and the others
+        // span the new complement.
+        let sign = if u[0] < 0.0 { -1.0 } else { 1.0 };
+        u[0] += sign * rho;
+        let beta = 1.0 / (rho * u[0].abs());
+        let w = &mut s.image;
+        w.fill(0.0);
+        for (&vj, cj) in u.iter().zip(s.comp.chunks_exact(n)) {
+            for (x, y) in w.iter_mut().zip(cj) {
+                *x += vj * y;
+            }
+        }
+        for (&vj, cj) in u.iter().zip(s.comp.chunks_exact_mut(n)) {
+            let f = beta * vj;
+            for (x, y) in cj.iter_mut().zip(w.iter()) {
+                *x -= f * y;
+            }
+        }
+        let qk = &mut s.q[k * n..(k + 1) * n];
+        for (x, y) in qk.iter_mut().zip(&s.comp[..n]) {
+            *x = -sign * y;
+        }
+        // Drop the first vector: the last one takes its place.
+        if d > 1 {
+            s.comp.copy_within((d - 1) * n..d * n, 0);
         }
         s.count = k + 1;
     }
@@ -420,36 +473,12 @@ impl<'a> Expander<'a> {
                 }
                 s.l[i * n + c] = acc / s.r[i * n + i];
             }
+            s.l_sq[i] = s.l[i * n..=i * n + i].iter().map(|x| x * x).sum();
         }
         s.l_valid = s.l_valid.max(size);
-        // ‖R⁻¹‖_F² summed column by column (the order of the per-column solves).
-        let mut inv_sq = 0.0;
-        for c in 0..size {
-            for i in c..size {
-                let x = s.l[i * n + c];
-                inv_sq += x * x;
-            }
-        }
+        let inv_sq: f64 = s.l_sq[..size].iter().sum();
         inv_sq.is_finite() && inv_sq > 0.0 && 1.0 / inv_sq >= RIGID_MARGIN * threshold
     }
-}
-
-/// Dot product with four independent accumulators (a fixed order, so deterministic; about
-/// four times faster than one running sum, whose additions cannot overlap).
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let mut acc = [0.0f64; 4];
-    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
-    let (ra, rb) = (ca.remainder(), cb.remainder());
-    for (x, y) in ca.zip(cb) {
-        for ((s, p), q) in acc.iter_mut().zip(x).zip(y) {
-            *s += p * q;
-        }
-    }
-    let mut tail = 0.0;
-    for (x, y) in ra.iter().zip(rb) {
-        tail += x * y;
-    }
-    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
 #[cfg(test)]
@@ -457,17 +486,6 @@ mod tests {
     use super::*;
     use crate::cell::CellDims;
     use crate::tiling::{Family, Tiling};
-
-    #[test]
-    fn dot_agrees_with_a_running_sum() {
-        for len in [0, 1, 3, 4, 5, 13, 25, 37] {
-            let a: Vec<f64> = (0..len).map(|i| (i as f64 * 0.7).sin()).collect();
-            let b: Vec<f64> = (0..len).map(|i| 1.0 / (1.0 + i as f64)).collect();
-            let plain: f64 = a.iter().zip(&b).map(|(x, y)| x * y).sum();
-            assert!((dot(&a, &b) - plain).abs() <= 1e-14, "{len}");
-        }
-        assert_eq!(dot(&[1.0, 2.0, 3.0, 4.0, 5.0], &[1.0; 5]), 15.0);
-    }
 
     #[test]
     fn rotating_squares_mask_keeps_the_named_design() {
