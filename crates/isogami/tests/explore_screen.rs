@@ -74,8 +74,17 @@ fn every_screened_design_is_rejected_by_the_full_assessment() {
     for (f, a, b) in UNITS {
         let dims = CellDims::new(a, b).unwrap();
         let topo = enumerate_topologies(fam(f), dims, &settings.topology).unwrap();
-        for d in &topo.designs {
+        for (d, details) in topo.designs.iter().zip(&topo.details) {
             total += 1;
+            // The exploration screens on the rates its deduplication computed: the same, bit
+            // for bit, as the screen's own analysis of the design.
+            let own = closing_rates(d, &settings);
+            assert!(own.is_some(), "{d}");
+            assert_eq!(
+                details.closing.map(|r| r.map(f64::to_bits)),
+                own.map(|r| r.map(f64::to_bits)),
+                "{d}"
+            );
             if !cannot_reach_threshold(d, &settings) {
                 continue;
             }

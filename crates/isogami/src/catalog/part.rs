@@ -17,7 +17,7 @@
 //! database until its siblings arrive.
 
 use super::settings::CatalogSettings;
-use super::unit::{characterise_all, sample_shapes, tally, topology_tallies};
+use super::unit::{characterise_all, sample_shapes, tally, topology_tallies, Candidate, Closing};
 use super::{CatalogEntry, StageTally, UnitOutcome};
 use crate::cell::CellDims;
 use crate::error::Result;
@@ -26,7 +26,6 @@ use crate::explore::{
     enumerate_topology_part, ExploreError, MotionIndex, MotionInvariant, UnitPart,
 };
 use crate::tiling::Family;
-use crate::topology::Design;
 use serde::{Deserialize, Serialize};
 
 /// One motion class a part kept.
@@ -80,10 +79,15 @@ pub fn run_unit_part(
     settings.validate()?;
     let topo = enumerate_topology_part(family, dims, &settings.topology, part)?;
     let stages = topology_tallies(&topo);
-    let work: Vec<(Design, String)> = topo
+    let work: Vec<Candidate> = topo
         .designs
         .iter()
-        .map(|d| (d.clone(), d.to_string()))
+        .zip(&topo.details)
+        .map(|(d, details)| Candidate {
+            design: d.clone(),
+            topology: d.to_string(),
+            closing: Closing::Known(details.closing),
+        })
         .collect();
     let (deployed, threshold_seconds) = characterise_all(&work, settings)?;
     let sampled = sample_shapes(family, dims, &deployed, settings)?;

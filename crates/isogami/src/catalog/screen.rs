@@ -43,7 +43,7 @@
 //! units; `CatalogSettings::screen` turns it off). Plain data in and out; no I/O.
 
 use super::settings::CatalogSettings;
-use crate::explore::edge_rates;
+use crate::explore::{self, edge_rates};
 use crate::kinematics::Mechanism;
 use crate::mobility::analyze;
 use crate::topology::Design;
@@ -62,7 +62,9 @@ pub const MIN_SCREEN_RATE: f64 = 0.1;
 pub const THRESHOLD_KERFS: f64 = 2.0;
 
 /// Largest first-order closing rate over every edge endpoint, for the motion as signed by the
-/// mobility analysis (+) and its reverse (−); 0 when nothing closes.
+/// mobility analysis (+) and its reverse (−); 0 when nothing closes. `None` when the design
+/// does not build or does not have one degree of freedom. The exploration has these rates from
+/// its deduplication already (`DesignDetails::closing`, the same analysis of the same design).
 pub fn closing_rates(design: &Design, settings: &CatalogSettings) -> Option<[f64; 2]> {
     let cell = design.cell().ok()?;
     let mech = Mechanism::new(&cell, &design.joints).ok()?;
@@ -71,14 +73,7 @@ pub fn closing_rates(design: &Design, settings: &CatalogSettings) -> Option<[f64
         return None;
     }
     let v = &mob.motion.as_ref()?.vector;
-    let mut close = [0.0f64; 2];
-    for r in edge_rates(&cell, &mech, v) {
-        for o in r.opening {
-            close[0] = close[0].max(-o);
-            close[1] = close[1].max(o);
-        }
-    }
-    close.iter().all(|c| c.is_finite()).then_some(close)
+    explore::closing_rates(&edge_rates(&cell, &mech, v))
 }
 
 /// Whether the screen may decide under `settings`: the threshold is at least
@@ -98,7 +93,12 @@ pub fn screen_rate(settings: &CatalogSettings) -> f64 {
 /// first-order rate of at least [`screen_rate`], and the screen applies under `settings`
 /// (see the module docs).
 pub fn cannot_reach_threshold(design: &Design, settings: &CatalogSettings) -> bool {
+    applies(settings) && screens_out(closing_rates(design, settings), settings)
+}
+
+/// The screen's verdict from closing rates already known (as [`closing_rates`] gives them),
+/// whether or not the screen applies under `settings`.
+pub fn screens_out(closing: Option<[f64; 2]>, settings: &CatalogSettings) -> bool {
     let rate = screen_rate(settings);
-    applies(settings)
-        && closing_rates(design, settings).is_some_and(|c| c.iter().all(|&r| r >= rate))
+    closing.is_some_and(|c| c.iter().all(|&r| r >= rate))
 }

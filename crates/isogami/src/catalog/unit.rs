@@ -2,7 +2,7 @@
 
 use super::assess::{assess, Assessment};
 use super::part::{combine_parts, run_unit_part};
-use super::screen::cannot_reach_threshold;
+use super::screen::{applies, closing_rates, screens_out};
 use super::settings::CatalogSettings;
 use crate::api;
 use crate::cell::{CellDims, UnitCell};
@@ -96,13 +96,20 @@ pub(super) fn topology_tallies(r: &TopologyReport) -> Vec<StageTally> {
 /// signs). Uses the library's one deploy entry
 /// point with the catalogue's settings, so `isogami deploy` with the same settings gives the
 /// same report.
-fn characterise(
-    design: &Design,
-    topology: &str,
-    settings: &CatalogSettings,
-) -> Result<Option<CatalogEntry>> {
-    if settings.screen && cannot_reach_threshold(design, settings) {
-        return Ok(None);
+fn characterise(candidate: &Candidate, settings: &CatalogSettings) -> Result<Option<CatalogEntry>> {
+    let Candidate {
+        design,
+        topology,
+        closing,
+    } = candidate;
+    if settings.screen && applies(settings) {
+        let rates = match closing {
+            Closing::Known(rates) => *rates,
+            Closing::Unknown => closing_rates(design, settings),
+        };
+        if screens_out(rates, settings) {
+            return Ok(None);
+        }
     }
     let report = match assess(design, settings, &mut |_| true)? {
         Assessment::Admitted(report) => *report,
@@ -117,17 +124,36 @@ fn characterise(
     }))
 }
 
+/// A design's first-order closing rates for the screen, when known before it is characterised.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Closing {
+    /// Computed by the screen.
+    Unknown,
+    /// From the exploration's deduplication (`DesignDetails::closing`).
+    Known(Option<[f64; 2]>),
+}
+
+/// One design to characterise.
+pub(super) struct Candidate {
+    /// The design.
+    pub design: Design,
+    /// Spec of its topology at the default shape.
+    pub topology: String,
+    /// Its closing rates, when known.
+    pub closing: Closing,
+}
+
 /// Characterises every design of `work` on the current rayon pool; results in the order of
 /// `work` (the first error in that order wins), with the seconds of work summed over threads.
 pub(super) fn characterise_all(
-    work: &[(Design, String)],
+    work: &[Candidate],
     settings: &CatalogSettings,
 ) -> Result<(Vec<Option<CatalogEntry>>, f64)> {
     let done: Vec<(Result<Option<CatalogEntry>>, f64)> = work
         .par_iter()
-        .map(|(design, topology)| {
+        .map(|candidate| {
             let t = Instant::now();
-            let r = characterise(design, topology, settings);
+            let r = characterise(candidate, settings);
             (r, t.elapsed().as_secs_f64())
         })
         .collect();
@@ -176,15 +202,16 @@ pub(super) fn sample_shapes(
                     continue;
                 }
                 mine.push(work.len());
-                work.push((
-                    Design {
+                work.push(Candidate {
+                    design: Design {
                         family,
                         params: params.clone(),
                         dims,
                         joints: kept.design.joints.clone(),
                     },
-                    kept.topology.clone(),
-                ));
+                    topology: kept.topology.clone(),
+                    closing: Closing::Unknown,
+                });
             }
         }
         slots.push(mine);

@@ -45,4 +45,4 @@ pub use pipeline::{
 };
 pub use plan::{ExplorePlan, Shard, UnitPart, UnitSize, WorkItem, WorkUnit, MAX_PARTS, MAX_SHARDS};
 pub use reduced::{MaskVerdict, ReducedGraph, ReducedResult, MAX_REDUCED_EDGES};
-pub use separate::{edge_rates, separation, EdgeRate, Separation, SeparationRule};
+pub use separate::{closing_rates, edge_rates, separation, EdgeRate, Separation, SeparationRule};

@@ -117,6 +117,9 @@ pub struct DesignDetails {
     pub area_rate: f64,
     /// Separation verdict.
     pub separation: Separation,
+    /// Largest first-order closing rates along both signs of its motion (see
+    /// [`closing_rates`](super::separate::closing_rates)).
+    pub closing: Option<[f64; 2]>,
     /// Size of its symmetry orbit: designs equal to it up to a symmetry of the sheet.
     pub orbit_size: usize,
     /// Other symmetry orbits with the same motion merged into it.
@@ -345,6 +348,7 @@ pub fn enumerate_topology_part(
             gap_decades: k.gap_decades,
             area_rate: k.area_rate,
             separation: k.separation,
+            closing: k.closing,
             orbit_size: k.orbit_size,
             same_motion_merged: k.same_motion_merged,
             invariant: k.invariant.clone(),

@@ -113,6 +113,19 @@ pub fn edge_rates(cell: &UnitCell, mech: &Mechanism, v: &DVec) -> Vec<EdgeRate> 
         .collect()
 }
 
+/// Largest first-order closing rate over every edge endpoint of `rates`, for the motion as
+/// signed (+) and its reverse (−); 0 when nothing closes. `None` when a rate is not finite.
+pub fn closing_rates(rates: &[EdgeRate]) -> Option<[f64; 2]> {
+    let mut close = [0.0f64; 2];
+    for r in rates {
+        for o in r.opening {
+            close[0] = close[0].max(-o);
+            close[1] = close[1].max(o);
+        }
+    }
+    close.iter().all(|c| c.is_finite()).then_some(close)
+}
+
 impl Separation {
     /// True when the motion separates under `rule`.
     pub fn passes(&self, rule: SeparationRule) -> bool {

@@ -7,7 +7,7 @@ use super::motion::{motion_invariant, MotionIndex, MotionInvariant, MOTION_TOL};
 use super::repeats::{is_repeat, repeat_translations};
 use super::symmetry::SymmetryGroup;
 use crate::cell::UnitCell;
-use crate::explore::separate::{separation, Separation};
+use crate::explore::separate::{closing_rates, edge_rates, separation, Separation};
 use crate::kinematics::Mechanism;
 use crate::math::Vec2;
 use crate::mobility::{analyze, MobilitySettings};
@@ -29,6 +29,9 @@ pub struct Kept {
     pub area_rate: f64,
     /// Its separation verdict.
     pub separation: Separation,
+    /// Its largest first-order closing rates along both signs of its motion
+    /// ([`closing_rates`]; `None` when not finite), for the catalogue's screen.
+    pub closing: Option<[f64; 2]>,
     /// Size of its symmetry orbit (distinct images under the sheet's symmetries).
     pub orbit_size: usize,
     /// Other orbits merged into it because their motion matched.
@@ -73,6 +76,7 @@ struct Survivor {
     gap_decades: Option<f64>,
     area_rate: f64,
     separation: Separation,
+    closing: Option<[f64; 2]>,
     orbit_size: usize,
     same_motion_merged: usize,
     /// Set when a later, more connected design took this slot: its own invariant (it matched
@@ -126,6 +130,7 @@ fn analyse(
     Analysed::Candidate(
         Box::new(Survivor {
             separation: separation(cell, mech, &joints, &v),
+            closing: closing_rates(&edge_rates(cell, &m, &v)),
             orbit_size: group.canonical_key(&joints).1,
             gap_decades: mob.gap_decades,
             area_rate: mob.motion.as_ref().map_or(0.0, |mo| mo.area_rate),
@@ -218,6 +223,7 @@ pub fn dedup_orbits(
                 gap_decades: s.gap_decades,
                 area_rate: s.area_rate,
                 separation: s.separation,
+                closing: s.closing,
                 orbit_size: s.orbit_size,
                 same_motion_merged: s.same_motion_merged,
                 invariant,
