@@ -232,13 +232,61 @@ impl<'a> Expander<'a> {
     pub fn expand(&self, mask: u32, visit: &mut dyn FnMut(Leaf<'_>)) -> ExpandStats {
         let m = self.rows.len();
         let edges: Vec<usize> = (0..m).filter(|&k| mask >> k & 1 == 1).collect();
+        let mut s = self.search(edges, visit);
+        self.descend(&mut s, 0);
+        s.stats
+    }
+
+    /// Collects the dof = 1 endpoint choices of `mask`.
+    pub fn expand_collect(&self, mask: u32) -> (Vec<Vec<JointChoice>>, ExpandStats) {
+        let mut out = Vec::new();
+        let stats = self.expand(mask, &mut |leaf| out.push(leaf.joints.to_vec()));
+        (out, stats)
+    }
+
+    /// The motion of one endpoint choice when the incremental factorisation certifies that it
+    /// has exactly one degree of freedom, as at a certified leaf (see the module docs): the
+    /// unit motion vector, full state, signed as `analyze` signs it, and bit for bit the
+    /// motion the expansion gives the same choice when it certifies it. `None` when the
+    /// certificate does not decide (or `joints` holds a welded edge or has the wrong length):
+    /// `mobility::analyze` must.
+    pub fn certified_motion(&self, joints: &[JointChoice]) -> Option<DVec> {
+        if joints.len() != self.rows.len() || joints.contains(&JointChoice::Both) {
+            return None;
+        }
+        let edges: Vec<usize> = (0..joints.len())
+            .filter(|&k| joints[k] != JointChoice::None)
+            .collect();
+        let mut ignore = |_: Leaf<'_>| {};
+        let mut s = self.search(edges, &mut ignore);
+        let n = self.cols;
+        for k in 0..s.edges.len() {
+            let edge = s.edges[k];
+            let end = usize::from(joints[edge] == JointChoice::B);
+            let pair = &self.rows[edge][end];
+            let norms = self.row_norm[edge][end];
+            self.add_row(&mut s, &pair[0], norms[0]);
+            self.add_row(&mut s, &pair[1], norms[1]);
+            s.choice[edge] = joints[edge];
+        }
+        if s.count + 1 != n {
+            return None;
+        }
+        let threshold = self.settings.rel_tol * self.frobenius_sq(&s).max(1.0);
+        self.certified_with(&mut s, n - 1, threshold)
+            .then(|| self.null_vector(&s))
+    }
+
+    /// A search over `edges` from no rows at all.
+    fn search<'s>(&self, edges: Vec<usize>, visit: &'s mut dyn FnMut(Leaf<'_>)) -> Search<'s> {
+        let m = self.rows.len();
         let bound: f64 = edges.iter().map(|&k| self.row_weight[k]).sum();
         let n = self.cols;
         let mut comp = vec![0.0; n * n];
         for c in 0..n {
             comp[c * n + c] = 1.0;
         }
-        let mut s = Search {
+        Search {
             choice: vec![JointChoice::None; m],
             q: vec![0.0; n * n],
             comp,
@@ -258,16 +306,15 @@ impl<'a> Expander<'a> {
             },
             edges,
             visit,
-        };
-        self.descend(&mut s, 0);
-        s.stats
+        }
     }
 
-    /// Collects the dof = 1 endpoint choices of `mask`.
-    pub fn expand_collect(&self, mask: u32) -> (Vec<Vec<JointChoice>>, ExpandStats) {
-        let mut out = Vec::new();
-        let stats = self.expand(mask, &mut |leaf| out.push(leaf.joints.to_vec()));
-        (out, stats)
+    /// ‖J‖_F² of the current choice (every edge decided): a bound on λ_max of H.
+    fn frobenius_sq(&self, s: &Search<'_>) -> f64 {
+        s.edges
+            .iter()
+            .map(|&e| self.row_sq[e][usize::from(s.choice[e] == JointChoice::B)])
+            .sum()
     }
 
     fn descend(&self, s: &mut Search<'_>, depth: usize) {
@@ -329,12 +376,7 @@ impl<'a> Expander<'a> {
         debug_assert!(s.count < n || s.uncertain_full);
         if s.count + 1 == n {
             // ‖J‖_F² of this leaf bounds λ_max: the zero threshold analyze would use.
-            let frob: f64 = s
-                .edges
-                .iter()
-                .map(|&e| self.row_sq[e][usize::from(s.choice[e] == JointChoice::B)])
-                .sum();
-            let threshold = self.settings.rel_tol * frob.max(1.0);
+            let threshold = self.settings.rel_tol * self.frobenius_sq(s).max(1.0);
             if self.certified_with(s, n - 1, threshold) {
                 s.stats.certified += 1;
                 s.stats.mobility_one += 1;
@@ -498,6 +540,56 @@ mod tests {
         let named = crate::topology::named_design("rotating-squares").unwrap();
         assert!(found.contains(&named.joints));
         assert_eq!(stats.mobility_one as usize, found.len());
+    }
+
+    /// The one-choice certificate the deduplication uses certifies exactly the leaves the
+    /// expansion certifies, with the same motion bit for bit, and nothing else.
+    #[test]
+    fn certified_motion_is_the_certified_leaf() {
+        for (n, a, b, mask) in [(76, 2, 2, 0xFFu32), (28, 1, 1, 0x3FF), (44, 1, 1, 0xF)] {
+            let f = Family::from_number(n).unwrap();
+            let cell =
+                UnitCell::new(&Tiling::default_for(f), CellDims::new(a, b).unwrap()).unwrap();
+            let ex = Expander::new(&cell, MobilitySettings::default()).unwrap();
+            let mut certified = Vec::new();
+            ex.expand(mask, &mut |leaf| {
+                if !leaf.analysed {
+                    certified.push((leaf.joints.to_vec(), leaf.motion.clone()));
+                }
+            });
+            assert!(!certified.is_empty(), "IH{n}");
+            let edges: Vec<usize> = (0..cell.edges.len())
+                .filter(|k| mask >> k & 1 == 1)
+                .collect();
+            let mut found = 0;
+            for bits in 0u32..1 << edges.len() {
+                let mut joints = vec![JointChoice::None; cell.edges.len()];
+                for (i, &e) in edges.iter().enumerate() {
+                    joints[e] = if bits >> i & 1 == 0 {
+                        JointChoice::A
+                    } else {
+                        JointChoice::B
+                    };
+                }
+                let known = certified.iter().find(|(j, _)| *j == joints);
+                match (ex.certified_motion(&joints), known) {
+                    (Some(v), Some((_, w))) => {
+                        assert!(v
+                            .iter()
+                            .zip(w.iter())
+                            .all(|(x, y)| x.to_bits() == y.to_bits()));
+                        found += 1;
+                    }
+                    (None, None) => {}
+                    (v, w) => panic!("IH{n} {joints:?}: {} vs {}", v.is_some(), w.is_some()),
+                }
+            }
+            assert_eq!(found, certified.len(), "IH{n}");
+            let mut welded = certified[0].0.clone();
+            welded[edges[0]] = JointChoice::Both;
+            assert!(ex.certified_motion(&welded).is_none());
+            assert!(ex.certified_motion(&welded[1..]).is_none());
+        }
     }
 
     /// Certified leaves carry the motion `analyze` would give, sign included.

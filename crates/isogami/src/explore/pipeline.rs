@@ -328,7 +328,14 @@ pub fn enumerate_topology_part(
     timings.separate = separate_time;
 
     let t = Instant::now();
-    let result = dedup_orbits(&cell, &reference, &group, &orbits, options.mobility);
+    let result = dedup_orbits(
+        &cell,
+        &reference,
+        &group,
+        &expander,
+        &orbits,
+        options.mobility,
+    );
     // Seconds of work: the analyses summed over threads (at least the wall time).
     let wall = t.elapsed();
     timings.dedup = result.work.max(wall);

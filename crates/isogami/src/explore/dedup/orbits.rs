@@ -7,9 +7,10 @@ use super::motion::{motion_invariant, MotionIndex, MotionInvariant, MOTION_TOL};
 use super::repeats::{is_repeat, repeat_translations};
 use super::symmetry::SymmetryGroup;
 use crate::cell::UnitCell;
+use crate::explore::expand::Expander;
 use crate::explore::separate::{closing_rates, edge_rates, separation, Separation};
 use crate::kinematics::Mechanism;
-use crate::math::Vec2;
+use crate::math::{DVec, Vec2};
 use crate::mobility::{analyze, MobilitySettings};
 use crate::topology::JointChoice;
 use rayon::prelude::*;
@@ -36,7 +37,7 @@ pub struct Kept {
     pub orbit_size: usize,
     /// Other orbits merged into it because their motion matched.
     pub same_motion_merged: usize,
-    /// Its motion invariant.
+    /// Its motion invariant (from the motion the merge used: see [`dedup_orbits`]).
     pub invariant: MotionInvariant,
     /// Its key (`SymmetryGroup::key` of `joints`): keys order like joint strings.
     pub key: u64,
@@ -73,11 +74,6 @@ fn pin_count(joints: &[JointChoice]) -> usize {
 #[derive(Debug)]
 struct Survivor {
     joints: Vec<JointChoice>,
-    gap_decades: Option<f64>,
-    area_rate: f64,
-    separation: Separation,
-    closing: Option<[f64; 2]>,
-    orbit_size: usize,
     same_motion_merged: usize,
     /// Set when a later, more connected design took this slot: its own invariant (it matched
     /// the stored one to the tolerance, which stays in the index for lookups).
@@ -99,55 +95,108 @@ enum Analysed {
     /// A repeat of a smaller cell's design.
     Repeat,
     /// A candidate for the motion merge, with its invariant.
-    Candidate(Box<Survivor>, MotionInvariant),
+    Candidate(Survivor, MotionInvariant),
+}
+
+/// The representative's motion: the expansion's certificate when it decides (see
+/// [`Expander::certified_motion`]), else `mobility::analyze`; `None` when it does not have one
+/// degree of freedom.
+fn motion(
+    cell: &UnitCell,
+    expander: &Expander,
+    joints: &[JointChoice],
+    settings: MobilitySettings,
+) -> Option<DVec> {
+    if let Some(v) = expander.certified_motion(joints) {
+        return Some(v);
+    }
+    let m = Mechanism::new(cell, joints).ok()?;
+    match analyze(&m, &m.rest, settings) {
+        Ok(mob) if mob.dof == 1 => mob.motion.map(|mo| mo.vector),
+        _ => None,
+    }
 }
 
 fn analyse(
-    cell: &UnitCell,
-    mech: &Mechanism,
-    group: &SymmetryGroup,
+    scope: &Scope<'_>,
     translations: &[Vec2],
     key: u64,
     settings: MobilitySettings,
 ) -> Analysed {
-    let joints = group.joints_of(key);
-    let Ok(m) = Mechanism::new(cell, &joints) else {
-        return Analysed::Unconfirmed;
-    };
-    let mob = match analyze(&m, &m.rest, settings) {
-        Ok(mob) if mob.dof == 1 && mob.motion.is_some() => mob,
-        _ => return Analysed::Unconfirmed,
-    };
-    let Some(v) = mob.motion.as_ref().map(|mo| mo.vector.clone()) else {
+    let joints = scope.group.joints_of(key);
+    let Some(v) = motion(scope.cell, scope.expander, &joints, settings) else {
         return Analysed::Unconfirmed;
     };
     if translations
         .iter()
-        .any(|&t| is_repeat(cell, mech, &joints, &v, t))
+        .any(|&t| is_repeat(scope.cell, scope.mech, &joints, &v, t))
     {
         return Analysed::Repeat;
     }
+    let invariant = motion_invariant(scope.cell, scope.mech, &v);
     Analysed::Candidate(
-        Box::new(Survivor {
-            separation: separation(cell, mech, &joints, &v),
-            closing: closing_rates(&edge_rates(cell, &m, &v)),
-            orbit_size: group.canonical_key(&joints).1,
-            gap_decades: mob.gap_decades,
-            area_rate: mob.motion.as_ref().map_or(0.0, |mo| mo.area_rate),
+        Survivor {
             joints,
             same_motion_merged: 0,
             replaced_invariant: None,
             key,
             first_key: key,
-        }),
-        motion_invariant(cell, mech, &v),
+        },
+        invariant,
     )
 }
 
+/// What a kept design's report needs, from `mobility::analyze` (the gap, the area rate and the
+/// motion the separation and closing rates are measured on, exactly as a design analysed on
+/// its own), with the invariants the merge used; `None` when the analysis does not confirm
+/// one degree of freedom (not expected: the merge took it on a certified or analysed
+/// dof = 1).
+fn report(
+    scope: &Scope<'_>,
+    s: Survivor,
+    stored: MotionInvariant,
+    settings: MobilitySettings,
+) -> Option<Kept> {
+    let cell = scope.cell;
+    let m = Mechanism::new(cell, &s.joints).ok()?;
+    let mob = analyze(&m, &m.rest, settings).ok()?;
+    let motion = mob.motion.filter(|_| mob.dof == 1)?;
+    let v = &motion.vector;
+    let (invariant, first_invariant) = match s.replaced_invariant {
+        Some(own) => (own, Some(stored)),
+        None => (stored, None),
+    };
+    Some(Kept {
+        separation: separation(cell, scope.mech, &s.joints, v),
+        closing: closing_rates(&edge_rates(cell, &m, v)),
+        orbit_size: scope.group.canonical_key(&s.joints).1,
+        gap_decades: mob.gap_decades,
+        area_rate: motion.area_rate,
+        joints: s.joints,
+        same_motion_merged: s.same_motion_merged,
+        invariant,
+        key: s.key,
+        first_key: s.first_key,
+        first_invariant,
+    })
+}
+
+/// The cell and its helpers, shared by every analysis of one deduplication.
+struct Scope<'a> {
+    cell: &'a UnitCell,
+    mech: &'a Mechanism,
+    group: &'a SymmetryGroup,
+    expander: &'a Expander<'a>,
+}
+
 /// Steps 2 and 3 of [`super`] on the canonical keys of the symmetry orbits found
-/// (step 1 is the keying itself). Each representative is analysed again with
-/// `mobility::analyze` (`settings` as in the expansion), which also gives its reported gap and
-/// motion. `mech`: any mechanism of the cell.
+/// (step 1 is the keying itself). Each representative's dof = 1 and motion come from the
+/// expansion's certificate on its joints (`expander`, the cell's; microseconds), or from
+/// `mobility::analyze` (`settings` as in the expansion) when the certificate does not decide;
+/// the repeat test and the motion merge use that motion. Only the designs that survive the
+/// merge are analysed with `mobility::analyze` for their reports (gap, area rate, separation,
+/// closing rates, invariant), so a kept design's report is what analysing it alone gives.
+/// `mech`: any mechanism of the cell.
 ///
 /// The analyses run in parallel on the current rayon pool, in batches; the motion merge then
 /// takes them in key order, so the result does not depend on the number of threads.
@@ -155,9 +204,16 @@ pub fn dedup_orbits(
     cell: &UnitCell,
     mech: &Mechanism,
     group: &SymmetryGroup,
+    expander: &Expander,
     canonical_keys: &BTreeSet<u64>,
     settings: MobilitySettings,
 ) -> DedupResult {
+    let scope = Scope {
+        cell,
+        mech,
+        group,
+        expander,
+    };
     let translations = repeat_translations(cell, &group.symmetries);
     let mut out = DedupResult {
         symmetry_classes: canonical_keys.len(),
@@ -174,7 +230,7 @@ pub fn dedup_orbits(
             .par_iter()
             .map(|&key| {
                 let t = Instant::now();
-                let a = analyse(cell, mech, group, &translations, key, settings);
+                let a = analyse(&scope, &translations, key, settings);
                 (a, t.elapsed())
             })
             .collect();
@@ -186,7 +242,7 @@ pub fn dedup_orbits(
                     continue;
                 }
                 Analysed::Repeat => continue,
-                Analysed::Candidate(k, invariant) => (*k, invariant),
+                Analysed::Candidate(k, invariant) => (k, invariant),
             };
             out.after_repeats += 1;
             if let Some(k) = index.find(&invariant, MOTION_TOL) {
@@ -210,28 +266,22 @@ pub fn dedup_orbits(
             survivors.push(kept);
         }
     }
-    out.kept = survivors
-        .into_iter()
+    // The survivors' reports, in parallel, in key order.
+    let reported: Vec<(Option<Kept>, Duration)> = survivors
+        .into_par_iter()
         .zip(index.into_items())
         .map(|(s, stored)| {
-            let (invariant, first_invariant) = match s.replaced_invariant {
-                Some(own) => (own, Some(stored)),
-                None => (stored, None),
-            };
-            Kept {
-                joints: s.joints,
-                gap_decades: s.gap_decades,
-                area_rate: s.area_rate,
-                separation: s.separation,
-                closing: s.closing,
-                orbit_size: s.orbit_size,
-                same_motion_merged: s.same_motion_merged,
-                invariant,
-                key: s.key,
-                first_key: s.first_key,
-                first_invariant,
-            }
+            let t = Instant::now();
+            let k = report(&scope, s, stored, settings);
+            (k, t.elapsed())
         })
         .collect();
+    for (k, time) in reported {
+        out.work += time;
+        match k {
+            Some(k) => out.kept.push(k),
+            None => out.unconfirmed += 1,
+        }
+    }
     out
 }
