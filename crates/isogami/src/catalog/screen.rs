@@ -40,7 +40,10 @@
 //!   mobility analysis (tens of µs).
 //!
 //! The exploration keeps the same designs with and without the screen (tested on a set of
-//! units; `CatalogSettings::screen` turns it off). Plain data in and out; no I/O.
+//! units; `CatalogSettings::screen` turns it off). It screens the topologies it enumerated on
+//! the closing rates its deduplication measured on the same analysis ([`screens_out`]), so
+//! for them the screen costs nothing; shape samples are analysed here ([`closing_rates`]).
+//! Plain data in and out; no I/O.
 
 use super::settings::CatalogSettings;
 use crate::explore::{self, edge_rates};
