@@ -233,6 +233,7 @@ impl<'a> Expander<'a> {
         let m = self.rows.len();
         let edges: Vec<usize> = (0..m).filter(|&k| mask >> k & 1 == 1).collect();
         let mut s = self.search(edges, visit);
+        s.saved.reserve(4 * self.cols * self.cols);
         self.descend(&mut s, 0);
         s.stats
     }
@@ -290,7 +291,7 @@ impl<'a> Expander<'a> {
             choice: vec![JointChoice::None; m],
             q: vec![0.0; n * n],
             comp,
-            saved: Vec::with_capacity(n * n * 4),
+            saved: Vec::new(),
             coords: vec![0.0; n],
             image: vec![0.0; n],
             r: vec![0.0; n * n],
