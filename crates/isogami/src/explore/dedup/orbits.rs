@@ -195,7 +195,8 @@ struct Scope<'a> {
 /// `mobility::analyze` (`settings` as in the expansion) when the certificate does not decide;
 /// the repeat test and the motion merge use that motion. Only the designs that survive the
 /// merge are analysed with `mobility::analyze` for their reports (gap, area rate, separation,
-/// closing rates, invariant), so a kept design's report is what analysing it alone gives.
+/// closing rates), so a kept design's report is what analysing it alone gives; its invariant
+/// is the one the merge used.
 /// `mech`: any mechanism of the cell.
 ///
 /// The analyses run in parallel on the current rayon pool, in batches; the motion merge then
