@@ -264,10 +264,7 @@ impl<'a> Expander<'a> {
         for k in 0..s.edges.len() {
             let edge = s.edges[k];
             let end = usize::from(joints[edge] == JointChoice::B);
-            let pair = &self.rows[edge][end];
-            let norms = self.row_norm[edge][end];
-            self.add_row(&mut s, &pair[0], norms[0]);
-            self.add_row(&mut s, &pair[1], norms[1]);
+            self.add_joint(&mut s, edge, end);
             s.choice[edge] = joints[edge];
         }
         if s.count + 1 != n {
@@ -340,10 +337,7 @@ impl<'a> Expander<'a> {
             if end == 1 && count < n {
                 s.comp[..size].copy_from_slice(&s.saved[base..base + size]);
             }
-            let pair = &self.rows[edge][end];
-            let norms = self.row_norm[edge][end];
-            self.add_row(s, &pair[0], norms[0]);
-            self.add_row(s, &pair[1], norms[1]);
+            self.add_joint(s, edge, end);
             let pruned = if s.count == n && count < n {
                 if self.certified(s, n) {
                     s.stats.pruned_rigid += 1;
@@ -432,6 +426,14 @@ impl<'a> Expander<'a> {
             full = -full;
         }
         full
+    }
+
+    /// Adds the two rows of a joint at end `end` (0 = A, 1 = B) of `edge`.
+    fn add_joint(&self, s: &mut Search<'_>, edge: usize, end: usize) {
+        let pair = &self.rows[edge][end];
+        let norms = self.row_norm[edge][end];
+        self.add_row(s, &pair[0], norms[0]);
+        self.add_row(s, &pair[1], norms[1]);
     }
 
     /// Appends `row` (Euclidean norm `norm`) to the basis when its residual, its projection on
