@@ -44,6 +44,9 @@ enum Command {
     /// Shape-aware mobility: generic or special, the shape constraints that keep one DOF,
     /// moving a parameter along them, rank-dropping shapes of rigid designs.
     Shape(commands::shape::Args),
+    /// Translate specs written before issue 21 (shape-dependent edge labels) into the current
+    /// labels: the same physical joints, canonical numbers.
+    MigrateSpec(commands::migrate_spec::Args),
     /// Serve the material browser over the design database (runs the quick exploration
     /// first when the database does not exist).
     Serve(commands::serve::ServeArgs),
@@ -75,6 +78,7 @@ fn main() -> ExitCode {
         Command::Export(a) => commands::export::run(a),
         Command::Inverse(a) => commands::inverse::run(a),
         Command::Shape(a) => commands::shape::run(a),
+        Command::MigrateSpec(a) => commands::migrate_spec::run(a),
         Command::Serve(a) => commands::serve::serve(a),
         Command::Site(a) => commands::serve::site(a),
         Command::Merge(a) => commands::db::merge(a),

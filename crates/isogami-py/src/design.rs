@@ -147,12 +147,12 @@ impl PyDesign {
                      (see isogami.cell(family, params, cell).edge_count)",
                 )),
             };
-        checked(Design {
+        checked(Design::new(
             family,
-            params: params.unwrap_or_else(|| family.default_params()),
+            &params.unwrap_or_else(|| family.default_params()),
             dims,
             joints,
-        })
+        ))
     }
 
     /// Reads a spec string ``FAMILY:PARAMS:CELL:JOINTS`` (e.g. ``"IH90::1x1:aaa"``).
@@ -256,10 +256,7 @@ impl PyDesign {
 
     /// The same design with other shape parameters (checked).
     fn with_params(&self, params: Vec<f64>) -> PyResult<PyDesign> {
-        checked(Design {
-            params,
-            ..self.inner.clone()
-        })
+        checked(self.inner.at_params(&params))
     }
 
     /// The same design with other joints (checked), given as for the constructor.

@@ -35,6 +35,13 @@ pub enum StoreError {
         /// Version this build reads and writes.
         expected: i64,
     },
+    /// A database of schema version 2, whose joint strings use the edge labels of isogami
+    /// before issue 21 (they depended on the exact shape): never read with the current labels.
+    #[error(
+        "made by an isogami whose joint strings used shape-dependent edge labels (schema \
+         version 2): translate it with `isogami db migrate --db <this file> --into <new file>`"
+    )]
+    OldEdgeLabels,
     /// The file is damaged: SQLite's integrity check failed, a row fails its checksum, or a
     /// stored value cannot be read.
     #[error("damaged database ({0}); restore it from a copy or re-run explore into a new file")]

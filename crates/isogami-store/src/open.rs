@@ -17,7 +17,7 @@ use crate::error::{StoreError, StoreResult};
 use crate::file::{beside, inspect, uri, FileState};
 use crate::lock::WriterLock;
 use crate::rows::meta_values;
-use crate::schema::{APPLICATION_ID, CREATE, SCHEMA_VERSION, TABLES};
+use crate::schema::{APPLICATION_ID, CREATE, LABELS_BEFORE_ISSUE_21, SCHEMA_VERSION, TABLES};
 use rusqlite::{params, Connection, OpenFlags, OptionalExtension};
 use std::path::Path;
 use std::time::Duration;
@@ -74,7 +74,7 @@ const WRITER_BUSY: Duration = Duration::from_secs(60);
 const CACHE_KIB: i64 = -32 * 1024;
 
 /// Connection for reading only, creating no files beside the database.
-fn reader_connection(path: &Path, wal: bool) -> StoreResult<Connection> {
+pub(crate) fn reader_connection(path: &Path, wal: bool) -> StoreResult<Connection> {
     let flags = OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX;
     let conn = if wal && !beside(path, "-wal").exists() {
         // With no -wal file there is nothing beyond the main file to read; immutable mode
@@ -155,6 +155,9 @@ fn identify(conn: &Connection) -> StoreResult<()> {
         let found: i64 = version
             .and_then(|v| v.trim().parse().ok())
             .ok_or_else(|| StoreError::Damaged("the schema version cannot be read".into()))?;
+        if found == LABELS_BEFORE_ISSUE_21 {
+            return Err(StoreError::OldEdgeLabels);
+        }
         if found != SCHEMA_VERSION {
             return Err(StoreError::SchemaVersion {
                 found,
@@ -193,7 +196,7 @@ fn identify(conn: &Connection) -> StoreResult<()> {
 }
 
 /// Runs SQLite's quick_check or integrity_check; the first problem it reports is the message.
-fn integrity(conn: &Connection, check: Check) -> StoreResult<()> {
+pub(crate) fn integrity(conn: &Connection, check: Check) -> StoreResult<()> {
     let pragma = match check {
         Check::Quick => "quick_check",
         Check::Full => "integrity_check",

@@ -1,4 +1,4 @@
-//! The schema, version 2: tables, indexes and the marks that identify an isogami file.
+//! The schema, version 3: tables, indexes and the marks that identify an isogami file.
 //!
 //! - `meta`: schema version, tool version and the settings of the run, each row with a
 //!   checksum; a shard database made by `explore --shard` also has the key `shard` (JSON: its
@@ -32,7 +32,13 @@
 
 /// Version written into `meta.schema_version`; bump on any incompatible change. Version 1
 /// (issue 2) had no checksums, no user designs and one table for summaries and JSON.
-pub const SCHEMA_VERSION: i64 = 2;
+/// Version 2 had the same tables as 3, but its specs name joints by the edge labels of
+/// isogami before issue 21, which depended on the exact shape, and its reports summarise the
+/// stored frames only; `isogami db migrate` carries such a file into version 3.
+pub const SCHEMA_VERSION: i64 = 3;
+
+/// The schema version whose joint strings use the old, shape-dependent edge labels.
+pub(crate) const LABELS_BEFORE_ISSUE_21: i64 = 2;
 
 /// `PRAGMA application_id` of an isogami database: "ISOG".
 pub(crate) const APPLICATION_ID: i32 = 0x4953_4F47;

@@ -1,5 +1,5 @@
-//! `isogami merge`, `isogami db stats`, `isogami db units`, `isogami db motions` and
-//! `isogami db check-shard`.
+//! `isogami merge`, `isogami db stats`, `isogami db units`, `isogami db motions`,
+//! `isogami db check-shard` and `isogami db migrate`.
 
 use crate::output::{emit, print_json, CliResult};
 use isogami::explore::Shard;
@@ -123,6 +123,25 @@ pub enum DbCommand {
         #[arg(long)]
         json: bool,
     },
+    /// Carry a database made before issue 21 (schema version 2: joint strings in edge labels
+    /// that depended on the exact shape) into a new file: the explored catalogue explored
+    /// again with its settings and plan, and every saved user design translated to the
+    /// current labels (the same physical joints) and deployed again. The old file is only
+    /// read.
+    Migrate {
+        /// The old database.
+        #[arg(long)]
+        db: PathBuf,
+        /// The new database (created; an interrupted migration into it resumes).
+        #[arg(long)]
+        into: PathBuf,
+        /// Worker threads (default: all cores).
+        #[arg(long)]
+        jobs: Option<usize>,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
     /// Check that a database made by `explore --shard I/N` holds every work unit of its shard
     /// (exit 0), or say in one line why not (exit 2): missing, not that shard, incomplete.
     CheckShard {
@@ -154,6 +173,12 @@ pub fn run(cmd: DbCommand) -> CliResult {
         DbCommand::Units { db, top, json } => units_table(&db, top, json),
         DbCommand::Motions { db, all, json } => motions_table(&db, all, json),
         DbCommand::CheckShard { db, shard, json } => check_shard(&db, &shard, json),
+        DbCommand::Migrate {
+            db,
+            into,
+            jobs,
+            json,
+        } => migrate(&db, &into, jobs, json),
     }
 }
 
@@ -371,4 +396,51 @@ pub fn stats_table(s: &DbStats) -> String {
         let _ = writeln!(o, "  {k:<32} {v}");
     }
     o
+}
+
+/// `db migrate`.
+fn migrate(db: &Path, into: &Path, jobs: Option<usize>, json: bool) -> CliResult {
+    if db == into {
+        return Err("--into must be a new file, not the database being migrated".into());
+    }
+    let jobs = jobs.unwrap_or_else(|| {
+        std::thread::available_parallelism().map_or(1, |n| n.get().min(isogami_store::MAX_JOBS))
+    });
+    let bar = indicatif::ProgressBar::new(0);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{bar:30} {pos}/{len} work units re-explored, {elapsed}",
+        )
+        .expect("valid template"),
+    );
+    let mut on_event = |event: &isogami_store::ExploreEvent<'_>| match *event {
+        isogami_store::ExploreEvent::Started { to_run, .. } => bar.set_length(to_run as u64),
+        isogami_store::ExploreEvent::UnitFinished { .. } => bar.inc(1),
+    };
+    let never = std::sync::atomic::AtomicBool::new(false);
+    let outcome = isogami_store::migrate(db, into, jobs, &mut on_event, &never)
+        .map_err(|e| format!("migrating {} into {}: {e}", db.display(), into.display()))?;
+    bar.finish_and_clear();
+    if json {
+        return print_json(&outcome);
+    }
+    let mut o = String::new();
+    let _ = writeln!(
+        o,
+        "{}: {} work units explored again ({} failed); {} user designs: {} saved, {} already \
+         there (merged), {} relabelled, {} not carried over",
+        into.display(),
+        outcome.explored.committed + outcome.explored.skipped,
+        outcome.explored.failures.len(),
+        outcome.user_designs,
+        outcome.user_saved,
+        outcome.user_merged,
+        outcome.user_relabelled,
+        outcome.user_failed.len()
+    );
+    for (spec, reason) in &outcome.user_failed {
+        let _ = writeln!(o, "  not carried over: {spec}: {reason}");
+    }
+    o.push_str(&stats_table(&outcome.explored.stats));
+    emit(&o)
 }

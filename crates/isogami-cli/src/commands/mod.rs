@@ -11,6 +11,7 @@ pub mod families;
 pub mod inverse;
 pub mod laser_args;
 pub mod linkages;
+pub mod migrate_spec;
 pub mod print_args;
 pub mod serve;
 pub mod shape;

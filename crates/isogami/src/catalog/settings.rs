@@ -5,7 +5,7 @@ use crate::deploy::{DeploySettings, Method};
 use crate::error::{Requirement, SettingValue, SettingsError};
 use crate::explore::TopologyOptions;
 use crate::math::Real;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Everything that decides what a work unit keeps. Stored with the database so any row can
 /// be regenerated.
@@ -50,7 +50,8 @@ impl Default for CatalogSettings {
     }
 }
 
-#[derive(Serialize)]
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct SettingsRecord {
     threshold: Real,
     samples: usize,
@@ -149,6 +150,38 @@ impl CatalogSettings {
             },
             frames: FrameSelection::Evenly(self.frame_count),
         }
+    }
+
+    /// The settings a [`CatalogSettings::fingerprint`] records (the others at their
+    /// defaults), validated: how a database's run is rebuilt, e.g. to migrate it. None when the
+    /// text is not a fingerprint of this version or names invalid settings.
+    pub fn from_fingerprint(text: &str) -> Option<CatalogSettings> {
+        let r: SettingsRecord = serde_json::from_str(text).ok()?;
+        let mut s = CatalogSettings::default();
+        s.threshold = r.threshold;
+        s.samples = r.samples;
+        s.shape_levels = r.shape_levels;
+        s.shape_span = r.shape_span;
+        s.frame_count = r.frame_count;
+        s.topology.max_edges = r.max_edges;
+        s.topology.max_dims = r.max_dims;
+        s.topology.mobility.rel_tol = r.mobility_rel_tol;
+        let d = &mut s.deploy;
+        d.frame_joint_tolerance = r.frame_joint_tolerance;
+        d.joint_tolerance = r.joint_tolerance;
+        d.step_tolerance = r.step_tolerance;
+        d.growth = r.growth;
+        d.max_steps = r.max_steps;
+        d.max_attempts = r.max_attempts;
+        d.max_stretch = r.max_stretch;
+        d.contact.kerf = r.kerf;
+        d.contact.dhat = r.dhat;
+        d.contact.stiffness = r.barrier_stiffness;
+        d.step_weight = r.step_weight;
+        d.initial_step = r.initial_step;
+        d.max_step = r.max_step;
+        d.max_halvings = r.max_halvings;
+        (s.validate().is_ok() && s.fingerprint() == text).then_some(s)
     }
 
     /// A canonical JSON text of every setting that changes results (stored with the

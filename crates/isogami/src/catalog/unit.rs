@@ -203,12 +203,7 @@ pub(super) fn sample_shapes(
                 }
                 mine.push(work.len());
                 work.push(Candidate {
-                    design: Design {
-                        family,
-                        params: params.clone(),
-                        dims,
-                        joints: kept.design.joints.clone(),
-                    },
+                    design: Design::new(family, params, dims, kept.design.joints.clone()),
                     topology: kept.topology.clone(),
                     closing: Closing::Unknown,
                 });

@@ -40,6 +40,16 @@ pub enum GeometryProblem {
         /// Partners found.
         partners: usize,
     },
+    /// The two sides of a unique edge of the family's fixed adjacency do not meet at this
+    /// shape (the shape is not a tiling of the family's type).
+    EdgesApart {
+        /// Tile index.
+        tile: usize,
+        /// Edge of that tile.
+        edge: usize,
+        /// The partner tile and its edge.
+        partner: (usize, usize),
+    },
     /// Two tile edges matched to different unique edges.
     InconsistentMatch {
         /// First tile and its edge.
@@ -80,6 +90,16 @@ impl fmt::Display for GeometryProblem {
             } => write!(
                 f,
                 "edge {edge} of tile {tile} has {partners} partner edges (expected exactly one)"
+            ),
+            GeometryProblem::EdgesApart {
+                tile,
+                edge,
+                partner,
+            } => write!(
+                f,
+                "edge {edge} of tile {tile} does not meet its partner, edge {} of tile {}, at \
+                 this shape",
+                partner.1, partner.0
             ),
             GeometryProblem::InconsistentMatch { a, b } => write!(
                 f,

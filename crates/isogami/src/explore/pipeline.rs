@@ -343,12 +343,7 @@ pub fn enumerate_topology_part(
     let mut designs = Vec::with_capacity(result.kept.len());
     let mut details = Vec::with_capacity(result.kept.len());
     for k in &result.kept {
-        let design = Design {
-            family,
-            params: tiling.params().to_vec(),
-            dims,
-            joints: k.joints.clone(),
-        };
+        let design = Design::new(family, tiling.params(), dims, k.joints.clone());
         details.push(DesignDetails {
             spec: design.to_string(),
             joints: design.joint_count(),

@@ -126,17 +126,14 @@ fn samples_around(around: &Design, count: usize, span: Real) -> Vec<Design> {
     local_offsets(around.params.len(), count)
         .into_iter()
         .map(|o| {
-            let params = around
+            let params: Vec<Real> = around
                 .params
                 .iter()
                 .zip(&defaults)
                 .zip(&o)
                 .map(|((p, d), &k)| p + Real::from(k) * span * d.abs().max(0.25))
                 .collect();
-            Design {
-                params,
-                ..around.clone()
-            }
+            around.at_params(&params)
         })
         .collect()
 }

@@ -5,8 +5,7 @@
 //! the softest motion v and the candidate self-stresses w_k of J (`kernel::softest_pair`),
 //! g_k = w_kᵀ J v is ±σ_min for the stress that pairs with v and 0 for the others, and
 //! N_kj = w_kᵀ (∂J/∂B_j) v is its first-order change; the step δ solves g + N δ = 0 in the
-//! least-squares, minimum-norm sense. Everything is recomputed at every shape, so the
-//! solver never mixes two tile representatives of the cell (see `jacobian.rs`). It converges
+//! least-squares, minimum-norm sense. Everything is recomputed at every shape. It converges
 //! quadratically where the special set is a smooth manifold transversal to B.
 
 use super::error::ShapeError;
@@ -45,7 +44,7 @@ pub fn correct(
         if dirs.is_empty() {
             return Ok(None);
         }
-        let n = pairing(&design, &j, &v, &stresses, &dirs)?;
+        let n = pairing(&design, &v, &stresses, &dirs)?;
         let svd = n.svd(true, true);
         let eps = RANK_TOL * svd.singular_values.max().max(Real::MIN_POSITIVE);
         let Ok(step) = svd.solve(&(-g), eps) else {

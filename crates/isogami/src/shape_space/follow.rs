@@ -75,6 +75,8 @@ pub fn follow(
         })
     };
     let finish = |moved: Design, steps: usize| -> Result<Followed, ShapeError> {
+        // The answer is a canonical design, so that following back to a stored shape finds it.
+        let moved = moved.at_params(&moved.params);
         if let Some(e) = leaves(&moved) {
             return Err(e);
         }

@@ -11,7 +11,7 @@
 //! configuration.
 
 use super::error::ShapeError;
-use super::jacobian::{derivative_from, reduced_jacobian};
+use super::jacobian::{derivative, reduced_jacobian};
 use crate::math::{symmetric_eigen, DMat, DVec, Real};
 use crate::mobility::MobilitySettings;
 use crate::topology::Design;
@@ -86,27 +86,20 @@ impl Kernel {
                 e
             })
             .collect();
-        pairing(
-            design,
-            &reduced_jacobian(design)?,
-            &self.motion,
-            &self.stresses,
-            &dirs,
-        )
+        pairing(design, &self.motion, &self.stresses, &dirs)
     }
 }
 
 /// Rows wᵀ (∂J/∂dir_j) v for every column w of `stresses` and every direction.
 pub fn pairing(
     design: &Design,
-    j: &DMat,
     motion: &DVec,
     stresses: &DMat,
     dirs: &[Vec<Real>],
 ) -> Result<DMat, ShapeError> {
     let mut n = DMat::zeros(stresses.ncols(), dirs.len());
     for (i, dir) in dirs.iter().enumerate() {
-        let dv = derivative_from(design, j, dir)? * motion;
+        let dv = derivative(design, dir)? * motion;
         for k in 0..stresses.ncols() {
             n[(k, i)] = stresses.column(k).dot(&dv);
         }

@@ -5,11 +5,13 @@
 //! crate's `fill_region` iterator (it can loop forever on degenerate boxes); cells are built
 //! from aspects and translation vectors in `cell`. No I/O.
 
+mod canonical;
 mod error;
 mod family;
 mod sampling;
 mod shape;
 
+pub use canonical::{canonical_param, canonical_params, is_canonical, CANONICAL_DIGITS};
 pub use error::{Culprit, ShapeProblem, TilingError};
 pub use family::{EdgeShapeKind, Family, FamilyInfo, PrototileEdge};
 pub use sampling::{

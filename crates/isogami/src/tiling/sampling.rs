@@ -6,8 +6,10 @@
 //! valid (simple, not inverted, tiles the plane) and the tile is well shaped: every interior
 //! angle at least [`MIN_ANGLE_DEG`] (straight 180° vertices are fine), every edge at least
 //! [`MIN_EDGE_RATIO`] of the mean edge, and an isoperimetric quotient 4πA/P² of at least
-//! [`MIN_ROUNDNESS`] (no slivers). Deterministic; the default parameters are always first.
+//! [`MIN_ROUNDNESS`] (no slivers). Deterministic; the default parameters are always first;
+//! every value is canonical (see [`super::canonical_param`]) and no shape appears twice.
 
+use super::canonical::canonical_param;
 use super::family::Family;
 use super::shape::Tiling;
 use crate::geometry::signed_area;
@@ -96,10 +98,12 @@ pub fn shape_grid(family: Family, levels: usize, span: Real, max_samples: usize)
             .map(|k| {
                 let v = values[k][rest % levels];
                 rest /= levels;
-                v
+                canonical_param(v)
             })
             .collect();
-        if params == defaults {
+        // Canonical values: a grid point that arithmetic put 1e-17 beside the defaults (or
+        // beside another point) is that shape, not a second one.
+        if out.contains(&params) {
             continue;
         }
         if let Ok(t) = Tiling::new(family, &params) {

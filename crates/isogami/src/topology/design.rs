@@ -3,7 +3,7 @@
 use super::error::DesignError;
 use crate::cell::{CellDims, End, UnitCell};
 use crate::math::Real;
-use crate::tiling::{Family, Tiling, TilingError};
+use crate::tiling::{canonical_params, is_canonical, Family, Tiling, TilingError};
 use serde::{Deserialize, Serialize};
 
 /// What sits on one unique edge of the cell.
@@ -68,6 +68,33 @@ pub struct Design {
 }
 
 impl Design {
+    /// A design with its shape parameters in canonical form (12 significant digits, see
+    /// [`crate::tiling::canonical_param`]): how code that computes a shape makes a design, so
+    /// that equal shapes give equal specs.
+    pub fn new(
+        family: Family,
+        params: &[Real],
+        dims: CellDims,
+        joints: Vec<JointChoice>,
+    ) -> Design {
+        Design {
+            family,
+            params: canonical_params(params),
+            dims,
+            joints,
+        }
+    }
+
+    /// The same joints at other shape parameters (made canonical).
+    pub fn at_params(&self, params: &[Real]) -> Design {
+        Design::new(self.family, params, self.dims, self.joints.clone())
+    }
+
+    /// True when the shape parameters are in canonical form.
+    pub fn is_canonical(&self) -> bool {
+        is_canonical(&self.params)
+    }
+
     /// Reads a design given as a name (`rotating-squares`), a JSON object, or a spec string.
     pub fn resolve(text: &str) -> Result<Design, DesignError> {
         let t = text.trim();

@@ -6,7 +6,7 @@ use super::design::{Design, JointChoice};
 use super::error::DesignError;
 use crate::cell::{CellDims, UnitCell};
 use crate::math::Real;
-use crate::tiling::{Family, Tiling};
+use crate::tiling::{canonical_params, Family, Tiling};
 use serde::{Deserialize, Serialize};
 
 /// One joint of the JSON form.
@@ -39,7 +39,7 @@ impl Design {
     pub fn to_json(&self) -> DesignJson {
         DesignJson {
             family: self.family,
-            params: Some(self.params.clone()),
+            params: Some(canonical_params(&self.params)),
             cell: self.dims,
             joints: self
                 .joints
@@ -56,7 +56,7 @@ impl Design {
         let j: DesignJson = serde_json::from_str(text).map_err(|e| DesignError::Json {
             detail: e.to_string(),
         })?;
-        let params = j.params.unwrap_or_else(|| j.family.default_params());
+        let params = canonical_params(&j.params.unwrap_or_else(|| j.family.default_params()));
         let cell = UnitCell::new(&Tiling::new(j.family, &params)?, j.cell)?;
         let m = cell.edges.len();
         let mut joints = vec![JointChoice::None; m];

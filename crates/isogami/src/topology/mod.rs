@@ -6,6 +6,7 @@
 mod design;
 mod error;
 mod json;
+mod legacy;
 mod named;
 mod spec;
 

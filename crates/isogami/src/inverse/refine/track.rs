@@ -49,7 +49,7 @@ impl Space {
     }
 
     fn point(&self, x: &[Real]) -> (Design, Real) {
-        let params = self
+        let params: Vec<Real> = self
             .start
             .params
             .iter()
@@ -62,13 +62,9 @@ impl Space {
         } else {
             self.kerf
         };
-        (
-            Design {
-                params,
-                ..self.start.clone()
-            },
-            kerf,
-        )
+        // Every point the refinement evaluates is a canonical design: the spec it reports is
+        // the shape it deployed.
+        (self.start.at_params(&params), kerf)
     }
 }
 
