@@ -433,8 +433,10 @@ pub fn settings_of(
 ///
 /// ``settings`` is an ``isogami.DeploySettings``; any of its fields may also be given as a
 /// keyword (``method="ncm"``, ``kerf=0.02``, ``max_steps=200``, ...), overriding it.
-/// ``frames`` is the number of frames to report (default 60; 2..10000, accepted states
-/// nearest to evenly spaced t) or ``"all"`` for every accepted state.
+/// ``frames`` is the number of frames to report, exactly (default 60; 2..10000, accepted
+/// states nearest to evenly spaced t, with states inserted between them when the deployment
+/// has fewer) or ``"all"`` for every accepted state. The report's summaries are over every
+/// accepted state whatever ``frames`` is.
 ///
 /// ``progress``, if given, is called as ``progress(states)`` after every accepted step;
 /// returning False stops the run with ``CancelledError``, and an exception it raises is

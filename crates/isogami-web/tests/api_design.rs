@@ -62,15 +62,24 @@ fn check_view(view: &Value, what: &str) {
         let t = f["t"].as_f64().unwrap();
         assert!((0.0..=1.0).contains(&t) && t >= last_t, "{what}: t = {t}");
         last_t = t;
+        // Summaries are over the accepted states; a state inserted between two of them (more
+        // frames asked for than states) may lie a little beyond them.
         let area = f["measures"]["area_ratio"].as_f64().unwrap();
-        assert!(area <= report["max_area_ratio"].as_f64().unwrap() + 1e-12);
+        if f.get("inserted").is_none() {
+            assert!(area <= report["max_area_ratio"].as_f64().unwrap() + 1e-12);
+        }
     }
     // Every number of the frames and geometry is a number (NaN would be null).
     let mut leaves = Vec::new();
     numbers(&report["frames"], "frames".into(), &mut leaves);
     numbers(geometry, "geometry".into(), &mut leaves);
     for (path, v) in leaves {
-        assert!(v.is_number() || v.is_string(), "{what}: {path} = {v}");
+        assert!(
+            v.is_number()
+                || v.is_string()
+                || (path.ends_with(".inserted") && v.as_bool() == Some(true)),
+            "{what}: {path} = {v}"
+        );
     }
     for key in [
         "kerf",

@@ -187,7 +187,7 @@ fn all_steps_report(run: &Run, method: Method, traj: &Trajectory) -> DeploymentR
     let contact = ContactModel::new(&run.mech, settings.contact).unwrap();
     let all: Vec<usize> = (0..traj.steps.len()).collect();
     let frames = frame_records(&run.mech, &contact, traj, &all, settings.joint_tolerance).unwrap();
-    build_report(run.spec, &run.mech, &settings, traj, &frames)
+    build_report(run.spec, &run.mech, &settings, traj, &frames).unwrap()
 }
 
 #[test]

@@ -28,7 +28,8 @@ pub struct Args {
     /// listed by `analyze`) instead of the fastest-opening combination of all of them.
     #[arg(long, value_name = "K")]
     mode: Option<usize>,
-    /// Number of frames to report (accepted states nearest to evenly spaced t).
+    /// Number of frames to report, exactly: accepted states nearest to evenly spaced t, with
+    /// states inserted between them when the deployment has fewer (summaries never depend on it).
     #[arg(long, default_value_t = 60)]
     frame_count: usize,
     /// Report every accepted state instead of evenly spaced frames.

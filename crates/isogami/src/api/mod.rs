@@ -25,8 +25,8 @@
 use crate::cell::UnitCell;
 use crate::contact::ContactModel;
 use crate::deploy::{
-    build_report, compare_design_with, deploy_with, frame_records, select_frames, DeploySettings,
-    DeploymentReport, DesignComparison, FrameRecord, Progress, Trajectory,
+    build_report, compare_design_with, deploy_with, frame_records_for, plan_frames, DeploySettings,
+    DeploymentReport, DesignComparison, FramePick, FrameRecord, Progress, Trajectory,
 };
 use crate::error::{Requirement, Result, SettingsError};
 use crate::kinematics::Mechanism;
@@ -94,8 +94,13 @@ pub fn analyze(design: &Design, settings: MobilitySettings) -> Result<Analysis> 
 /// Which accepted states a deployment report keeps.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FrameSelection {
-    /// About this many states, nearest to evenly spaced t (first and last always), in
-    /// 2..=[`MAX_FRAME_COUNT`].
+    /// Exactly this many states, in 2..=[`MAX_FRAME_COUNT`], increasing in t, the closed state
+    /// first and the final state last: distinct accepted states nearest to evenly spaced t
+    /// when the trajectory has that many; otherwise every accepted state plus states inserted
+    /// between them, projected onto the joint constraints and checked like every frame (see
+    /// [`plan_frames`](crate::deploy::plan_frames); a count that cannot be honoured is
+    /// refused with [`DeployError::FrameCount`](crate::deploy::DeployError::FrameCount)). A
+    /// trajectory of one state (a locked design) has one frame. Summaries never depend on it.
     Evenly(usize),
     /// Every accepted state.
     AllSteps,
@@ -176,18 +181,12 @@ pub fn deploy(
     let (_, mech) = assemble(design)?;
     let contact = ContactModel::new(&mech, settings.contact)?;
     let trajectory = deploy_with(&mech, &contact, settings, progress)?;
-    let indices = match request.frames {
-        FrameSelection::AllSteps => (0..trajectory.steps.len()).collect(),
-        FrameSelection::Evenly(n) => select_frames(&trajectory, n),
+    let picks = match request.frames {
+        FrameSelection::AllSteps => (0..trajectory.steps.len()).map(FramePick::Step).collect(),
+        FrameSelection::Evenly(n) => plan_frames(&trajectory, n),
     };
-    let frames = frame_records(
-        &mech,
-        &contact,
-        &trajectory,
-        &indices,
-        settings.frame_joint_tolerance,
-    )?;
-    let report = build_report(&design.to_string(), &mech, settings, &trajectory, &frames);
+    let frames = frame_records_for(&mech, &contact, &trajectory, &picks, settings)?;
+    let report = build_report(&design.to_string(), &mech, settings, &trajectory, &frames)?;
     report.check_finite()?;
     Ok(Deployment {
         report,

@@ -50,6 +50,23 @@ pub enum DeployError {
         /// What failed.
         problem: FrameProblem,
     },
+    /// More frames asked for than the trajectory has states, and a state inserted between two
+    /// of them could not be made or failed its frame check.
+    #[error(
+        "cannot return {asked} frames: the deployment has {states} states and a state inserted \
+         after step {step} {problem}; ask for at most {states} frames (or all steps)"
+    )]
+    FrameCount {
+        /// Frames asked for.
+        asked: usize,
+        /// States of the trajectory (accepted steps + 1): the most frames it gives without
+        /// inserted states.
+        states: usize,
+        /// The accepted step the failed state was to follow.
+        step: usize,
+        /// What went wrong.
+        problem: InsertProblem,
+    },
     /// A deployment report holding NaN or infinity.
     #[error("numerical failure: deployment report field {field} is {value}")]
     ReportNotFinite {
@@ -105,6 +122,42 @@ impl fmt::Display for FrameProblem {
                 tolerance,
             } => write!(f, "joint residual {residual:.3e} above {tolerance:.1e}"),
             FrameProblem::Overlap(o) => write!(f, "{o}"),
+        }
+    }
+}
+
+/// Why a state inserted between two accepted states (for a frame count above the number of
+/// states) could not be used.
+#[derive(Debug, Clone, PartialEq)]
+pub enum InsertProblem {
+    /// The projection onto the joint constraints produced NaN or infinity.
+    NonFinite,
+    /// The eigen-decomposition of the projection did not converge.
+    Eigen,
+    /// The projection did not close the joints to the step tolerance.
+    NotConverged {
+        /// Largest joint residual reached (units of L).
+        residual: Real,
+    },
+    /// The projected state failed a frame check.
+    Check(FrameProblem),
+    /// Its t is not above the previous frame's (the gap of t it was to split is too narrow).
+    NotIncreasing,
+}
+
+impl fmt::Display for InsertProblem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            InsertProblem::NonFinite => f.write_str("became non-finite"),
+            InsertProblem::Eigen => f.write_str("could not be projected (eigen-solver failed)"),
+            InsertProblem::NotConverged { residual } => write!(
+                f,
+                "could not be projected onto the joints (residual {residual:.3e})"
+            ),
+            InsertProblem::Check(p) => write!(f, "fails its check: {p}"),
+            InsertProblem::NotIncreasing => {
+                f.write_str("would not be later in t than the frame before")
+            }
         }
     }
 }
@@ -190,7 +243,8 @@ mod tests {
             other => panic!("{other:?}"),
         }
         let frames = frame_records(&mech, &contact, &traj, &[0, last], 1e-8).unwrap();
-        let mut report = build_report("rotating-squares", &mech, &settings, &traj, &frames);
+        let mut report =
+            build_report("rotating-squares", &mech, &settings, &traj, &frames).unwrap();
         report.check_finite().unwrap();
         report.frames[1].t = f64::INFINITY;
         let e = report.check_finite().unwrap_err();

@@ -21,6 +21,7 @@ mod compare;
 mod direction;
 mod error;
 mod frames;
+mod insert;
 mod march;
 mod ncm;
 mod newton;
@@ -29,17 +30,24 @@ mod report;
 mod rigid_modes;
 mod settings;
 mod springs;
+mod summary;
 mod trajectory;
 
 pub use compare::{
     compare_design, compare_design_with, compare_methods, compare_methods_with, DesignComparison,
     MethodResult, COMPARISON_DESIGNS, METHODS, PEAK_FRACTION,
 };
-pub use error::{DeployError, FrameProblem, ReportField};
-pub use frames::{frame_records, select_frames, FrameRecord};
+pub use error::{DeployError, FrameProblem, InsertProblem, ReportField};
+pub use frames::{
+    frame_records, frame_records_for, plan_frames, select_frames, FramePick, FrameRecord,
+};
+pub use insert::PROJECTION_MAX_ITER;
 pub use newton::{minimize, Objective, SolveOutcome};
-pub use report::{build_report, DeploymentReport, FrameReport, TilePose, POISSON_OPEN_FRACTION};
+pub use report::{build_report, DeploymentReport, FrameReport, TilePose};
 pub use settings::{DeploySettings, Method};
+pub use summary::{
+    poisson_range, step_measures, summarize_steps, StepSummary, POISSON_OPEN_FRACTION,
+};
 pub use trajectory::{EndReason, RawStep, Trajectory};
 
 /// A progress callback: called with the number of states so far, returns `false` to cancel.

@@ -5,11 +5,12 @@
 use super::error::{DeployError, ReportField};
 use super::frames::FrameRecord;
 use super::settings::{DeploySettings, Method};
+use super::summary::{poisson_range, summarize_steps};
 use super::trajectory::{EndReason, Trajectory};
 use crate::kinematics::Mechanism;
 use crate::math::Real;
-use crate::measure::{classify, BehaviourClass, FrameMeasures};
-use serde::Serialize;
+use crate::measure::{BehaviourClass, FrameMeasures};
+use serde::{Deserialize, Deserializer, Serialize};
 
 /// Pose of one tile in a frame.
 #[derive(Debug, Clone, Copy, Serialize, serde::Deserialize)]
@@ -45,10 +46,25 @@ pub struct FrameReport {
     pub joint_residual: Real,
     /// Smallest clearance between collision polygons, relative to the mean edge length.
     pub min_clearance: Real,
+    /// True for a state inserted between accepted steps `step` and `step + 1` because more
+    /// frames were asked for than the trajectory has states: projected onto the joint
+    /// constraints and checked like every frame, but not one of the solver's states (summaries
+    /// never include it). Absent from the JSON when false.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub inserted: bool,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 /// Summary of the whole trajectory.
-#[derive(Debug, Clone, Serialize, serde::Deserialize)]
+///
+/// Every summary measure (joint residual, clearance, expansions, area ratio, tile rotation,
+/// behaviour class, Poisson-like range) is taken over all accepted states of the trajectory,
+/// never over the frames: the same deployment reports bit-identical summaries whatever frames
+/// were asked for.
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct DeploymentReport {
     /// Design spec string.
     pub design: String,
@@ -73,41 +89,50 @@ pub struct DeploymentReport {
     pub max_joint_residual: Real,
     /// Smallest clearance over every accepted state (relative to L).
     pub min_clearance: Real,
-    /// Behaviour class over the frames (None when the sheet does not expand).
+    /// Behaviour class over every accepted state (None when the sheet does not expand).
     pub behaviour: Option<BehaviourClass>,
-    /// Largest principal expansion reached.
+    /// Largest principal expansion reached (over every accepted state).
     pub max_expansion: Real,
-    /// Smallest principal expansion reached.
+    /// Smallest principal expansion reached (over every accepted state).
     pub min_expansion: Real,
-    /// Largest area ratio reached.
+    /// Largest area ratio reached (over every accepted state).
     pub max_area_ratio: Real,
-    /// Largest tile rotation reached (radians).
+    /// Largest tile rotation reached (radians, over every accepted state).
     pub max_tile_rotation: Real,
-    /// The frames.
+    /// The Poisson-like range over every accepted state, `[min, max]`, or null when no state
+    /// has opened; read it with [`DeploymentReport::poisson_range`]. Reports written before
+    /// this field existed lack it (`None` here), and their range is then taken over their
+    /// frames, as it was when they were written.
+    #[serde(
+        rename = "poisson_range",
+        default,
+        deserialize_with = "present",
+        skip_serializing_if = "Option::is_none"
+    )]
+    poisson: Option<Option<[Real; 2]>>,
+    /// The frames: exactly the number asked for, increasing in t, the closed state first and
+    /// the final state last (one frame when the trajectory has one state).
     pub frames: Vec<FrameReport>,
 }
 
-/// Frames count as open for the Poisson-like ratio when their largest principal expansion
-/// reaches this fraction of the largest one of the whole deployment: below it both
-/// expansions are so small that their ratio is dominated by solver noise.
-pub const POISSON_OPEN_FRACTION: Real = 0.05;
+/// A field that is present reads as `Some`, even when it is null (`Some(None)`); an absent
+/// one gets the default `None`.
+fn present<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Option<[Real; 2]>>, D::Error> {
+    Option::<[Real; 2]>::deserialize(d).map(Some)
+}
 
-/// Builds the report from checked frame records.
+/// Builds the report from checked frame records; the summaries come from every accepted state
+/// of `traj` ([`summarize_steps`]), so they do not depend on which frames were picked. Fails
+/// only when a state cannot be measured.
 pub fn build_report(
     design: &str,
     mech: &Mechanism,
     settings: &DeploySettings,
     traj: &Trajectory,
     frames: &[FrameRecord],
-) -> DeploymentReport {
+) -> Result<DeploymentReport, DeployError> {
     let l = mech.length_scale;
-    let measures: Vec<FrameMeasures> = frames.iter().map(|f| f.measures.clone()).collect();
-    let fold = |init: Real, pick: &dyn Fn(&FrameMeasures) -> Real, max: bool| {
-        measures
-            .iter()
-            .map(pick)
-            .fold(init, |a, b| if max { a.max(b) } else { a.min(b) })
-    };
+    let summary = summarize_steps(mech, traj)?;
     let frame_reports = frames
         .iter()
         .map(|f| {
@@ -131,10 +156,11 @@ pub fn build_report(
                 measures: f.measures.clone(),
                 joint_residual: f.joint_residual,
                 min_clearance: f.min_clearance,
+                inserted: f.inserted,
             }
         })
         .collect();
-    DeploymentReport {
+    Ok(DeploymentReport {
         design: design.to_string(),
         method: settings.method,
         kerf: settings.contact.kerf,
@@ -144,40 +170,35 @@ pub fn build_report(
         steps: traj.steps.len(),
         attempts: traj.attempts,
         arc_length: traj.total_arc(),
-        max_joint_residual: traj.max_joint_residual(),
-        min_clearance: traj.min_clearance(),
-        behaviour: classify(&measures),
-        max_expansion: fold(Real::NEG_INFINITY, &|m| m.max_expansion, true),
-        min_expansion: fold(Real::INFINITY, &|m| m.min_expansion, false),
-        max_area_ratio: fold(Real::NEG_INFINITY, &|m| m.area_ratio, true),
-        max_tile_rotation: fold(0.0, &|m| m.max_tile_rotation, true),
+        max_joint_residual: summary.max_joint_residual,
+        min_clearance: summary.min_clearance,
+        behaviour: summary.behaviour,
+        max_expansion: summary.max_expansion,
+        min_expansion: summary.min_expansion,
+        max_area_ratio: summary.max_area_ratio,
+        max_tile_rotation: summary.max_tile_rotation,
+        poisson: Some(summary.poisson_range.map(|(lo, hi)| [lo, hi])),
         frames: frame_reports,
-    }
+    })
 }
 
 impl DeploymentReport {
-    /// Smallest and largest Poisson-like ratio −ε_min/ε_max over the frames that have opened
-    /// (largest principal expansion at least [`POISSON_OPEN_FRACTION`] of the largest one
-    /// reached); None when no frame has. −1 is isotropic opening, 0 opening along one axis
-    /// with the other fixed, positive values shrinking across the opening direction.
+    /// Smallest and largest Poisson-like ratio −ε_min/ε_max over the accepted states that have
+    /// opened (largest principal expansion at least
+    /// [`POISSON_OPEN_FRACTION`](super::POISSON_OPEN_FRACTION) of the largest one reached);
+    /// None when none has. −1 is isotropic opening, 0 opening along one axis with the other
+    /// fixed, positive values shrinking across the opening direction. A report read back from
+    /// before the range was stored gives the range over its frames.
     pub fn poisson_range(&self) -> Option<(Real, Real)> {
-        if self.max_expansion.is_nan() || self.max_expansion <= 0.0 {
-            return None;
+        match self.poisson {
+            Some(range) => range.map(|[lo, hi]| (lo, hi)),
+            None => poisson_range(
+                self.frames
+                    .iter()
+                    .map(|f| (f.measures.min_expansion, f.measures.max_expansion)),
+                self.max_expansion,
+            ),
         }
-        let open = POISSON_OPEN_FRACTION * self.max_expansion;
-        self.frames
-            .iter()
-            .filter(|f| f.measures.max_expansion >= open)
-            .filter_map(|f| {
-                crate::measure::effective_poisson_ratio(
-                    f.measures.min_expansion,
-                    f.measures.max_expansion,
-                )
-            })
-            .fold(None, |acc, r| match acc {
-                None => Some((r, r)),
-                Some((lo, hi)) => Some((Real::min(lo, r), Real::max(hi, r))),
-            })
     }
 
     /// Checks that every number of the report is finite (a report with NaN or ∞ must never
@@ -194,10 +215,13 @@ impl DeploymentReport {
             ("max_area_ratio", self.max_area_ratio),
             ("max_tile_rotation", self.max_tile_rotation),
         ];
+        let poisson = self.poisson_range().map_or([0.0; 2], |(lo, hi)| [lo, hi]);
         first_non_finite(
             scalars
                 .iter()
-                .map(|&(name, v)| (ReportField { frame: None, name }, v)),
+                .copied()
+                .chain(poisson.map(|v| ("poisson_range", v)))
+                .map(|(name, v)| (ReportField { frame: None, name }, v)),
         )?;
         for (k, f) in self.frames.iter().enumerate() {
             let m = &f.measures;

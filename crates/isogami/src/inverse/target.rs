@@ -43,14 +43,15 @@ pub struct PathPoint {
 /// | `Area` | `area` | −(A − 1), A the largest area ratio det F over the deployment |
 /// | `Expansion` | `expansion(θ°)` | −max over frames of ε(θ) |
 /// | `Uniform` | `uniform` | −max over frames of ε_min (the most uniformly opening sheet) |
-/// | `Poisson` | `poisson(ν)`, `isotropic` (ν = −1), `zero-poisson` (ν = 0), `ratio(r)` (ν = −r) | max over the open frames of \|ν_frame − ν\| |
+/// | `Poisson` | `poisson(ν)`, `isotropic` (ν = −1), `zero-poisson` (ν = 0), `ratio(r)` (ν = −r) | max over the open states of \|ν_state − ν\| |
 /// | `LockF` | `lock-f(a,b,c,d)` | ‖U_end − U*‖ (Frobenius), U* the stretch of F* = [[a, b], [c, d]] |
 /// | `Lock` | `lock(ε_min,ε_max)` or `lock(ε_min,ε_max,θ°)` | ‖U_end − U*‖ with U* = R(θ) diag(1 + ε_max, 1 + ε_min) R(θ)ᵀ; without θ, the distance of the end state's principal expansions from (ε_min, ε_max) |
 /// | `Path` | `path(t:ε_min:ε_max, …)` | root mean square over the points of the distance of (ε_min(t), ε_max(t)) from the wanted pair |
 ///
-/// "Open frames" are those whose largest principal expansion reaches
-/// [`POISSON_OPEN_FRACTION`](crate::deploy::POISSON_OPEN_FRACTION) of the largest one
-/// reached (the database's `poisson_min`/`poisson_max` use the same frames). "End" is the
+/// "Open states" are the accepted states of the deployment whose largest principal expansion
+/// reaches [`POISSON_OPEN_FRACTION`](crate::deploy::POISSON_OPEN_FRACTION) of the largest one
+/// reached (the report's Poisson-like range, which the database's `poisson_min`/`poisson_max`
+/// store). "End" is the
 /// last state of the deployment, where contact stops it: a design whose deployment ends for
 /// another reason does not meet a lock goal. F is compared through U, because the sheet's
 /// overall rotation is a convention of the solver (tile 0 is held fixed).

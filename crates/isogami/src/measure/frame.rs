@@ -26,8 +26,10 @@ pub struct FrameMeasures {
     pub min_expansion: Real,
     /// Largest principal expansion.
     pub max_expansion: Real,
-    /// Direction of the largest expansion in the closed sheet's frame, in (−π/2, π/2]
-    /// (0 when the expansion is isotropic).
+    /// Direction of the largest expansion in the closed sheet's frame, in (−π/2, π/2];
+    /// exactly 0 when the expansion is isotropic, the principal stretches differing by at most
+    /// [`ISOTROPIC_STRETCH_TOL`](super::ISOTROPIC_STRETCH_TOL) of their mean (every direction
+    /// is principal then; see [`principal_direction`](super::principal_direction)).
     pub principal_angle: Real,
     /// Area ratio det F of the deployed to the closed sheet.
     pub area_ratio: Real,

@@ -22,5 +22,5 @@ pub use error::MeasureError;
 pub use frame::FrameMeasures;
 pub use strain::{
     area_ratio, deformation_gradient, directional_expansion, effective_poisson_ratio,
-    expansion_profile, polar, principal_direction, principal_expansions,
+    expansion_profile, polar, principal_direction, principal_expansions, ISOTROPIC_STRETCH_TOL,
 };

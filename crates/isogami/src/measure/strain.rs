@@ -91,11 +91,31 @@ pub fn principal_expansions(u: &Mat2) -> (Real, Real) {
     (mean - radius - 1.0, mean + radius - 1.0)
 }
 
+/// Two principal stretches that differ by at most this fraction of their mean count as equal
+/// (U isotropic), and [`principal_direction`] is then exactly 0.
+///
+/// Why: when U is a multiple of I every direction is principal, and the angle atan2 computes
+/// from the off-diagonal entries of a nearly isotropic U is the angle of its rounding and
+/// solver noise, jumping anywhere in (−π/2, π/2] from one frame to the next (rotating squares
+/// reported 0, ±0.785, −1.339 and −1.555 over one deployment). Accepted states close every
+/// joint to 1e-9 of the mean edge length, which perturbs the stretches by about that fraction;
+/// a real anisotropy worth a direction is many orders larger.
+pub const ISOTROPIC_STRETCH_TOL: Real = 1e-9;
+
 /// Angle in (−π/2, π/2] of the direction of maximum expansion (eigenvector of the larger
-/// eigenvalue of U). 0 when U is isotropic (every direction is principal).
+/// eigenvalue of U). Exactly 0 when U is isotropic, its principal stretches differing by at
+/// most [`ISOTROPIC_STRETCH_TOL`] times their mean (every direction is then principal, and
+/// any other angle would be noise).
 pub fn principal_direction(u: &Mat2) -> Real {
+    let (a, d) = (u[(0, 0)], u[(1, 1)]);
     let b = 0.5 * (u[(0, 1)] + u[(1, 0)]);
-    0.5 * (2.0 * b).atan2(u[(0, 0)] - u[(1, 1)])
+    // Difference of the principal stretches, 2·radius, against their mean.
+    let spread = 2.0 * (0.5 * (a - d)).hypot(b);
+    let mean = 0.5 * (a + d);
+    if spread <= ISOTROPIC_STRETCH_TOL * mean.abs() {
+        return 0.0;
+    }
+    0.5 * (2.0 * b).atan2(a - d)
 }
 
 /// The directional profile of U for a polar plot: `n` samples (θ_k, ε(θ_k)) with
@@ -183,6 +203,33 @@ mod tests {
         // Along the principal axes ε takes the principal values.
         assert!((directional_expansion(&u, axis) - 0.5).abs() < 1e-12);
         assert!((directional_expansion(&u, axis + FRAC_PI_2) + 0.2).abs() < 1e-12);
+    }
+
+    #[test]
+    fn isotropic_stretch_has_principal_angle_zero() {
+        // U = s·I plus noise well inside the tolerance, in every direction: angle exactly 0
+        // (atan2 of the noise alone would give anything in (−π/2, π/2]).
+        let s = 1.37;
+        let noise = 0.3 * ISOTROPIC_STRETCH_TOL * s;
+        for axis in [0.0, 0.4, -1.2, 1.5] {
+            let q = rotation(axis);
+            let u = q * Mat2::new(s + noise, 0.0, 0.0, s - noise) * q.transpose();
+            assert_eq!(principal_direction(&u), 0.0, "axis {axis}");
+            // The raw angle of that noise is the axis, not 0: the rule is what makes it 0.
+            let b = 0.5 * (u[(0, 1)] + u[(1, 0)]);
+            let raw = 0.5 * (2.0 * b).atan2(u[(0, 0)] - u[(1, 1)]);
+            assert!(axis == 0.0 || raw.abs() > 0.3, "axis {axis}: raw {raw}");
+        }
+        assert_eq!(principal_direction(&(Mat2::identity() * s)), 0.0);
+        // Just above the tolerance the true direction comes back.
+        let gap = 4.0 * ISOTROPIC_STRETCH_TOL * s;
+        let q = rotation(0.4);
+        let u = q * Mat2::new(s + gap, 0.0, 0.0, s - gap) * q.transpose();
+        assert!((principal_direction(&u) - 0.4).abs() < 1e-6);
+        // A clearly anisotropic U at −1.2 rad keeps its angle.
+        let q = rotation(-1.2);
+        let u = q * Mat2::new(1.5, 0.0, 0.0, 1.1) * q.transpose();
+        assert!((principal_direction(&u) + 1.2).abs() < 1e-12);
     }
 
     #[test]

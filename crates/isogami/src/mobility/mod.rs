@@ -66,7 +66,9 @@ pub struct Motion {
     pub u: [Real; 2],
     /// ẇ.
     pub w: [Real; 2],
-    /// Rate of change of the cell area det[u w] along this motion (positive: opening).
+    /// Rate of change of the cell area |det[u w]| along this motion (positive: opening). The
+    /// magnitude, not the signed determinant: families whose tiling vectors are clockwise
+    /// (t1 × t2 < 0) have det[u w] < 0, and there a growing signed determinant closes the sheet.
     pub area_rate: Real,
     /// The whole vector in state order.
     #[serde(skip)]
@@ -90,8 +92,9 @@ pub struct Mobility {
     /// (None when one group is empty; capped at 300).
     pub gap_decades: Option<Real>,
     /// The deployment direction (None if rigid): for one degree of freedom the null vector,
-    /// signed to open the sheet; for several, the unit combination of all first-order motions
-    /// that increases the cell area fastest (the projection of ∇det[u w] on the null space),
+    /// signed to open the sheet (|det[u w]| grows); for several, the unit combination of all
+    /// first-order motions that increases the cell area fastest (the projection of
+    /// ∇|det[u w]| on the null space),
     /// which, unlike any single basis vector of a degenerate eigenspace, does not depend on
     /// how the eigen-solver picked the basis. When no first-order motion changes the area, the
     /// first mode.
@@ -151,10 +154,11 @@ pub fn analyze(
     })
 }
 
-/// The unit combination of `modes` (orthonormal) along which det[u w] grows fastest: the
-/// area rate is linear in the velocity, g·v, so the best unit v in their span is the
-/// normalised projection Σ (g·m_k) m_k. Falls back to the first mode when every mode leaves
-/// the area unchanged to first order.
+/// The unit combination of `modes` (orthonormal) along which the cell area |det[u w]| grows
+/// fastest: the area rate is linear in the velocity, g·v with g = ∇|det[u w]| (see
+/// [`area_rate`]), so the best unit v in their span is the normalised projection
+/// Σ (g·m_k) m_k. Falls back to the first mode when every mode leaves the area unchanged to
+/// first order.
 fn fastest_opening(mech: &Mechanism, q: &DVec, modes: &[Motion]) -> Motion {
     let mut v = DVec::zeros(mech.layout.len());
     for m in modes {
@@ -166,17 +170,28 @@ fn fastest_opening(mech: &Mechanism, q: &DVec, modes: &[Motion]) -> Motion {
     to_motion(mech, q, v)
 }
 
-/// Rate of change of det[u w] along v.
+/// Rate of change of the cell area |det[u w]| along v: sign(det[u w]) · d det[u w]/ds.
+///
+/// The magnitude is what opens or closes a sheet. The signed determinant is negative for the
+/// families whose translation vectors are clockwise (t1 × t2 < 0, e.g. IH23), and there its
+/// growth means the cell shrinks: signing a motion by d det/ds would make it close the sheet.
+/// A state with det[u w] = 0 (a collapsed lattice, never an accepted state) gives d det/ds.
 pub fn area_rate(mech: &Mechanism, q: &DVec, v: &DVec) -> Real {
     let (u, w) = mech.lattice(q);
     let (iu, iw) = (mech.layout.u(), mech.layout.w());
     let du = Vec2::new(v[iu], v[iu + 1]);
     let dw = Vec2::new(v[iw], v[iw + 1]);
-    cross(&du, &w) + cross(&u, &dw)
+    let rate = cross(&du, &w) + cross(&u, &dw);
+    if cross(&u, &w) < 0.0 {
+        -rate
+    } else {
+        rate
+    }
 }
 
-/// Signs a unit vector so that it opens the sheet (or, when the area does not change to
-/// first order, so that its largest component is positive) and splits it per tile.
+/// Signs a unit vector so that it opens the sheet, |det[u w]| growing (or, when the area
+/// does not change to first order, so that its largest component is positive) and splits it
+/// per tile.
 fn to_motion(mech: &Mechanism, q: &DVec, mut v: DVec) -> Motion {
     let norm = v.norm();
     if norm > 0.0 {
