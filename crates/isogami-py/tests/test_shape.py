@@ -13,7 +13,7 @@ def test_classification_equals_the_cli(cli):
     got = isogami.shape_mobility(IH2)
     assert got == cli("shape", "--design", IH2, "--json")
     assert got["class"] == "special" and len(got["constraints"]) == 1
-    generic = isogami.shape_mobility("IH28:0.5886751345943,0.35:1x1:a--a-b-bbb")
+    generic = isogami.shape_mobility("IH28:0.588675134594,0.35:1x1:a--a-b-bbb")
     assert generic["class"] == "generic" and generic["constraints"] == []
 
 

@@ -39,12 +39,14 @@ impl DesignRecord {
     /// `linkages`. `topology` is the spec of the topology the design was sampled from (its own
     /// spec for a user design).
     ///
-    /// Refused (with the field named): more than six shape parameters, a non-finite summary
+    /// Refused (with the field named): shape parameters not in their canonical form (two
+    /// spellings of one shape would be two rows; see `isogami::tiling::canonical_param`),
+    /// more than six shape parameters, a non-finite summary
     /// value, or a report whose JSON would not read back as a `DeploymentReport` (a NaN or
     /// infinite number anywhere in it, which JSON writes as `null`).
     ///
-    /// The Poisson-like ratio range is −ε_min/ε_max over the frames whose largest principal
-    /// expansion reaches [`POISSON_OPEN_FRACTION`] of the largest one reached: −1 for
+    /// The Poisson-like ratio range is the report's: −ε_min/ε_max over the accepted states
+    /// whose largest principal expansion reaches [`POISSON_OPEN_FRACTION`] of the largest one reached: −1 for
     /// isotropic opening, positive when one direction shrinks while the other grows.
     pub fn from_parts(
         design: &Design,
@@ -54,6 +56,14 @@ impl DesignRecord {
         linkages: Option<&LinkageAnalysis>,
     ) -> StoreResult<DesignRecord> {
         let spec = design.to_string();
+        if !design.is_canonical() {
+            return Err(invalid(
+                &spec,
+                "shape parameters are not canonical (12 significant digits); make the design \
+                 with Design::new or parse its spec"
+                    .to_string(),
+            ));
+        }
         if design.params.len() > PARAM_SLOTS {
             return Err(invalid(
                 &spec,

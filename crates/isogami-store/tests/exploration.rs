@@ -318,3 +318,52 @@ fn a_negative_zero_time_is_stored_as_zero_and_reads_back_intact() {
     assert!(units[0].1.iter().all(|s| s.seconds.to_bits() == 0));
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// Issue 21: a fresh deploy of every stored design equals its stored summary (every summary
+/// is taken over all accepted states, so the stored frame count does not matter).
+#[test]
+fn a_fresh_deploy_of_every_stored_design_equals_its_row() {
+    let dir = temp("fresh-deploy");
+    let db = dir.join("x.db");
+    let req = request(2);
+    explore_into(&db, &req, &mut |_| {}, &AtomicBool::new(false)).unwrap();
+    let store = Store::open_read(&db, Check::Full).unwrap();
+    let specs: Vec<String> = store
+        .summaries()
+        .unwrap()
+        .into_iter()
+        .map(|s| s.spec)
+        .collect();
+    assert!(specs.len() >= 2, "{specs:?}");
+    let mut deploy = req.settings.deploy_request();
+    for frames in [7, 60] {
+        deploy.frames = isogami::api::FrameSelection::Evenly(frames);
+        for spec in &specs {
+            let stored = store.design(spec).unwrap().unwrap();
+            let design: isogami::topology::Design = spec.parse().unwrap();
+            assert_eq!(&design.to_string(), spec, "stored specs are canonical");
+            let fresh = isogami::api::deploy(&design, &deploy, &mut |_| true)
+                .unwrap()
+                .report;
+            let (a, b) = (&stored.report, &fresh);
+            for (name, x, y) in [
+                ("max_expansion", a.max_expansion, b.max_expansion),
+                ("min_expansion", a.min_expansion, b.min_expansion),
+                ("max_area_ratio", a.max_area_ratio, b.max_area_ratio),
+                (
+                    "max_tile_rotation",
+                    a.max_tile_rotation,
+                    b.max_tile_rotation,
+                ),
+                ("min_clearance", a.min_clearance, b.min_clearance),
+            ] {
+                assert!(
+                    (x - y).abs() <= 1e-12 * x.abs().max(1.0),
+                    "{spec} {name}: {x} vs {y}"
+                );
+            }
+            assert_eq!(a.poisson_range(), b.poisson_range(), "{spec}");
+            assert_eq!(a.behaviour, b.behaviour, "{spec}");
+        }
+    }
+}

@@ -35,8 +35,9 @@ fn fixture() -> &'static (PathBuf, HashMap<String, usize>) {
         }
         let e = entry();
         for k in 0..2 {
-            let mut design = e.design.clone();
-            design.params[0] *= 1.0 + 0.01 * f64::from(k + 1);
+            let mut params = e.design.params.clone();
+            params[0] *= 1.0 + 0.01 * f64::from(k + 1);
+            let design = e.design.at_params(&params);
             let rec =
                 DesignRecord::from_parts(&design, "user", Origin::User, &e.report, None).unwrap();
             w.save_user_design(&rec).unwrap();

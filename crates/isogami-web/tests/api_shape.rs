@@ -15,7 +15,7 @@ const SPECIAL: &str = "IH2:0.12239750492,0.5,0.225335752741,0.225335752741:1x1:a
 /// Special with its only parameter pinned.
 const PINNED: &str = "IH16:0.216506350946:1x1:-a-a-aaaa";
 /// Generic: one DOF at every nearby shape.
-const GENERIC: &str = "IH28:0.5886751345943,0.35:1x1:a--a-b-bbb";
+const GENERIC: &str = "IH28:0.588675134594,0.35:1x1:a--a-b-bbb";
 
 fn dof(spec: &str) -> usize {
     let design = resolve_design(spec).unwrap();
@@ -117,7 +117,7 @@ async fn a_generic_design_just_takes_the_value() {
     let f = follow(GENERIC, 1, 0.37).await.ok();
     assert_eq!(f["class"], "generic");
     assert_eq!(f["steps"], 0);
-    assert_eq!(f["params"], json!([0.5886751345943, 0.37]));
+    assert_eq!(f["params"], json!([0.588675134594, 0.37]));
     assert_eq!(dof(f["spec"].as_str().unwrap()), 1);
 }
 
@@ -145,7 +145,7 @@ async fn bad_requests_are_one_line_errors() {
                 &app,
                 &format!(
                     "/api/shape?design={}",
-                    enc("IH28:0.5886751345943,0.35:1x1:xxxxxxxxxx")
+                    enc("IH28:0.588675134594,0.35:1x1:xxxxxxxxxx")
                 ),
             )
             .await,

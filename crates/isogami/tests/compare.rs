@@ -70,7 +70,7 @@ const EXPECTED: &[(&str, Option<f64>, Option<f64>)] = &[
     // (design prefix, NCM loses at least, springs lose at least)
     ("IH23:", None, Some(0.25)),
     ("IH12:", None, Some(0.10)),
-    ("IH6:", Some(0.04), None),
+    ("IH6:", Some(0.02), None),
     ("IH22:", Some(0.10), Some(0.04)),
     ("rotating-squares", None, None),
 ];

@@ -17,7 +17,7 @@ use isogami::math::Real;
 const DESIGNS: [&str; 3] = [
     "rotating-squares",
     "IH88::1x1:aaabbaaba",
-    "IH23:0.155769230769,0.35,0.22533575274100004,0.35:1x1:aa-a-",
+    "IH23:0.155769230769,0.35,0.225335752741,0.35:1x1:aa-a-",
 ];
 
 const COUNTS: [usize; 5] = [2, 7, 40, 60, 120];
@@ -230,7 +230,7 @@ fn a_frame_count_that_cannot_be_honoured_is_refused() {
 #[test]
 fn stored_reports_keep_their_poisson_range() {
     let d = run(
-        "IH23:0.155769230769,0.35,0.22533575274100004,0.35:1x1:aa-a-",
+        "IH23:0.155769230769,0.35,0.225335752741,0.35:1x1:aa-a-",
         FrameSelection::Evenly(7),
     );
     let json = serde_json::to_value(&d.report).unwrap();

@@ -10,12 +10,12 @@ use isogami::mobility::{analyze, area_rate, MobilitySettings};
 /// Designs of families with t1 × t2 < 0 (IH23, IH30, IH28, IH2, IH6), one DOF each but the
 /// last, which has several (one joint only).
 const CLOCKWISE: [&str; 6] = [
-    "IH23:0.155769230769,0.35,0.22533575274100004,0.35:1x1:aa-a-",
+    "IH23:0.155769230769,0.35,0.225335752741,0.35:1x1:aa-a-",
     "IH30:0.230769230769:1x1:-aaaaaa-a-ba",
     "IH28:0.452827026611,0.5:1x1:-aaaaaaaa-",
     "IH2:0.12239750492,0.5,0.225335752741,0.225335752741:1x1:aa-aa-",
     "IH6:0.12239750492,0.5,0.225335752741,0.625,0.5:1x1:--a--aab--aa",
-    "IH23:0.155769230769,0.35,0.22533575274100004,0.35:1x1:a----",
+    "IH23:0.155769230769,0.35,0.225335752741,0.35:1x1:a----",
 ];
 
 fn mechanism(spec: &str) -> Mechanism {

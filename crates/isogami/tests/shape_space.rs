@@ -22,7 +22,7 @@ const SPECIAL: [&str; 4] = [
 /// A special design whose one constraint is p2 = p3 (the tile's two equal edges).
 const IH2: &str = "IH2:0.12239750492,0.5,0.225335752741,0.225335752741:1x1:aa-aa-";
 /// A generic design.
-const IH28: &str = "IH28:0.5886751345943,0.35:1x1:a--a-b-bbb";
+const IH28: &str = "IH28:0.588675134594,0.35:1x1:a--a-b-bbb";
 
 fn design(spec: &str) -> Design {
     resolve_design(spec).unwrap()

@@ -32,11 +32,13 @@ fn design_strategy() -> impl Strategy<Value = Design> {
         prop::collection::vec(joint_strategy(), 0..60),
         prop::collection::vec(any::<f64>().prop_filter("finite", |v| v.is_finite()), 6),
     )
-        .prop_map(|(family, a, b, joints, raw)| Design {
-            family,
-            params: raw[..family.param_count()].to_vec(),
-            dims: CellDims::new(a, b).unwrap(),
-            joints,
+        .prop_map(|(family, a, b, joints, raw)| {
+            Design::new(
+                family,
+                &raw[..family.param_count()],
+                CellDims::new(a, b).unwrap(),
+                joints,
+            )
         })
 }
 
@@ -58,6 +60,26 @@ proptest! {
         let back: Design = s.parse().unwrap();
         prop_assert!(same_bits(&d, &back), "{s}");
         prop_assert_eq!(back.to_string(), s);
+    }
+
+    #[test]
+    fn any_numbers_print_canonically_and_read_back_to_the_same_spec(
+        d in design_strategy(),
+        noise in prop::collection::vec(-4i64..=4, 6),
+    ) {
+        // Parameters off their canonical form by a few ulps name the same design.
+        let mut raw = d.clone();
+        for (p, n) in raw.params.iter_mut().zip(&noise) {
+            let moved = f64::from_bits((p.to_bits() as i64 + n) as u64);
+            // A few ulps are a relative change only for normal numbers (not at 0).
+            if moved.is_finite() && p.abs() > 1e-300 {
+                *p = moved;
+            }
+        }
+        let s = raw.to_string();
+        let back: Design = s.parse().unwrap();
+        prop_assert!(back.is_canonical(), "{s}");
+        prop_assert_eq!(back.to_string(), d.to_string());
     }
 
     #[test]
@@ -175,5 +197,53 @@ fn malformed_specs_give_specific_errors() {
         Design::resolve("{").unwrap_err(),
     ] {
         assert!(!e.to_string().contains('\n'), "one line: {e}");
+    }
+}
+
+/// Issue 21: for 200 random valid shapes per family, spec → string → spec is the identity,
+/// and two shapes equal to 12 significant digits give one spec.
+#[test]
+fn random_valid_shapes_have_one_canonical_spec() {
+    let mut rng = common::Rng::new(2121);
+    for family in Family::all() {
+        let ranges = isogami::tiling::param_ranges(family, 0.6);
+        let mut found = 0;
+        let mut twins = 0;
+        for _ in 0..20_000 {
+            if found == 200 || ranges.is_empty() {
+                break;
+            }
+            let p: Vec<f64> = ranges
+                .iter()
+                .map(|&(lo, hi)| lo + (hi - lo) * rng.unit())
+                .collect();
+            if isogami::tiling::Tiling::new(family, &p).is_err() {
+                continue;
+            }
+            found += 1;
+            let d = Design::new(family, &p, CellDims::MINIMAL, vec![JointChoice::A]);
+            let s = d.to_string();
+            let back: Design = s.parse().unwrap();
+            assert!(same_bits(&d, &back), "{s}");
+            // The same shape to 12 significant digits, reached another way (1e-14 apart).
+            let twin: Vec<f64> = p
+                .iter()
+                .map(|&x| x * (1.0 + 1e-14 * (rng.unit() - 0.5)))
+                .collect();
+            let digits = |v: &[f64]| v.iter().map(|x| format!("{x:.11e}")).collect::<Vec<_>>();
+            if digits(&twin) == digits(&p) {
+                let twin = Design::new(family, &twin, CellDims::MINIMAL, vec![JointChoice::A]);
+                assert_eq!(twin.to_string(), s);
+                twins += 1;
+            }
+            // Long decimal noise typed by a user reads as the same shape.
+            let noisy: Vec<String> = d.params.iter().map(|x| format!("{x:.17}")).collect();
+            let typed = format!("{}:{}:1x1:a", family, noisy.join(","));
+            assert_eq!(typed.parse::<Design>().unwrap().to_string(), s, "{typed}");
+        }
+        if family.param_count() > 0 {
+            assert_eq!(found, 200, "{family}: 200 random valid shapes");
+            assert!(twins > 150, "{family}: {twins} twins at 12 digits");
+        }
     }
 }

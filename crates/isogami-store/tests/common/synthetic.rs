@@ -57,7 +57,7 @@ pub fn design(base: &CatalogEntry, i: usize, rng: &mut Rng) -> DesignRecord {
     let family = rng.pick(&families);
     let (a, b) = rng.pick(&CELLS);
     let dims = CellDims::new(a, b).unwrap();
-    let params = family
+    let params: Vec<f64> = family
         .default_params()
         .iter()
         .map(|p| p * rng.uniform(0.7, 1.3))
@@ -68,12 +68,7 @@ pub fn design(base: &CatalogEntry, i: usize, rng: &mut Rng) -> DesignRecord {
         joints.push([JointChoice::None, JointChoice::A, JointChoice::B][k % 3]);
         k /= 3;
     }
-    let design = Design {
-        family,
-        params,
-        dims,
-        joints,
-    };
+    let design = Design::new(family, &params, dims, joints);
     let mut report = base.report.clone();
     report.design = design.to_string();
     report.max_expansion = rng.uniform(0.1, 1.5);

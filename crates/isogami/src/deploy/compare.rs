@@ -31,13 +31,13 @@ pub const COMPARISON_DESIGNS: &[&str] = &[
     // outward pull. Springs stop at t ≈ 0.28 with 35 % of the opening lost; NCM reaches the
     // largest area (t ≈ 0.80) but not the largest expansion, which keeps growing past the
     // area peak to the contact limit.
-    "IH23:0.155769230769,0.35,0.22533575274100004,0.35:1x1:aa-a-",
+    "IH23:0.155769230769,0.35,0.225335752741,0.35:1x1:aa-a-",
     // The area grows almost to the contact limit (peak at t ≈ 0.95); springs stall half-way
     // (t ≈ 0.58, 15 % of the opening lost) while NCM follows the path to contact.
-    "IH12:0.04739750492,0.22533575274100004:2x1:a-aaa-",
+    "IH12:0.04739750492,0.225335752741:2x1:a-aaa-",
     // The area grows to the contact limit; NCM stops at t ≈ 0.74 (paper: 0.78) with 6 % of
     // the opening and 17 % of the largest expansion lost, springs get to t ≈ 0.98.
-    "IH6:0.19739750492,0.5,0.15033575274100003,0.625,0.35:1x1:--a-b-bb-ba-",
+    "IH6:0.19739750492,0.5,0.150335752741,0.625,0.35:1x1:--a-b-bb-ba-",
     // Both baselines stop before the area peak (t ≈ 0.56): NCM at t ≈ 0.33 (13 % lost),
     // springs at t ≈ 0.39 (6 % lost).
     "IH22:0.230769230769,0.5,0.225335752741:3x1:-b-ab--baaab-bb",

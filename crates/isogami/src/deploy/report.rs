@@ -109,7 +109,7 @@ pub struct DeploymentReport {
         deserialize_with = "present",
         skip_serializing_if = "Option::is_none"
     )]
-    poisson: Option<Option<[Real; 2]>>,
+    pub(crate) poisson: Option<Option<[Real; 2]>>,
     /// The frames: exactly the number asked for, increasing in t, the closed state first and
     /// the final state last (one frame when the trajectory has one state).
     pub frames: Vec<FrameReport>,

@@ -354,6 +354,7 @@ mod tests {
             f.measures.max_expansion = -0.01;
         }
         r.max_expansion = -0.01;
+        r.poisson = Some(None);
         assert_eq!(
             goal_value(&Goal::Poisson { nu: -1.0 }, &r).unwrap_err(),
             Unmet::NeverOpens
