@@ -157,12 +157,14 @@ impl CatalogSettings {
     /// text is not a fingerprint of this version or names invalid settings.
     pub fn from_fingerprint(text: &str) -> Option<CatalogSettings> {
         let r: SettingsRecord = serde_json::from_str(text).ok()?;
-        let mut s = CatalogSettings::default();
-        s.threshold = r.threshold;
-        s.samples = r.samples;
-        s.shape_levels = r.shape_levels;
-        s.shape_span = r.shape_span;
-        s.frame_count = r.frame_count;
+        let mut s = CatalogSettings {
+            threshold: r.threshold,
+            samples: r.samples,
+            shape_levels: r.shape_levels,
+            shape_span: r.shape_span,
+            frame_count: r.frame_count,
+            ..CatalogSettings::default()
+        };
         s.topology.max_edges = r.max_edges;
         s.topology.max_dims = r.max_dims;
         s.topology.mobility.rel_tol = r.mobility_rel_tol;

@@ -183,6 +183,10 @@ impl UnitCell {
     }
 }
 
+/// The edge a tile edge meets: (partner aspect, partner edge, cell offset of the partner in
+/// multiples of t1, t2).
+type Partner = (usize, usize, [i32; 2]);
+
 /// The combinatorial structure of a family's minimal cell, the same at every shape: how each
 /// aspect is placed (an integer lattice translate and whether its vertex order is reversed to
 /// make it counter-clockwise) and, for every edge of every aspect, the partner edge and the
@@ -198,8 +202,8 @@ pub(super) struct Structure {
     pub(super) shifts: Vec<[i32; 2]>,
     /// Per aspect: whether its vertex order is reversed.
     reversed: Vec<bool>,
-    /// Per aspect and tile edge: (partner aspect, partner edge, cell offset of the partner).
-    partners: Vec<Vec<(usize, usize, [i32; 2])>>,
+    /// Per aspect and tile edge: its partner.
+    partners: Vec<Vec<Partner>>,
 }
 
 impl Structure {
@@ -344,7 +348,7 @@ fn match_partners(
     polys: &[Vec<Vec2>],
     t1: Vec2,
     t2: Vec2,
-) -> Result<Vec<Vec<(usize, usize, [i32; 2])>>, CellError> {
+) -> Result<Vec<Vec<Partner>>, CellError> {
     let det = cross(&t1, &t2);
     let (sum, count) = polys.iter().fold((0.0, 0usize), |(s, c), poly| {
         let n = poly.len();
