@@ -344,11 +344,7 @@ impl UnitCell {
 /// For every edge of every minimal-cell tile, the single edge of a tile (possibly in a
 /// neighbouring cell) with the same endpoints in reverse order, and that cell's offset in
 /// multiples of t1, t2. Used once per family, at its default shape.
-fn match_partners(
-    polys: &[Vec<Vec2>],
-    t1: Vec2,
-    t2: Vec2,
-) -> Result<Vec<Vec<Partner>>, CellError> {
+fn match_partners(polys: &[Vec<Vec2>], t1: Vec2, t2: Vec2) -> Result<Vec<Vec<Partner>>, CellError> {
     let det = cross(&t1, &t2);
     let (sum, count) = polys.iter().fold((0.0, 0usize), |(s, c), poly| {
         let n = poly.len();
