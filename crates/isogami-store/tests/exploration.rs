@@ -12,17 +12,7 @@ use std::sync::atomic::AtomicBool;
 
 /// Two cheap families of the quick exploration.
 fn request(jobs: usize) -> ExploreRequest {
-    ExploreRequest {
-        settings: quick_settings(),
-        families: vec![
-            Family::from_number(83).unwrap(),
-            Family::from_number(90).unwrap(),
-        ],
-        cells: None,
-        shard: None,
-        jobs,
-        parts: 1,
-    }
+    common::two_family_request(jobs)
 }
 
 /// Events as plain tuples: ("started", planned, skipped, to_run) or ("unit", finished, to_run,

@@ -5,13 +5,11 @@
 
 mod common;
 
-use common::{quick_settings, temp};
+use common::temp;
 use isogami::api::{deploy, linkages, DeployRequest};
-use isogami::tiling::Family;
 use isogami::topology::Design;
 use isogami_store::{
-    explore_into, migrate, Check, DesignRecord, ExploreRequest, Origin, Store, StoreError,
-    StoreWriter,
+    explore_into, migrate, Check, DesignRecord, Origin, Store, StoreError, StoreWriter,
 };
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
@@ -23,17 +21,7 @@ const OLD_SPEC: &str = "IH9:0.12239750492,0.500000001,0.225335752741:2x1:---abb-
 /// A version-2 file as old isogami left it: the quick exploration of IH83 and IH90 and one
 /// user design saved under `OLD_SPEC`.
 fn old_database(path: &Path) {
-    let request = ExploreRequest {
-        settings: quick_settings(),
-        families: vec![
-            Family::from_number(83).unwrap(),
-            Family::from_number(90).unwrap(),
-        ],
-        cells: None,
-        shard: None,
-        jobs: 1,
-        parts: 1,
-    };
+    let request = common::two_family_request(1);
     explore_into(path, &request, &mut |_| {}, &AtomicBool::new(false)).unwrap();
     // Old isogami's row: the joint string as it wrote it (whatever today's code would make of
     // it is irrelevant to the migration, which re-deploys the translated design).

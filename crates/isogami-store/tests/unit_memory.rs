@@ -4,24 +4,13 @@
 
 mod common;
 
-use common::{quick_settings, temp};
-use isogami::tiling::Family;
-use isogami_store::{explore_into, Check, ExploreRequest, Store, StoreWriter};
+use common::temp;
+use isogami_store::{explore_into, Check, Store, StoreWriter};
 use rusqlite::Connection;
 use std::sync::atomic::AtomicBool;
 
 fn explore(db: &std::path::Path) {
-    let request = ExploreRequest {
-        settings: quick_settings(),
-        families: vec![
-            Family::from_number(83).unwrap(),
-            Family::from_number(90).unwrap(),
-        ],
-        cells: None,
-        shard: None,
-        jobs: 2,
-        parts: 1,
-    };
+    let request = common::two_family_request(2);
     explore_into(db, &request, &mut |_| {}, &AtomicBool::new(false)).unwrap();
 }
 

@@ -6,13 +6,28 @@ pub mod synthetic;
 use isogami::catalog::{run_unit, CatalogEntry, CatalogSettings};
 use isogami::cell::CellDims;
 use isogami::tiling::Family;
-use isogami_store::{sidecar_paths, Check, RunInfo, StoreWriter, UnitRecords};
+use isogami_store::{sidecar_paths, Check, ExploreRequest, RunInfo, StoreWriter, UnitRecords};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 /// The quick exploration's settings.
 pub fn quick_settings() -> CatalogSettings {
     CatalogSettings::default().quick()
+}
+
+/// The quick exploration of two cheap families (IH83 and IH90, minimal cells).
+pub fn two_family_request(jobs: usize) -> ExploreRequest {
+    ExploreRequest {
+        settings: quick_settings(),
+        families: vec![
+            Family::from_number(83).unwrap(),
+            Family::from_number(90).unwrap(),
+        ],
+        cells: None,
+        shard: None,
+        jobs,
+        parts: 1,
+    }
 }
 
 /// Real outcomes of two small work units (IH83 and IH90 on their minimal cells), computed
