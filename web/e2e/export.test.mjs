@@ -130,16 +130,31 @@ test('a 2×3 FOLD download has the patch’s faces, cells and frames', async () 
 
 /** Moves the first shape slider until the server deploys a new shape; the new spec, or null. */
 async function editShape(page) {
-  const count = await page.evaluate(() => Number(document.body.dataset.deployments || 0));
   for (const key of ['ArrowRight', 'ArrowLeft']) {
     const slider = byTestId(page, 'param-v0');
     await slider.focus();
-    const response = page.waitForResponse((r) => r.url().endsWith('/api/deploy') && r.request().method() === 'POST');
+    // Every live deployment the key presses start; the page shows the last one to answer, so
+    // the edited design is the one the last request asked for, once the page has taken it.
+    const responses = [];
+    const listener = (r) => {
+      if (r.url().endsWith('/api/deploy') && r.request().method() === 'POST') responses.push(r);
+    };
+    page.on('response', listener);
+    const first = page.waitForResponse((r) => r.url().endsWith('/api/deploy') && r.request().method() === 'POST');
     for (let k = 0; k < 6; k += 1) await slider.press(key);
-    const res = await response;
-    if (res.status() !== 200) continue;
-    await page.waitForFunction((n) => Number(document.body.dataset.deployments) > n, count);
-    return (await res.json()).spec;
+    await first;
+    // Settled: no new deployment for a second.
+    let seen = -1;
+    while (seen !== responses.length) {
+      seen = responses.length;
+      await page.waitForTimeout(1000);
+    }
+    page.off('response', listener);
+    const last = responses[responses.length - 1];
+    if (last.status() !== 200) continue;
+    const spec = (await last.json()).spec;
+    await page.waitForFunction((s) => document.title === `${s} · isogami`, spec);
+    return spec;
   }
   return null;
 }
