@@ -200,10 +200,15 @@ pub fn frame_records(
         .collect()
 }
 
+/// How many times an inserted state that fails its check is moved halfway towards the frame
+/// before it before the frame count is refused.
+const INSERT_RETRIES: usize = 10;
+
 /// Frame records for `picks` (from [`plan_frames`]): accepted states as
 /// [`frame_records`] checks them; inserted states projected onto the joint constraints (to
 /// `settings.joint_tolerance`, like an accepted step) and then given the same checks. An
-/// inserted state that cannot be made or fails a check refuses the whole frame count
+/// inserted state that cannot be made or fails a check is moved towards the frame before it
+/// (at most [`INSERT_RETRIES`] times) before it refuses the whole frame count
 /// ([`DeployError::FrameCount`], which says how many frames the trajectory can give).
 pub fn frame_records_for(
     mech: &Mechanism,
@@ -228,16 +233,39 @@ pub fn frame_records_for(
                     .map_err(|e| e.into_error(fail))?
             }
             FramePick::Between { step, fraction } => {
-                let q = project_between(mech, traj, step, fraction, settings)
-                    .map_err(|p| refuse(step, p))?;
-                let t = traj.t(step) + fraction * (traj.t(step + 1) - traj.t(step));
-                let mut r =
-                    checked_record(mech, contact, &q, step, t, tolerance).map_err(|e| match e {
-                        Check::Frame(p) => refuse(step, InsertProblem::Check(p)),
-                        Check::Measure(m) => DeployError::Measure(m),
-                    })?;
-                r.inserted = true;
-                r
+                let (t0, t1) = (traj.t(step), traj.t(step + 1));
+                // Where the frame before it sits in this gap (0: the accepted state itself).
+                let low = match out.last() {
+                    Some(prev) if prev.step == step && prev.inserted && t1 > t0 => {
+                        (prev.t - t0) / (t1 - t0)
+                    }
+                    _ => 0.0,
+                };
+                // A chord point near contact may project onto an overlapping state: move it
+                // towards the clean state before it (halving its distance, a few times), so
+                // the frame count is still honoured, a little off even spacing in t.
+                let mut f = fraction;
+                let mut attempt = 0;
+                loop {
+                    let tried = project_between(mech, traj, step, f, settings).and_then(|q| {
+                        let t = t0 + f * (t1 - t0);
+                        checked_record(mech, contact, &q, step, t, tolerance).map_err(|e| match e {
+                            Check::Frame(p) => InsertProblem::Check(p),
+                            Check::Measure(_) => InsertProblem::NonFinite,
+                        })
+                    });
+                    match tried {
+                        Ok(mut r) => {
+                            r.inserted = true;
+                            break r;
+                        }
+                        Err(p) if attempt >= INSERT_RETRIES => return Err(refuse(step, p)),
+                        Err(_) => {
+                            attempt += 1;
+                            f = low + 0.5 * (f - low);
+                        }
+                    }
+                }
             }
         };
         if let Some(prev) = out.last() {
