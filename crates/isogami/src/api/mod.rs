@@ -8,6 +8,7 @@
 //! | read a design (name, spec string or JSON) | [`resolve_design`] | [`Design`] |
 //! | mobility | [`analyze`] | [`Analysis`] |
 //! | deployment | [`deploy`] | [`Deployment`] (the serialisable report and the states) |
+//! | deployment in two halves (judge before choosing frames) | [`deploy_path`], [`DeployedPath::into_deployment`] | [`DeployedPath`], then [`Deployment`] |
 //! | linkages | [`linkages`] | [`LinkageAnalysis`] |
 //! | baseline comparison | [`compare`], [`compare_with`] (progress, cancel) | [`DesignComparison`]: one result per method |
 //! | drawing and joint editing | [`sheet_geometry`], [`tile_linkages`] | [`SheetGeometry`] |
@@ -25,8 +26,9 @@
 use crate::cell::UnitCell;
 use crate::contact::ContactModel;
 use crate::deploy::{
-    build_report, compare_design_with, deploy_with, frame_records_for, plan_frames, DeploySettings,
-    DeploymentReport, DesignComparison, FramePick, FrameRecord, Progress, Trajectory,
+    build_report, compare_design_with, deploy_with, frame_records_for, plan_frames,
+    summarize_steps, DeploySettings, DeploymentReport, DesignComparison, FramePick, FrameRecord,
+    Progress, StepSummary, Trajectory,
 };
 use crate::error::{Requirement, Result, SettingsError};
 use crate::kinematics::Mechanism;
@@ -177,23 +179,78 @@ pub fn deploy(
     progress: Progress<'_>,
 ) -> Result<Deployment> {
     request.validate()?;
-    let settings = &request.settings;
+    deploy_path(design, &request.settings, progress)?.into_deployment(design, request.frames)
+}
+
+/// A deployment before its frames are chosen: the trajectory of every accepted state, with
+/// its mechanism and contact model. Enough to judge a design from its summaries
+/// ([`DeployedPath::summary`]) before paying for frames, which [`DeployedPath::into_deployment`]
+/// adds (states inserted between accepted ones are projected and checked, which costs more
+/// than a short trajectory itself).
+#[derive(Debug, Clone)]
+pub struct DeployedPath {
+    /// The mechanism the states belong to.
+    pub mechanism: Mechanism,
+    /// Its contact model.
+    pub contact: ContactModel,
+    /// Every accepted state.
+    pub trajectory: Trajectory,
+    /// The settings it was deployed with.
+    pub settings: DeploySettings,
+}
+
+impl DeployedPath {
+    /// Summaries over every accepted state (what the report's top-level fields will hold).
+    pub fn summary(&self) -> Result<StepSummary> {
+        Ok(summarize_steps(&self.mechanism, &self.trajectory)?)
+    }
+
+    /// The finished deployment with `frames` chosen and checked, and its report.
+    pub fn into_deployment(self, design: &Design, frames: FrameSelection) -> Result<Deployment> {
+        DeployRequest {
+            settings: self.settings,
+            frames,
+        }
+        .validate()?;
+        let DeployedPath {
+            mechanism: mech,
+            contact,
+            trajectory,
+            settings,
+        } = self;
+        let picks = match frames {
+            FrameSelection::AllSteps => (0..trajectory.steps.len()).map(FramePick::Step).collect(),
+            FrameSelection::Evenly(n) => plan_frames(&trajectory, n),
+        };
+        let frames = frame_records_for(&mech, &contact, &trajectory, &picks, &settings)?;
+        let report = build_report(&design.to_string(), &mech, &settings, &trajectory, &frames)?;
+        report.check_finite()?;
+        Ok(Deployment {
+            report,
+            frames,
+            mechanism: mech,
+            contact,
+            trajectory,
+        })
+    }
+}
+
+/// The first half of [`deploy`]: the design's trajectory from its closed state to the end of
+/// its motion, without frames (see [`DeployedPath`]).
+pub fn deploy_path(
+    design: &Design,
+    settings: &DeploySettings,
+    progress: Progress<'_>,
+) -> Result<DeployedPath> {
+    settings.validate()?;
     let (_, mech) = assemble(design)?;
     let contact = ContactModel::new(&mech, settings.contact)?;
     let trajectory = deploy_with(&mech, &contact, settings, progress)?;
-    let picks = match request.frames {
-        FrameSelection::AllSteps => (0..trajectory.steps.len()).map(FramePick::Step).collect(),
-        FrameSelection::Evenly(n) => plan_frames(&trajectory, n),
-    };
-    let frames = frame_records_for(&mech, &contact, &trajectory, &picks, settings)?;
-    let report = build_report(&design.to_string(), &mech, settings, &trajectory, &frames)?;
-    report.check_finite()?;
-    Ok(Deployment {
-        report,
-        frames,
+    Ok(DeployedPath {
         mechanism: mech,
         contact,
         trajectory,
+        settings: *settings,
     })
 }
 

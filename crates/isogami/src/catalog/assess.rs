@@ -78,15 +78,21 @@ pub fn assess(
     if dof != 1 {
         return Ok(Assessment::Rejected(Rejection::Mobility { dof }));
     }
-    let report = api::deploy(design, &settings.deploy_request(), progress)?.report;
-    if matches!(report.end_reason, EndReason::Locked) || report.steps < 2 {
+    // Judged on the trajectory's summaries (which the report repeats), so that the frames —
+    // states inserted into short trajectories cost more than the trajectory — are made only
+    // for admitted designs.
+    let request = settings.deploy_request();
+    let path = api::deploy_path(design, &request.settings, progress)?;
+    if matches!(path.trajectory.end_reason, EndReason::Locked) || path.trajectory.steps.len() < 2 {
         return Ok(Assessment::Rejected(Rejection::Locked));
     }
-    if report.max_expansion.is_nan() || report.max_expansion < settings.threshold {
+    let max_expansion = path.summary()?.max_expansion;
+    if max_expansion.is_nan() || max_expansion < settings.threshold {
         return Ok(Assessment::Rejected(Rejection::BelowThreshold {
-            max_expansion: report.max_expansion,
+            max_expansion,
             threshold: settings.threshold,
         }));
     }
+    let report = path.into_deployment(design, request.frames)?.report;
     Ok(Assessment::Admitted(Box::new(report)))
 }

@@ -141,6 +141,8 @@ pub enum InsertProblem {
     },
     /// The projected state failed a frame check.
     Check(FrameProblem),
+    /// The projected state's measures could not be taken.
+    Measure(crate::measure::MeasureError),
     /// Its t is not above the previous frame's (the gap of t it was to split is too narrow).
     NotIncreasing,
 }
@@ -155,6 +157,7 @@ impl fmt::Display for InsertProblem {
                 "could not be projected onto the joints (residual {residual:.3e})"
             ),
             InsertProblem::Check(p) => write!(f, "fails its check: {p}"),
+            InsertProblem::Measure(m) => write!(f, "cannot be measured: {m}"),
             InsertProblem::NotIncreasing => {
                 f.write_str("would not be later in t than the frame before")
             }

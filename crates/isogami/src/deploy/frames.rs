@@ -251,7 +251,7 @@ pub fn frame_records_for(
                         let t = t0 + f * (t1 - t0);
                         checked_record(mech, contact, &q, step, t, tolerance).map_err(|e| match e {
                             Check::Frame(p) => InsertProblem::Check(p),
-                            Check::Measure(_) => InsertProblem::NonFinite,
+                            Check::Measure(m) => InsertProblem::Measure(m),
                         })
                     });
                     match tried {

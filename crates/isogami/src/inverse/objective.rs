@@ -154,7 +154,9 @@ pub fn goal_value(goal: &Goal, report: &DeploymentReport) -> Result<Real, Unmet>
     let max_over =
         |f: &dyn Fn(&FrameReport) -> Real| frames.iter().map(f).fold(Real::NEG_INFINITY, Real::max);
     let value = match goal {
-        Goal::Area => -(max_over(&|f| f.measures.area_ratio) - 1.0),
+        // Over every accepted step (the report's summary), so that the value does not
+        // depend on how many frames were asked for.
+        Goal::Area => -(report.max_area_ratio - 1.0),
         Goal::Uniform => -max_over(&|f| f.measures.min_expansion),
         Goal::Expansion { angle_deg } => {
             let theta = angle_deg.to_radians();
@@ -361,6 +363,14 @@ mod tests {
         );
         r.frames.clear();
         assert_eq!(goal_value(&Goal::Area, &r).unwrap_err(), Unmet::NoFrames);
+    }
+
+    #[test]
+    fn area_reads_every_step_not_the_frames() {
+        let mut r = rotating_squares();
+        // A peak between frames (as a coarse frame count misses it) still counts.
+        r.max_area_ratio = 2.5;
+        assert!((goal_value(&Goal::Area, &r).unwrap() + 1.5).abs() < 1e-12);
     }
 
     #[test]

@@ -40,7 +40,7 @@ pub struct PathPoint {
 ///
 /// | goal | text | value (smaller is better) |
 /// |---|---|---|
-/// | `Area` | `area` | −(A − 1), A the largest area ratio det F over the deployment |
+/// | `Area` | `area` | −(A − 1), A the largest area ratio det F over every step of the deployment (the report's `max_area_ratio`) |
 /// | `Expansion` | `expansion(θ°)` | −max over frames of ε(θ) |
 /// | `Uniform` | `uniform` | −max over frames of ε_min (the most uniformly opening sheet) |
 /// | `Poisson` | `poisson(ν)`, `isotropic` (ν = −1), `zero-poisson` (ν = 0), `ratio(r)` (ν = −r) | max over the open states of \|ν_state − ν\| |
