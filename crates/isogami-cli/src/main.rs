@@ -44,6 +44,9 @@ enum Command {
     /// Shape-aware mobility: generic or special, the shape constraints that keep one DOF,
     /// moving a parameter along them, rank-dropping shapes of rigid designs.
     Shape(commands::shape::Args),
+    /// A finite region of a design: degrees of freedom with a free boundary, the floppy
+    /// tiles, and its completion to a sheet that opens with the design's one motion.
+    Sheet(commands::sheet::Args),
     /// Translate specs written before issue 21 (shape-dependent edge labels) into the current
     /// labels: the same physical joints, canonical numbers.
     MigrateSpec(commands::migrate_spec::Args),
@@ -78,6 +81,7 @@ fn main() -> ExitCode {
         Command::Export(a) => commands::export::run(a),
         Command::Inverse(a) => commands::inverse::run(a),
         Command::Shape(a) => commands::shape::run(a),
+        Command::Sheet(a) => commands::sheet::run(a),
         Command::MigrateSpec(a) => commands::migrate_spec::run(a),
         Command::Serve(a) => commands::serve::serve(a),
         Command::Site(a) => commands::serve::site(a),

@@ -20,6 +20,7 @@ pub mod deploy;
 pub mod error;
 pub mod explore;
 pub mod export;
+pub mod finite;
 pub mod geometry;
 pub mod inverse;
 pub mod kinematics;

@@ -15,3 +15,4 @@ pub mod migrate_spec;
 pub mod print_args;
 pub mod serve;
 pub mod shape;
+pub mod sheet;

@@ -11,6 +11,7 @@
 //! | deployment in two halves (judge before choosing frames) | [`deploy_path`], [`DeployedPath::into_deployment`] | [`DeployedPath`], then [`Deployment`] |
 //! | linkages | [`linkages`] | [`LinkageAnalysis`] |
 //! | baseline comparison | [`compare`], [`compare_with`] (progress, cancel) | [`DesignComparison`]: one result per method |
+//! | a finite region: mobility with a free boundary, completion to one DOF | [`finite_sheet`] | [`SheetAnalysis`] |
 //! | drawing and joint editing | [`sheet_geometry`], [`tile_linkages`] | [`SheetGeometry`] |
 //!
 //! ```
@@ -38,7 +39,9 @@ use crate::mobility::{Mobility, MobilitySettings};
 pub use crate::topology::Design;
 use serde::Serialize;
 
+mod finite;
 mod sheet;
+pub use finite::{finite_sheet, SheetAnalysis, SheetRequest};
 pub use sheet::{sheet_geometry, tile_linkages, EdgeGeometry, SheetGeometry};
 
 /// Most frames a deployment report may hold when frames are picked evenly in t.

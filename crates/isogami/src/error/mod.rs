@@ -49,6 +49,9 @@ pub enum Error {
     /// Shape-aware mobility: classification, moving along the special set.
     #[error(transparent)]
     Shape(#[from] crate::shape_space::ShapeError),
+    /// Finite sheets: region, mobility, completion.
+    #[error(transparent)]
+    Finite(#[from] crate::finite::FiniteError),
     /// A setting outside its range.
     #[error(transparent)]
     Settings(#[from] SettingsError),

@@ -1,0 +1,159 @@
+//! The finite-sheet entry point: a region of a design, its mobility with a free boundary and
+//! its completion to a one-DOF sheet (see [`crate::finite`]).
+
+use super::{assemble, deploy_path};
+use crate::deploy::{DeploySettings, Progress};
+use crate::error::Result;
+use crate::finite::{
+    complete, periodic_velocity, sheet_mobility, Completion, Context, FiniteError, FiniteSheet,
+    Region, SheetMobility,
+};
+use crate::math::{DVec, Real};
+use crate::topology::Design;
+use serde::Serialize;
+
+/// What finite sheet to make.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SheetRequest {
+    /// The region of the periodic sheet.
+    pub region: Region,
+    /// Mean edge length L in mm: the scale of a region given in mm.
+    pub edge_mm: Real,
+    /// The periodic state counts are made at: the accepted state nearest this t in (0, 1]
+    /// (a generic opened state; the closed state is counted separately).
+    pub t: Real,
+    /// Complete the region to a one-DOF sheet (refused with
+    /// [`FiniteError::NoOneDofSheet`] when none exists in it).
+    pub complete: bool,
+    /// Smallest fraction of the region's area a completed sheet must keep, in [0, 1].
+    pub min_covered: Real,
+    /// The periodic deployment's settings (its mobility tolerance is the zero threshold).
+    pub settings: DeploySettings,
+}
+
+impl Default for SheetRequest {
+    /// 6×6 cells, 20 mm edges, counted at t = 0.3, completed keeping at least half the
+    /// region, default settings.
+    fn default() -> Self {
+        SheetRequest {
+            region: Region::Cells { rows: 6, cols: 6 },
+            edge_mm: 20.0,
+            t: 0.3,
+            complete: true,
+            min_covered: 0.5,
+            settings: DeploySettings::default(),
+        }
+    }
+}
+
+/// A finite sheet of a design: the raw region and, when asked, its completion.
+#[derive(Debug, Clone, Serialize)]
+pub struct SheetAnalysis {
+    /// The design's spec.
+    pub design: String,
+    /// The region asked for.
+    pub region: Region,
+    /// t of the periodic state the counts were made at.
+    pub t: Real,
+    /// The raw region.
+    pub raw: FiniteSheet,
+    /// Its mobility at the opened state.
+    pub raw_mobility: SheetMobility,
+    /// Its degrees of freedom in the closed state (a singular configuration: usually more).
+    pub raw_closed_dof: usize,
+    /// The completed sheet, when asked for.
+    pub completion: Option<Completion>,
+    /// The completed sheet's degrees of freedom in the closed state.
+    pub completed_closed_dof: Option<usize>,
+}
+
+impl SheetAnalysis {
+    /// The sheet a fabrication format should write: the completed one when there is one.
+    pub fn sheet(&self) -> &FiniteSheet {
+        self.completion.as_ref().map_or(&self.raw, |c| &c.sheet)
+    }
+}
+
+/// The finite sheet of `design` that `request` asks for. The design is deployed once
+/// (periodically, without frames) to find the opened state; `progress` is that
+/// deployment's callback.
+pub fn finite_sheet(
+    design: &Design,
+    request: &SheetRequest,
+    progress: Progress<'_>,
+) -> Result<SheetAnalysis> {
+    if !(request.t.is_finite() && request.t > 0.0 && request.t <= 1.0) {
+        return Err(FiniteError::BadRequest(format!(
+            "state t = {} must be in (0, 1] (an opened state)",
+            request.t
+        ))
+        .into());
+    }
+    if !(0.0..=1.0).contains(&request.min_covered) {
+        return Err(FiniteError::BadRequest(format!(
+            "smallest covered fraction {} must be in [0, 1]",
+            request.min_covered
+        ))
+        .into());
+    }
+    let (cell, mech) = assemble(design)?;
+    let requested = FiniteSheet::new(&cell, &mech, request.region.tiles(&mech, request.edge_mm)?);
+    if requested.is_empty() {
+        return Err(FiniteError::EmptySheet.into());
+    }
+    let path = deploy_path(design, &request.settings, progress)?;
+    let traj = &path.trajectory;
+    if traj.steps.len() < 2 {
+        return Err(FiniteError::NoOneDofSheet {
+            reason: format!("the periodic sheet does not open ({})", traj.end_reason),
+        }
+        .into());
+    }
+    let k = (1..traj.steps.len())
+        .min_by(|&a, &b| {
+            (traj.t(a) - request.t)
+                .abs()
+                .total_cmp(&(traj.t(b) - request.t).abs())
+        })
+        .unwrap_or(1);
+    let mobility = request.settings.mobility;
+    let motion_at = |q: &DVec| -> Result<DVec> {
+        let m = crate::mobility::analyze(&mech, q, mobility)?;
+        Ok(m.motion.map_or_else(|| DVec::zeros(q.len()), |m| m.vector))
+    };
+    let q = &traj.steps[k].q;
+    let motion = motion_at(q)?;
+    let ctx = Context {
+        cell: &cell,
+        mech: &mech,
+        q,
+        motion: &motion,
+        settings: mobility,
+        min_covered: request.min_covered,
+    };
+    let raw_mobility = ctx.mobility(&requested)?;
+    let closed_motion = motion_at(&mech.rest)?;
+    let closed_dof = |sheet: &FiniteSheet| -> Result<usize> {
+        let poses = sheet.poses(&mech, &mech.rest);
+        let periodic = periodic_velocity(sheet, &mech, &closed_motion);
+        Ok(sheet_mobility(sheet, &mech, &poses, Some(&periodic), mobility)?.dof)
+    };
+    let raw_closed_dof = closed_dof(&requested)?;
+    let (completion, completed_closed_dof) = if request.complete {
+        let c = complete(&ctx, &requested)?;
+        let dof = closed_dof(&c.sheet)?;
+        (Some(c), Some(dof))
+    } else {
+        (None, None)
+    };
+    Ok(SheetAnalysis {
+        design: design.to_string(),
+        region: request.region.clone(),
+        t: traj.t(k),
+        raw: requested,
+        raw_mobility,
+        raw_closed_dof,
+        completion,
+        completed_closed_dof,
+    })
+}

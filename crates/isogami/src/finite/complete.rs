@@ -1,0 +1,267 @@
+//! Boundary completion: from a requested region to a sheet that opens with exactly the
+//! periodic sheet's one motion.
+//!
+//! Two candidates are made and the one covering more of the region is kept (the pruned one
+//! on a tie, since it adds nothing):
+//!
+//! - **prune**: repeatedly drop tiles held by fewer than two pins, keep the largest piece,
+//!   and drop the tiles that move in extra modes (every mode moving at most half the sheet,
+//!   or else the most local one), until the sheet's only motion is the periodic one;
+//! - **grow, then prune**: first add the ring of tiles pinned to the region from outside
+//!   (they close the linkage loops the region's boundary cut open), then prune.
+//!
+//! The covered fraction is the area of the requested tiles kept over the area of all
+//! requested tiles.
+
+use super::error::FiniteError;
+use super::mobility::{periodic_velocity, sheet_mobility, SheetMobility};
+use super::sheet::{FiniteSheet, SheetTile};
+use crate::cell::UnitCell;
+use crate::kinematics::Mechanism;
+use crate::math::{DVec, Real};
+use crate::mobility::MobilitySettings;
+use serde::Serialize;
+use std::collections::HashSet;
+
+/// What completion did.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CompletionReport {
+    /// Tiles the region asked for.
+    pub requested: usize,
+    /// Of them, tiles kept.
+    pub kept: usize,
+    /// Requested tiles left out.
+    pub removed: Vec<SheetTile>,
+    /// Tiles from outside the region added.
+    pub added: Vec<SheetTile>,
+    /// Area of the requested tiles kept over the area of all requested tiles.
+    pub covered_fraction: Real,
+    /// True when the kept candidate grew the ring first.
+    pub grown: bool,
+}
+
+/// A completed sheet and its mobility (one degree of freedom, the periodic motion).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Completion {
+    /// The completed sheet.
+    pub sheet: FiniteSheet,
+    /// Its mobility at the state completion was decided at.
+    pub mobility: SheetMobility,
+    /// What was kept, removed and added.
+    pub report: CompletionReport,
+}
+
+/// Everything completion needs about the design and the state it decides at.
+pub struct Context<'a> {
+    /// The design's cell.
+    pub cell: &'a UnitCell,
+    /// Its mechanism.
+    pub mech: &'a Mechanism,
+    /// A generic opened state of the periodic sheet.
+    pub q: &'a DVec,
+    /// The periodic motion at `q` (a state-space vector of `mech`).
+    pub motion: &'a DVec,
+    /// Zero threshold.
+    pub settings: MobilitySettings,
+    /// Smallest covered fraction accepted: a completion that keeps less of the region is
+    /// refused (a lone linkage loop is a one-DOF sheet, but not the sheet that was asked for).
+    pub min_covered: Real,
+}
+
+impl Context<'_> {
+    /// The mobility of `sheet` at the context's state.
+    pub fn mobility(&self, sheet: &FiniteSheet) -> Result<SheetMobility, FiniteError> {
+        let poses = sheet.poses(self.mech, self.q);
+        let periodic = periodic_velocity(sheet, self.mech, self.motion);
+        sheet_mobility(sheet, self.mech, &poses, Some(&periodic), self.settings)
+    }
+}
+
+/// Completes the region `requested` (see the module documentation).
+pub fn complete(ctx: &Context<'_>, requested: &FiniteSheet) -> Result<Completion, FiniteError> {
+    if requested.is_empty() {
+        return Err(FiniteError::EmptySheet);
+    }
+    let pruned = prune(ctx, requested.clone());
+    let grown = prune(ctx, grow(ctx, requested));
+    let chosen = match (pruned, grown) {
+        (Ok(p), Ok(g)) => {
+            if covered(ctx, requested, &g.0) > covered(ctx, requested, &p.0) {
+                (g, true)
+            } else {
+                (p, false)
+            }
+        }
+        (Ok(p), Err(_)) => (p, false),
+        (Err(_), Ok(g)) => (g, true),
+        (Err(e), Err(_)) => return Err(explain(ctx, e)),
+    };
+    let ((sheet, mobility), grown) = chosen;
+    let fraction = covered(ctx, requested, &sheet);
+    if fraction < ctx.min_covered {
+        return Err(explain(
+            ctx,
+            FiniteError::NoOneDofSheet {
+                reason: format!(
+                    "the best one-DOF sheet keeps {} of {} tiles ({:.1} % of the region's area, \
+                     below the {:.0} % asked for): its boundary keeps flopping as it is pruned",
+                    sheet.len(),
+                    requested.len(),
+                    100.0 * fraction,
+                    100.0 * ctx.min_covered
+                ),
+            },
+        ));
+    }
+    let inside: HashSet<SheetTile> = requested.tiles.iter().copied().collect();
+    let kept: HashSet<SheetTile> = sheet.tiles.iter().copied().collect();
+    let report = CompletionReport {
+        requested: requested.len(),
+        kept: sheet.tiles.iter().filter(|t| inside.contains(t)).count(),
+        removed: requested
+            .tiles
+            .iter()
+            .filter(|t| !kept.contains(t))
+            .copied()
+            .collect(),
+        added: sheet
+            .tiles
+            .iter()
+            .filter(|t| !inside.contains(t))
+            .copied()
+            .collect(),
+        covered_fraction: fraction,
+        grown,
+    };
+    Ok(Completion {
+        sheet,
+        mobility,
+        report,
+    })
+}
+
+/// `e` with the design's bulk count added to a refusal when it explains it: a cell whose
+/// tiles have as many degrees of freedom as its pins remove (3n = 2p) is isostatic, and
+/// every finite sheet of it flops along its boundary.
+fn explain(ctx: &Context<'_>, e: FiniteError) -> FiniteError {
+    let FiniteError::NoOneDofSheet { reason } = e else {
+        return e;
+    };
+    let (n, p) = (ctx.mech.tile_count(), ctx.mech.joints.len());
+    let count = 3 * n as i64 - 2 * p as i64;
+    let reason = if count >= 0 {
+        format!(
+            "{reason}; the design's cell has {n} tiles and {p} pins (3n − 2p = {count}: \
+             nothing in the bulk is redundant, so every finite sheet flops along its boundary)"
+        )
+    } else {
+        reason
+    };
+    FiniteError::NoOneDofSheet { reason }
+}
+
+/// Area of `requested`'s tiles that `sheet` keeps over the area of all of them.
+fn covered(ctx: &Context<'_>, requested: &FiniteSheet, sheet: &FiniteSheet) -> Real {
+    let kept: HashSet<SheetTile> = sheet.tiles.iter().copied().collect();
+    let areas = requested.areas(ctx.mech);
+    let total: Real = areas.iter().sum();
+    let inside: Real = requested
+        .tiles
+        .iter()
+        .zip(&areas)
+        .filter(|(t, _)| kept.contains(t))
+        .map(|(_, a)| a)
+        .sum();
+    if total > 0.0 {
+        inside / total
+    } else {
+        0.0
+    }
+}
+
+/// `sheet` with the ring of tiles pinned to it from outside.
+fn grow(ctx: &Context<'_>, sheet: &FiniteSheet) -> FiniteSheet {
+    let inside: HashSet<SheetTile> = sheet.tiles.iter().copied().collect();
+    let mut ring = Vec::new();
+    for t in &sheet.tiles {
+        for joint in &ctx.mech.joints {
+            let o = ctx.cell.edges[joint.edge].offset;
+            let partner = if joint.tile_a == t.tile {
+                SheetTile {
+                    cell: [t.cell[0] + o[0], t.cell[1] + o[1]],
+                    tile: joint.tile_b,
+                }
+            } else if joint.tile_b == t.tile {
+                SheetTile {
+                    cell: [t.cell[0] - o[0], t.cell[1] - o[1]],
+                    tile: joint.tile_a,
+                }
+            } else {
+                continue;
+            };
+            if !inside.contains(&partner) {
+                ring.push(partner);
+            }
+        }
+    }
+    FiniteSheet::new(ctx.cell, ctx.mech, sheet.tiles.iter().copied().chain(ring))
+}
+
+/// Prunes `sheet` until its only motion is the periodic one.
+fn prune(
+    ctx: &Context<'_>,
+    mut sheet: FiniteSheet,
+) -> Result<(FiniteSheet, SheetMobility), FiniteError> {
+    loop {
+        sheet = drop_loose(ctx, sheet);
+        if sheet.len() < 2 {
+            return Err(FiniteError::NoOneDofSheet {
+                reason: "pruning the floppy boundary leaves no tile held by two pins".into(),
+            });
+        }
+        let mobility = ctx.mobility(&sheet)?;
+        if !mobility.follows_periodic {
+            return Err(FiniteError::NoOneDofSheet {
+                reason: format!(
+                    "the {} tiles left move rigidly in the periodic motion",
+                    sheet.len()
+                ),
+            });
+        }
+        if mobility.floppy.is_empty() && mobility.dof == 1 {
+            return Ok((sheet, mobility));
+        }
+        // The tiles taking the largest share of the extra modes (ties within 10 %, e.g. the
+        // symmetric corners of a rectangle, go together).
+        let top = mobility.leverage.iter().copied().fold(0.0, Real::max);
+        let drop: Vec<usize> = (0..sheet.len())
+            .filter(|&t| top > 0.0 && mobility.leverage[t] >= 0.9 * top)
+            .collect();
+        let mut keep = vec![true; sheet.len()];
+        for t in drop {
+            keep[t] = false;
+        }
+        sheet = sheet.keep(ctx.cell, ctx.mech, &keep);
+    }
+}
+
+/// `sheet` without tiles held by fewer than two pins (repeatedly) and without every piece
+/// but the largest.
+fn drop_loose(ctx: &Context<'_>, mut sheet: FiniteSheet) -> FiniteSheet {
+    loop {
+        let pins = sheet.pins();
+        let (piece, count) = sheet.pieces();
+        let mut size = vec![0usize; count];
+        for &p in &piece {
+            size[p] += 1;
+        }
+        let largest = (0..count).max_by(|&a, &b| size[a].cmp(&size[b]).then(b.cmp(&a)));
+        let keep: Vec<bool> = (0..sheet.len())
+            .map(|t| pins[t] >= 2 && Some(piece[t]) == largest)
+            .collect();
+        if keep.iter().all(|&k| k) {
+            return sheet;
+        }
+        sheet = sheet.keep(ctx.cell, ctx.mech, &keep);
+    }
+}

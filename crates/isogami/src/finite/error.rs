@@ -1,0 +1,38 @@
+//! Why a finite sheet could not be made, analysed or completed.
+
+use crate::error::SettingsError;
+use thiserror::Error;
+
+/// A finite-sheet failure, naming the offending values.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum FiniteError {
+    /// A setting is out of range.
+    #[error(transparent)]
+    Settings(#[from] SettingsError),
+    /// The region holds no tile of the sheet.
+    #[error("the region holds no tile of the sheet")]
+    EmptySheet,
+    /// A region's size or shape is unusable.
+    #[error("bad region: {0}")]
+    BadRegion(String),
+    /// A setting of the request is out of range.
+    #[error("{0}")]
+    BadRequest(String),
+    /// A pose or a matrix entry is NaN or infinite.
+    #[error("the sheet's state is not finite")]
+    NonFinite,
+    /// The sparse Cholesky factorisation of H + σI failed.
+    #[error("the sparse factorisation of the sheet's constraints failed")]
+    Factorisation,
+    /// The dense eigen-solver did not converge.
+    #[error("the eigen-solver did not converge on the sheet's constraints")]
+    Eigen,
+    /// No sheet with one degree of freedom moving like the periodic sheet exists in the
+    /// region.
+    #[error("no one-DOF sheet in this region: {reason}")]
+    NoOneDofSheet {
+        /// Why not.
+        reason: String,
+    },
+}

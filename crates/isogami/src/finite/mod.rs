@@ -1,0 +1,31 @@
+//! Finite sheets: what a person cuts, prints or simulates is a patch of the periodic sheet,
+//! and a patch is a different mechanism. Its boundary is free, so tiles held by one pin spin
+//! and open linkage loops flop.
+//!
+//! - [`region`]: which tiles a requested region (R×C cells, or a rectangle, disc or polygon
+//!   in mm) holds;
+//! - [`sheet`]: the finite sheet — tiles named by (cell, tile) and the joints between two of
+//!   them, found by integer arithmetic;
+//! - [`kernel`]: its first-order motions, the kernel of the sparse H = JᵀJ with a free
+//!   boundary (sparse Cholesky and subspace iteration);
+//! - [`mobility`]: degrees of freedom and the floppy parts — every motion but the periodic
+//!   one, in a local basis, with the tiles that move in each;
+//! - [`complete`]: boundary completion to a sheet whose one motion is the periodic one.
+//!
+//! Counts are made at a generic opened state of the periodic motion: the closed state is a
+//! singular configuration (a closed rotating-squares patch has many first-order modes that
+//! no finite motion follows), so front ends report it separately.
+
+pub mod complete;
+mod error;
+pub mod kernel;
+pub mod mobility;
+pub mod region;
+pub mod sheet;
+
+pub use complete::{complete, Completion, CompletionReport, Context};
+pub use error::FiniteError;
+pub use kernel::{sheet_kernel, SheetKernel};
+pub use mobility::{periodic_velocity, sheet_mobility, FloppyMode, SheetMobility, MOVER_FRACTION};
+pub use region::{Region, MAX_REGION_CELLS};
+pub use sheet::{FiniteSheet, SheetJoint, SheetTile};
