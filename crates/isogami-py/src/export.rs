@@ -243,7 +243,7 @@ fn set_all<const N: usize>(pairs: [(&mut f64, Option<f64>); N]) {
 #[pyfunction]
 #[pyo3(signature = (
     design, format, *, patch=None, edge_mm=None, width_mm=None, t=None, kerf=None, frames=None,
-    material=None, hinge_mm=None, kerf_mm=None, thickness_mm=None, margin_mm=None,
+    complete=false, material=None, hinge_mm=None, kerf_mm=None, thickness_mm=None, margin_mm=None,
     stroke_mm=None, cut_colour=None, score_colour=None, engrave_colour=None, labels=false,
     gap_mm=None, lamella_mm=None, nozzle_mm=None, creator=None, progress=None, timeout=None
 ))]
@@ -258,6 +258,7 @@ pub fn export<'py>(
     t: Option<&Bound<'py, PyAny>>,
     kerf: Option<f64>,
     frames: Option<usize>,
+    complete: bool,
     material: Option<&str>,
     hinge_mm: Option<f64>,
     kerf_mm: Option<f64>,
@@ -302,6 +303,7 @@ pub fn export<'py>(
         state,
         kerf: kerf.unwrap_or(defaults.kerf),
         frames: frames.unwrap_or(defaults.frames),
+        complete,
     };
     let given = Given {
         material: material.map(str::to_string),

@@ -145,6 +145,7 @@ async fn every_format_downloads_the_librarys_bytes_with_its_type_and_name() {
         state: State::T(0.5),
         kerf: 0.02,
         frames: 4,
+        complete: false,
     };
     for format in Format::ALL {
         let uri = format!(

@@ -10,9 +10,10 @@ use crate::output::{write_atomic, CliResult};
 use isogami::api::resolve_design;
 use isogami::contact::ContactSettings;
 use isogami::export::{
-    export_design, ExportFiles, ExportOptions, Format, PatchRequest, Scale, SettingsGroup, State,
-    MAX_PATCH,
+    export_design, ExportError, ExportFiles, ExportOptions, Format, PatchRequest, Scale,
+    SettingsGroup, State, MAX_PATCH,
 };
+use isogami::finite::FiniteError;
 use std::path::{Path, PathBuf};
 
 /// The `--format` values: the library's formats by name, each with its description.
@@ -55,6 +56,12 @@ pub struct Args {
     /// Deployment states written as frames by animated formats (FOLD), 2..=100.
     #[arg(long, default_value_t = PatchRequest::default().frames)]
     frames: usize,
+    /// Write the ROWSxCOLS rectangle's completion instead of the rectangle: a sheet with
+    /// exactly the design's one motion (tiles held by fewer than two pins or flopping at the
+    /// boundary pruned, the ring of tiles that closes open linkage loops added), or refuse
+    /// with the reason when there is none; `isogami sheet` shows what completion does.
+    #[arg(long)]
+    complete: bool,
     #[command(flatten)]
     laser: super::laser_args::LaserArgs,
     #[command(flatten)]
@@ -79,10 +86,27 @@ pub fn run(args: Args) -> CliResult {
     options.validate(args.format).map_err(|e| e.to_string())?;
     let design = resolve_design(&args.design).map_err(|e| e.to_string())?;
     let (patch, files) = export_design(&design, &request, args.format, &options, &mut |_| true)
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| match e {
+            ExportError::Library(isogami::Error::Finite(FiniteError::NoOneDofSheet { .. })) => {
+                format!("{e}; without --complete the rectangle is exported as it is")
+            }
+            e => e.to_string(),
+        })?;
     write_files(&args.out, &files)?;
+    let f = &patch.finite;
+    let sheet = if f.completed {
+        format!(
+            "one-DOF completion: {} of {} rectangle tiles kept, {} added, {:.1} % covered",
+            f.requested_tiles - f.removed_tiles,
+            f.requested_tiles,
+            f.added_tiles,
+            100.0 * f.covered_fraction
+        )
+    } else {
+        format!("raw rectangle, {} DOF", f.dof)
+    };
     println!(
-        "wrote {} ({} tiles, {} joints, t = {:.4}, {:.1} x {:.1} mm)",
+        "wrote {} ({} tiles, {} joints, t = {:.4}, {:.1} x {:.1} mm; {sheet})",
         args.out.display(),
         patch.tiles.len(),
         patch.joints.len(),
@@ -90,6 +114,9 @@ pub fn run(args: Args) -> CliResult {
         patch.size_mm[0],
         patch.size_mm[1]
     );
+    if let Some(w) = f.warning() {
+        eprintln!("warning: {w}");
+    }
     Ok(())
 }
 
@@ -143,6 +170,7 @@ fn request(args: &Args) -> Result<PatchRequest, String> {
         state,
         kerf: args.kerf,
         frames: args.frames,
+        complete: args.complete,
     };
     request.validate().map_err(|e| e.to_string())?;
     Ok(request)

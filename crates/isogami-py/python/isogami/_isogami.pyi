@@ -567,6 +567,7 @@ def export(
     t: Union[float, Literal["open"], None] = None,
     kerf: Optional[float] = None,
     frames: Optional[int] = None,
+    complete: bool = False,
     material: Optional[Literal["card", "felt", "pla"]] = None,
     hinge_mm: Optional[float] = None,
     kerf_mm: Optional[float] = None,
@@ -584,7 +585,11 @@ def export(
     progress: Optional[Progress] = None,
     timeout: Optional[float] = None,
 ) -> Union[bytes, Dict[str, bytes]]:
-    """A patch of a design in mm in one export format (bytes, or {name: bytes} for a folder)."""
+    """A patch of a design in mm in one export format (bytes, or {name: bytes} for a folder).
+
+    ``complete=True`` writes the one-DOF completion of the ``patch`` rectangle (the sheet
+    that opens with the design's one motion; refused when there is none) instead of the
+    rectangle as it is."""
 
 def export_formats() -> List[Dict[str, Optional[str]]]:
     """The export formats: name, description, extension, media_type, settings group."""

@@ -19,8 +19,8 @@ pub const MAX_DESIGN: usize = 16 * 1024;
 pub const MAX_CELL_FRAMES: usize = MAX_PATCH * MAX_PATCH * 11;
 
 /// Keys of the request itself (the settings groups add theirs).
-pub const REQUEST_KEYS: [&str; 8] = [
-    "design", "format", "patch", "edge_mm", "width_mm", "t", "kerf", "frames",
+pub const REQUEST_KEYS: [&str; 9] = [
+    "design", "format", "patch", "edge_mm", "width_mm", "t", "kerf", "frames", "complete",
 ];
 
 /// A parsed export request.
@@ -103,6 +103,16 @@ pub fn parse_export(pairs: &[(String, String)]) -> ApiResult<ExportQuery> {
             ))
         })?,
     };
+    let complete = match values.get("complete") {
+        None | Some("false") | Some("0") => false,
+        Some("true") | Some("1") => true,
+        Some(text) => {
+            return Err(ApiError::bad_parameter(format!(
+                "complete {:?}: expected true or false",
+                truncate(text)
+            )))
+        }
+    };
     let request = PatchRequest {
         rows,
         cols,
@@ -110,6 +120,7 @@ pub fn parse_export(pairs: &[(String, String)]) -> ApiResult<ExportQuery> {
         state,
         kerf,
         frames,
+        complete,
     };
     request
         .validate()

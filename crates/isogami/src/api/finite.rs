@@ -2,12 +2,14 @@
 //! its completion to a one-DOF sheet (see [`crate::finite`]).
 
 use super::{assemble, deploy_path};
-use crate::deploy::{DeploySettings, Progress};
+use crate::cell::UnitCell;
+use crate::deploy::{DeploySettings, Progress, Trajectory};
 use crate::error::Result;
 use crate::finite::{
     complete, periodic_velocity, sheet_mobility, Completion, Context, FiniteError, FiniteSheet,
     Region, SheetMobility,
 };
+use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
 use crate::topology::Design;
 use serde::Serialize;
@@ -97,12 +99,25 @@ pub fn finite_sheet(
         .into());
     }
     let (cell, mech) = assemble(design)?;
-    let requested = FiniteSheet::new(&cell, &mech, request.region.tiles(&mech, request.edge_mm)?);
+    // The region is checked before the deployment, which costs more.
+    request.region.tiles(&mech, request.edge_mm)?;
+    let path = deploy_path(design, &request.settings, progress)?;
+    sheet_of_trajectory(design, &cell, &mech, &path.trajectory, request)
+}
+
+/// [`finite_sheet`] on a deployment already made (`traj` of `mech`, assembled from `cell`):
+/// what the export uses, so that a patch is deployed once.
+pub(crate) fn sheet_of_trajectory(
+    design: &Design,
+    cell: &UnitCell,
+    mech: &Mechanism,
+    traj: &Trajectory,
+    request: &SheetRequest,
+) -> Result<SheetAnalysis> {
+    let requested = FiniteSheet::new(cell, mech, request.region.tiles(mech, request.edge_mm)?);
     if requested.is_empty() {
         return Err(FiniteError::EmptySheet.into());
     }
-    let path = deploy_path(design, &request.settings, progress)?;
-    let traj = &path.trajectory;
     if traj.steps.len() < 2 {
         return Err(FiniteError::NoOneDofSheet {
             reason: format!("the periodic sheet does not open ({})", traj.end_reason),
@@ -118,14 +133,14 @@ pub fn finite_sheet(
         .unwrap_or(1);
     let mobility = request.settings.mobility;
     let motion_at = |q: &DVec| -> Result<DVec> {
-        let m = crate::mobility::analyze(&mech, q, mobility)?;
+        let m = crate::mobility::analyze(mech, q, mobility)?;
         Ok(m.motion.map_or_else(|| DVec::zeros(q.len()), |m| m.vector))
     };
     let q = &traj.steps[k].q;
     let motion = motion_at(q)?;
     let ctx = Context {
-        cell: &cell,
-        mech: &mech,
+        cell,
+        mech,
         q,
         motion: &motion,
         settings: mobility,
@@ -134,9 +149,9 @@ pub fn finite_sheet(
     let raw_mobility = ctx.mobility(&requested)?;
     let closed_motion = motion_at(&mech.rest)?;
     let closed_dof = |sheet: &FiniteSheet| -> Result<usize> {
-        let poses = sheet.poses(&mech, &mech.rest);
-        let periodic = periodic_velocity(sheet, &mech, &closed_motion);
-        Ok(sheet_mobility(sheet, &mech, &poses, Some(&periodic), mobility)?.dof)
+        let poses = sheet.poses(mech, &mech.rest);
+        let periodic = periodic_velocity(sheet, mech, &closed_motion);
+        Ok(sheet_mobility(sheet, mech, &poses, Some(&periodic), mobility)?.dof)
     };
     let raw_closed_dof = closed_dof(&requested)?;
     let (completion, completed_closed_dof) = if request.complete {

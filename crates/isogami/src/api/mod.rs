@@ -41,6 +41,7 @@ use serde::Serialize;
 
 mod finite;
 mod sheet;
+pub(crate) use finite::sheet_of_trajectory;
 pub use finite::{finite_sheet, SheetAnalysis, SheetRequest};
 pub use sheet::{sheet_geometry, tile_linkages, EdgeGeometry, SheetGeometry};
 

@@ -84,7 +84,7 @@ pub fn fold_file(patch: &Patch, creator: &str) -> FoldFile {
         faces_tile: patch
             .tiles
             .iter()
-            .map(|t| [t.cell[0], t.cell[1], t.tile])
+            .map(|t| [i64::from(t.cell[0]), i64::from(t.cell[1]), t.tile as i64])
             .collect(),
         joints,
         design: patch.design.clone(),
@@ -123,7 +123,7 @@ pub struct FoldFile {
     pub faces_vertices: Vec<Vec<usize>>,
     /// Per face: cell i, cell j, tile index.
     #[serde(rename = "faces_isogami:tile")]
-    pub faces_tile: Vec<[usize; 3]>,
+    pub faces_tile: Vec<[i64; 3]>,
     /// Pin joints as vertex pairs.
     #[serde(rename = "isogami:joints")]
     pub joints: Vec<[usize; 2]>,

@@ -11,13 +11,18 @@
 
 use super::error::ExportError;
 use super::outline::chain_loops;
-use crate::api::{deploy, sheet_geometry, DeployRequest, FrameSelection};
+use crate::api::{
+    deploy, sheet_geometry, sheet_of_trajectory, DeployRequest, Deployment, FrameSelection,
+    SheetRequest,
+};
 use crate::cell::End;
 use crate::contact::ContactSettings;
 use crate::deploy::{select_frames, DeploySettings, FrameReport, Progress};
+use crate::finite::{FiniteSheet, Region, SheetMobility, SheetTile};
 use crate::math::Real;
-use crate::topology::{Design, JointChoice};
+use crate::topology::Design;
 use serde::Serialize;
+use std::collections::HashMap;
 
 /// Most rows and most columns of a patch (40 × 40 cells; a 40×40 patch of a 12-tile cell
 /// holds 19 200 tiles, enough for any sheet a laser bed or a print bed takes).
@@ -63,10 +68,14 @@ pub struct PatchRequest {
     /// States kept in [`Patch::states`] for animated formats, nearest to evenly spaced t,
     /// 2..=[`MAX_PATCH_FRAMES`].
     pub frames: usize,
+    /// Write the rectangle's completion to a one-DOF sheet ([`crate::finite::complete`])
+    /// instead of the R×C rectangle as it is (floppy boundary and all); refused when there
+    /// is none.
+    pub complete: bool,
 }
 
 impl Default for PatchRequest {
-    /// 6×6 cells, 20 mm mean edge, closed, default kerf, 11 states.
+    /// 6×6 cells, 20 mm mean edge, closed, default kerf, 11 states, the rectangle as it is.
     fn default() -> Self {
         PatchRequest {
             rows: 6,
@@ -75,6 +84,7 @@ impl Default for PatchRequest {
             state: State::T(0.0),
             kerf: ContactSettings::default().kerf,
             frames: 11,
+            complete: false,
         }
     }
 }
@@ -131,6 +141,9 @@ pub struct Patch {
     pub cols: usize,
     /// Tiles in one cell.
     pub tiles_per_cell: usize,
+    /// What the sheet is as a mechanism: its degrees of freedom with a free boundary, and
+    /// what completion did.
+    pub finite: PatchMobility,
     /// Kerf relative to the mean edge length (the deployment's setting).
     pub kerf: Real,
     /// Mean edge length of the tiles, mm.
@@ -143,7 +156,9 @@ pub struct Patch {
     pub area_ratio: Real,
     /// Bounding box size [width, height] of the tiles at the state, mm.
     pub size_mm: [Real; 2],
-    /// The tiles, ordered by cell (row by row: j, then i) then tile index.
+    /// The tiles, ordered by cell (row by row: j, then i) then tile index: the completed
+    /// sheet (tiles of the R×C rectangle, less the pruned ones, plus the ring tiles it
+    /// added, whose cells may lie outside 0..cols × 0..rows), or the rectangle with `raw`.
     pub tiles: Vec<PatchTile>,
     /// Every joint whose two tiles are both in the patch.
     pub joints: Vec<PatchJoint>,
@@ -158,6 +173,39 @@ pub struct Patch {
     pub states: Vec<PatchState>,
 }
 
+/// The patch as a finite mechanism (see [`crate::finite`]), counted at the periodic state
+/// nearest t = 0.3.
+#[derive(Debug, Clone, Serialize)]
+pub struct PatchMobility {
+    /// True when the tiles are the completion of the rectangle.
+    pub completed: bool,
+    /// Degrees of freedom of the written sheet with a free boundary (1 when completed).
+    pub dof: usize,
+    /// Degrees of freedom of the raw R×C rectangle.
+    pub raw_dof: usize,
+    /// Tiles of the rectangle.
+    pub requested_tiles: usize,
+    /// Rectangle tiles left out by completion.
+    pub removed_tiles: usize,
+    /// Tiles outside the rectangle added by completion.
+    pub added_tiles: usize,
+    /// Area of the rectangle's tiles kept over the area of all of them.
+    pub covered_fraction: Real,
+}
+
+impl PatchMobility {
+    /// A warning for a sheet that is not one mechanism with one DOF, naming its DOF.
+    pub fn warning(&self) -> Option<String> {
+        (self.dof != 1).then(|| {
+            format!(
+                "this patch has {} degrees of freedom with a free boundary (its boundary tiles \
+                 flop); --complete writes its one-DOF completion",
+                self.dof
+            )
+        })
+    }
+}
+
 /// One tile of the patch at the exported state.
 #[derive(Debug, Clone, Serialize)]
 pub struct PatchTile {
@@ -166,7 +214,7 @@ pub struct PatchTile {
     /// Tile index in the cell.
     pub tile: usize,
     /// Cell [i, j] (multiples of u and w).
-    pub cell: [usize; 2],
+    pub cell: [i32; 2],
     /// Vertices, counter-clockwise, mm.
     pub polygon_mm: Vec<[Real; 2]>,
     /// Area centroid, mm.
@@ -227,13 +275,10 @@ pub fn patch_at_with(
         frames: FrameSelection::AllSteps,
     };
     let run = deploy(design, &deploy_request, progress)?;
+    let (sheet, finite) = finite_patch(design, &cell, &run, request, deploy_request.settings)?;
     let frames = &run.report.frames;
     let chosen = choose_frame(frames, request.state);
-    let place = Placer {
-        shapes: &geometry.tiles,
-        rows: request.rows,
-        cols: request.cols,
-    };
+    let place = Placer::new(&geometry.tiles, &sheet.tiles);
     let at_state = place.polygons(&frames[chosen]);
     let (lo, hi) = bounds(&at_state);
     let mm_per_unit = match request.scale {
@@ -259,7 +304,7 @@ pub fn patch_at_with(
         .into_iter()
         .enumerate()
         .map(|(id, polygon_mm)| {
-            let (cell, tile) = place.cell_of(id, n);
+            let SheetTile { cell, tile } = place.tiles[id];
             let pose = frame.tiles[tile];
             let shift = place.shift(frame, cell);
             let centre = [pose.x + shift[0], pose.y + shift[1]];
@@ -282,7 +327,7 @@ pub fn patch_at_with(
             polygons_mm: to_mm(&place.polygons(f)),
         })
         .collect();
-    let joints = patch_joints(&cell, &design.joints, &place, &tiles);
+    let joints = patch_joints(&cell, &run.mechanism, &sheet, &tiles);
     let edge_mm = geometry.length_scale * mm_per_unit;
     let loops = outline(&cell, &place, &closed_polygons_mm, 1e-7 * edge_mm);
     let outline_mm = loops
@@ -293,12 +338,12 @@ pub fn patch_at_with(
         .iter()
         .map(|l| l.iter().map(|(_, v)| *v).collect())
         .collect();
-    let finite = |p: &Vec<[Real; 2]>| p.iter().flatten().all(|x| x.is_finite());
-    let all_finite = tiles.iter().all(|t| finite(&t.polygon_mm))
-        && closed_polygons_mm.iter().all(finite)
+    let all_numbers = |p: &Vec<[Real; 2]>| p.iter().flatten().all(|x| x.is_finite());
+    let all_finite = tiles.iter().all(|t| all_numbers(&t.polygon_mm))
+        && closed_polygons_mm.iter().all(all_numbers)
         && states
             .iter()
-            .all(|s: &PatchState| s.polygons_mm.iter().all(finite));
+            .all(|s: &PatchState| s.polygons_mm.iter().all(all_numbers));
     if !all_finite {
         let (what, value) = request.scale_value();
         return Err(ExportError::BadSize { what, value });
@@ -308,6 +353,7 @@ pub fn patch_at_with(
         rows: request.rows,
         cols: request.cols,
         tiles_per_cell: n,
+        finite,
         kerf: request.kerf,
         edge_mm,
         mm_per_unit,
@@ -321,6 +367,75 @@ pub fn patch_at_with(
         outline_vertices,
         states,
     })
+}
+
+/// The sheet to write — the R×C rectangle's completion, or the rectangle itself with `raw`
+/// — and what it is as a mechanism, from the deployment already made.
+fn finite_patch(
+    design: &Design,
+    cell: &crate::cell::UnitCell,
+    run: &Deployment,
+    request: &PatchRequest,
+    settings: DeploySettings,
+) -> Result<(FiniteSheet, PatchMobility), ExportError> {
+    let region = Region::Cells {
+        rows: request.rows,
+        cols: request.cols,
+    };
+    let mech = &run.mechanism;
+    if run.trajectory.steps.len() < 2 {
+        // A design locked by contact has no opened state: its raw rectangle, counted closed.
+        if request.complete {
+            let reason = "the periodic sheet does not open (locked by contact)".into();
+            return Err(
+                crate::Error::from(crate::finite::FiniteError::NoOneDofSheet { reason }).into(),
+            );
+        }
+        let tiles = region.tiles(mech, 1.0).map_err(crate::Error::from)?;
+        let sheet = FiniteSheet::new(cell, mech, tiles);
+        let poses = sheet.poses(mech, &mech.rest);
+        let m: SheetMobility =
+            crate::finite::sheet_mobility(&sheet, mech, &poses, None, settings.mobility)
+                .map_err(crate::Error::from)?;
+        let info = PatchMobility {
+            completed: false,
+            dof: m.dof,
+            raw_dof: m.dof,
+            requested_tiles: sheet.len(),
+            removed_tiles: 0,
+            added_tiles: 0,
+            covered_fraction: 1.0,
+        };
+        return Ok((sheet, info));
+    }
+    let sheet_request = SheetRequest {
+        region,
+        complete: request.complete,
+        settings,
+        ..SheetRequest::default()
+    };
+    let analysis = sheet_of_trajectory(design, cell, mech, &run.trajectory, &sheet_request)?;
+    let info = match &analysis.completion {
+        Some(c) => PatchMobility {
+            completed: true,
+            dof: c.mobility.dof,
+            raw_dof: analysis.raw_mobility.dof,
+            requested_tiles: c.report.requested,
+            removed_tiles: c.report.removed.len(),
+            added_tiles: c.report.added.len(),
+            covered_fraction: c.report.covered_fraction,
+        },
+        None => PatchMobility {
+            completed: false,
+            dof: analysis.raw_mobility.dof,
+            raw_dof: analysis.raw_mobility.dof,
+            requested_tiles: analysis.raw.len(),
+            removed_tiles: 0,
+            added_tiles: 0,
+            covered_fraction: 1.0,
+        },
+    };
+    Ok((analysis.sheet().clone(), info))
 }
 
 /// Index of the frame asked for (frames are ordered by t, the closed state first).
@@ -343,66 +458,56 @@ fn choose_frame(frames: &[FrameReport], state: State) -> usize {
     best
 }
 
-/// Places the cell's tile shapes by a frame's poses into the patch's cells.
+/// Places the cell's tile shapes by a frame's poses at the sheet's tiles.
 struct Placer<'a> {
     shapes: &'a [Vec<[Real; 2]>],
-    rows: usize,
-    cols: usize,
+    tiles: &'a [SheetTile],
+    index: HashMap<SheetTile, usize>,
 }
 
-impl Placer<'_> {
-    /// Tile id of tile `tile` in cell [i, j].
-    fn id(&self, cell: [usize; 2], tile: usize) -> usize {
-        (cell[1] * self.cols + cell[0]) * self.shapes.len() + tile
+impl<'a> Placer<'a> {
+    fn new(shapes: &'a [Vec<[Real; 2]>], tiles: &'a [SheetTile]) -> Self {
+        let index = tiles.iter().enumerate().map(|(i, t)| (*t, i)).collect();
+        Placer {
+            shapes,
+            tiles,
+            index,
+        }
     }
 
-    /// Cell and tile index of a tile id (`n` tiles per cell).
-    fn cell_of(&self, id: usize, n: usize) -> ([usize; 2], usize) {
-        let c = id / n;
-        ([c % self.cols, c / self.cols], id % n)
+    /// Tile id of tile `tile` in `cell`, if it is in the sheet.
+    fn id(&self, cell: [i32; 2], tile: usize) -> Option<usize> {
+        self.index.get(&SheetTile { cell, tile }).copied()
     }
 
-    /// The cell containing `cell + offset`, if it is in the patch.
-    fn neighbour(&self, cell: [usize; 2], offset: [i32; 2]) -> Option<[usize; 2]> {
-        let i = i64::try_from(cell[0]).ok()? + i64::from(offset[0]);
-        let j = i64::try_from(cell[1]).ok()? + i64::from(offset[1]);
-        let i = usize::try_from(i).ok().filter(|&i| i < self.cols)?;
-        let j = usize::try_from(j).ok().filter(|&j| j < self.rows)?;
-        Some([i, j])
-    }
-
-    /// Translation of cell [i, j] at a frame (tiling units).
-    fn shift(&self, frame: &FrameReport, cell: [usize; 2]) -> [Real; 2] {
-        let (i, j) = (cell[0] as Real, cell[1] as Real);
+    /// Translation of `cell` at a frame (tiling units).
+    fn shift(&self, frame: &FrameReport, cell: [i32; 2]) -> [Real; 2] {
+        let (i, j) = (Real::from(cell[0]), Real::from(cell[1]));
         [
             i * frame.u[0] + j * frame.w[0],
             i * frame.u[1] + j * frame.w[1],
         ]
     }
 
-    /// Every tile polygon of the patch at a frame, by tile id (tiling units).
+    /// Every tile polygon of the sheet at a frame, by tile id (tiling units).
     fn polygons(&self, frame: &FrameReport) -> Vec<Vec<[Real; 2]>> {
-        let mut out = Vec::with_capacity(self.rows * self.cols * self.shapes.len());
-        for j in 0..self.rows {
-            for i in 0..self.cols {
-                let s = self.shift(frame, [i, j]);
-                for (shape, pose) in self.shapes.iter().zip(&frame.tiles) {
-                    let (sin, cos) = pose.theta.sin_cos();
-                    out.push(
-                        shape
-                            .iter()
-                            .map(|p| {
-                                [
-                                    pose.x + cos * p[0] - sin * p[1] + s[0],
-                                    pose.y + sin * p[0] + cos * p[1] + s[1],
-                                ]
-                            })
-                            .collect(),
-                    );
-                }
-            }
-        }
-        out
+        self.tiles
+            .iter()
+            .map(|t| {
+                let s = self.shift(frame, t.cell);
+                let pose = &frame.tiles[t.tile];
+                let (sin, cos) = pose.theta.sin_cos();
+                self.shapes[t.tile]
+                    .iter()
+                    .map(|p| {
+                        [
+                            pose.x + cos * p[0] - sin * p[1] + s[0],
+                            pose.y + sin * p[0] + cos * p[1] + s[1],
+                        ]
+                    })
+                    .collect()
+            })
+            .collect()
     }
 }
 
@@ -422,43 +527,30 @@ fn mm(v: [Real; 2], lo: [Real; 2], scale: Real) -> [Real; 2] {
     [(v[0] - lo[0]) * scale, (v[1] - lo[1]) * scale]
 }
 
-/// Every joint of the design between two tiles of the patch.
+/// Every joint of the sheet, with its pin's place at the exported state.
 fn patch_joints(
     cell: &crate::cell::UnitCell,
-    choices: &[JointChoice],
-    place: &Placer<'_>,
+    mech: &crate::kinematics::Mechanism,
+    sheet: &FiniteSheet,
     tiles: &[PatchTile],
 ) -> Vec<PatchJoint> {
-    let mut out = Vec::new();
-    for j in 0..place.rows {
-        for i in 0..place.cols {
-            for (k, (edge, choice)) in cell.edges.iter().zip(choices).enumerate() {
-                let ends: &[End] = match choice {
-                    JointChoice::None => &[],
-                    JointChoice::A => &[End::A],
-                    JointChoice::B => &[End::B],
-                    JointChoice::Both => &[End::A, End::B],
-                };
-                let Some(other) = place.neighbour([i, j], edge.offset) else {
-                    continue;
-                };
-                for &end in ends {
-                    let a = place.id([i, j], edge.tile_a);
-                    let vertex_a = cell.endpoint_index_on_a(k, end);
-                    out.push(PatchJoint {
-                        a,
-                        b: place.id(other, edge.tile_b),
-                        point_mm: tiles[a].polygon_mm[vertex_a],
-                        edge: k,
-                        end: if end == End::A { 'a' } else { 'b' },
-                        vertex_a,
-                        vertex_b: cell.endpoint_index_on_b(k, end),
-                    });
-                }
+    sheet
+        .joints
+        .iter()
+        .map(|j| {
+            let joint = &mech.joints[j.joint];
+            let vertex_a = cell.endpoint_index_on_a(joint.edge, joint.end);
+            PatchJoint {
+                a: j.a,
+                b: j.b,
+                point_mm: tiles[j.a].polygon_mm[vertex_a],
+                edge: joint.edge,
+                end: if joint.end == End::A { 'a' } else { 'b' },
+                vertex_a,
+                vertex_b: cell.endpoint_index_on_b(joint.edge, joint.end),
             }
-        }
-    }
-    out
+        })
+        .collect()
 }
 
 /// Boundary loops of the closed patch: tile edges whose neighbour is outside the patch.
@@ -468,18 +560,20 @@ fn outline(
     closed: &[Vec<[Real; 2]>],
     tol: Real,
 ) -> Vec<Vec<([Real; 2], [usize; 2])>> {
-    let n = cell.tiles.len();
     let mut edges = Vec::new();
     for (id, poly) in closed.iter().enumerate() {
-        let (c, tile) = place.cell_of(id, n);
+        let SheetTile { cell: c, tile } = place.tiles[id];
         for k in 0..poly.len() {
             let e = &cell.edges[cell.tile_edges[tile][k]];
-            let offset = if e.tile_a == tile && e.edge_a == k {
-                e.offset
+            let (other, offset) = if e.tile_a == tile && e.edge_a == k {
+                (e.tile_b, e.offset)
             } else {
-                [-e.offset[0], -e.offset[1]]
+                (e.tile_a, [-e.offset[0], -e.offset[1]])
             };
-            if place.neighbour(c, offset).is_none() {
+            if place
+                .id([c[0] + offset[0], c[1] + offset[1]], other)
+                .is_none()
+            {
                 edges.push(([poly[k], poly[(k + 1) % poly.len()]], [id, k]));
             }
         }

@@ -18,7 +18,7 @@ pub struct TileRow {
     /// Tile id in the patch.
     pub id: usize,
     /// Cell [i, j] (multiples of u and w).
-    pub cell: [usize; 2],
+    pub cell: [i32; 2],
     /// Tile index in the cell.
     pub tile: usize,
     /// Vertices, counter-clockwise, mm.

@@ -287,6 +287,8 @@ pub fn hinge_problem(
         state: State::T(0.0),
         kerf,
         frames: 2,
+        // Every joint of the design's cell, as the periodic sheet has them.
+        complete: false,
     };
     let patch = match patch_at_with(design, &request, &mut |_| !stop.load(Ordering::Relaxed)) {
         Ok(p) => p,

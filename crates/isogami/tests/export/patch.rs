@@ -71,7 +71,9 @@ fn the_patch_holds_rows_times_cols_cells_of_every_tile() {
         assert_eq!(p.closed_polygons_mm.len(), p.tiles.len());
         for (id, t) in p.tiles.iter().enumerate() {
             assert_eq!(t.id, id);
-            assert!(t.cell[0] < COLS && t.cell[1] < ROWS && t.tile < p.tiles_per_cell);
+            let (i, j) = (t.cell[0] as usize, t.cell[1] as usize);
+            assert!(t.cell[0] >= 0 && t.cell[1] >= 0);
+            assert!(i < COLS && j < ROWS && t.tile < p.tiles_per_cell);
             assert!(area(&t.polygon_mm) > 0.0, "counter-clockwise");
         }
         // Each (cell, tile) once.
@@ -276,4 +278,68 @@ fn bad_requests_are_refused_with_typed_errors() {
         let msg = e.to_string();
         assert!(!msg.is_empty() && !msg.contains('\n'), "{msg}");
     }
+}
+
+/// With `complete` the patch is the rectangle's one-DOF completion, tile for tile what
+/// `api::finite_sheet` makes, and says so; without, it is the rectangle and names its DOF.
+#[test]
+fn the_default_patch_is_the_one_dof_completion() {
+    use isogami::api::{finite_sheet, SheetRequest};
+    use isogami::finite::Region;
+    let spec = "IH44:0.5,0.027564102564:1x2:-aaabbaa";
+    let design = resolve_design(spec).unwrap();
+    let completed = patch_at(
+        &design,
+        &PatchRequest {
+            complete: true,
+            ..PatchRequest::default()
+        },
+    )
+    .unwrap();
+    let raw = patch_at(&design, &PatchRequest::default()).unwrap();
+    let sheet = finite_sheet(
+        &design,
+        &SheetRequest {
+            region: Region::Cells { rows: 6, cols: 6 },
+            ..SheetRequest::default()
+        },
+        &mut |_| true,
+    )
+    .unwrap();
+    let c = sheet.completion.unwrap();
+    let tiles: Vec<([i32; 2], usize)> = completed.tiles.iter().map(|t| (t.cell, t.tile)).collect();
+    let want: Vec<([i32; 2], usize)> = c.sheet.tiles.iter().map(|t| (t.cell, t.tile)).collect();
+    assert_eq!(tiles, want);
+    assert_eq!(completed.joints.len(), c.sheet.joints.len());
+    assert!(completed.finite.completed && completed.finite.dof == 1);
+    assert!(completed.finite.warning().is_none());
+    assert_eq!(completed.finite.added_tiles, c.report.added.len());
+    // Ring tiles lie outside the rectangle's cells.
+    assert!(completed
+        .tiles
+        .iter()
+        .any(|t| t.cell[0] < 0 || t.cell[1] < 0 || t.cell[0] >= 6 || t.cell[1] >= 6));
+    assert_eq!(raw.tiles.len(), 6 * 6 * raw.tiles_per_cell);
+    assert!(!raw.finite.completed);
+    assert_eq!(raw.finite.dof, sheet.raw_mobility.dof);
+    assert!(raw
+        .finite
+        .warning()
+        .unwrap()
+        .contains(&format!("{} degrees of freedom", raw.finite.dof)));
+    // A design with no one-DOF sheet: completion is refused, the rectangle exported.
+    let isostatic = resolve_design("IH10::2x2:--a--aa-a-bb").unwrap();
+    let complete = PatchRequest {
+        complete: true,
+        ..PatchRequest::default()
+    };
+    let e = patch_at(&isostatic, &complete).unwrap_err();
+    assert!(e.to_string().contains("no one-DOF sheet"), "{e}");
+    assert!(
+        patch_at(&isostatic, &PatchRequest::default())
+            .unwrap()
+            .finite
+            .dof
+            > 1
+    );
 }

@@ -25,7 +25,7 @@ fn csv_rows_hold_what_the_json_table_holds() {
             assert_eq!(r.len(), columns);
             assert_eq!(r[0].parse::<usize>().unwrap(), t.id);
             assert_eq!(
-                [r[1].parse::<usize>().unwrap(), r[2].parse().unwrap()],
+                [r[1].parse::<i32>().unwrap(), r[2].parse().unwrap()],
                 t.cell
             );
             assert_eq!(r[3].parse::<usize>().unwrap(), t.tile);
