@@ -99,25 +99,36 @@ pub fn finite_sheet(
         .into());
     }
     let (cell, mech) = assemble(design)?;
-    // The region is checked before the deployment, which costs more.
-    request.region.tiles(&mech, request.edge_mm)?;
+    // The region is made and checked before the deployment, which costs more.
+    let requested = requested_sheet(&cell, &mech, request)?;
     let path = deploy_path(design, &request.settings, progress)?;
-    sheet_of_trajectory(design, &cell, &mech, &path.trajectory, request)
+    sheet_of_trajectory(design, &cell, &mech, &path.trajectory, request, requested)
 }
 
-/// [`finite_sheet`] on a deployment already made (`traj` of `mech`, assembled from `cell`):
-/// what the export uses, so that a patch is deployed once.
+/// The raw sheet of the request's region (refused when it holds no tile).
+pub(crate) fn requested_sheet(
+    cell: &UnitCell,
+    mech: &Mechanism,
+    request: &SheetRequest,
+) -> Result<FiniteSheet> {
+    let requested = FiniteSheet::new(cell, mech, request.region.tiles(mech, request.edge_mm)?);
+    if requested.is_empty() {
+        return Err(FiniteError::EmptySheet.into());
+    }
+    Ok(requested)
+}
+
+/// [`finite_sheet`] on a deployment already made (`traj` of `mech`, assembled from `cell`) and
+/// the region's sheet ([`requested_sheet`]): what the export uses, so that a patch is deployed
+/// once.
 pub(crate) fn sheet_of_trajectory(
     design: &Design,
     cell: &UnitCell,
     mech: &Mechanism,
     traj: &Trajectory,
     request: &SheetRequest,
+    requested: FiniteSheet,
 ) -> Result<SheetAnalysis> {
-    let requested = FiniteSheet::new(cell, mech, request.region.tiles(mech, request.edge_mm)?);
-    if requested.is_empty() {
-        return Err(FiniteError::EmptySheet.into());
-    }
     if traj.steps.len() < 2 {
         return Err(FiniteError::NoOneDofSheet {
             reason: format!("the periodic sheet does not open ({})", traj.end_reason),

@@ -41,8 +41,8 @@ use serde::Serialize;
 
 mod finite;
 mod sheet;
-pub(crate) use finite::sheet_of_trajectory;
 pub use finite::{finite_sheet, SheetAnalysis, SheetRequest};
+pub(crate) use finite::{requested_sheet, sheet_of_trajectory};
 pub use sheet::{sheet_geometry, tile_linkages, EdgeGeometry, SheetGeometry};
 
 /// Most frames a deployment report may hold when frames are picked evenly in t.

@@ -12,8 +12,8 @@
 use super::error::ExportError;
 use super::outline::chain_loops;
 use crate::api::{
-    deploy, sheet_geometry, sheet_of_trajectory, DeployRequest, Deployment, FrameSelection,
-    SheetRequest,
+    deploy, requested_sheet, sheet_geometry, sheet_of_trajectory, DeployRequest, Deployment,
+    FrameSelection, SheetRequest,
 };
 use crate::cell::End;
 use crate::contact::ContactSettings;
@@ -194,6 +194,19 @@ pub struct PatchMobility {
 }
 
 impl PatchMobility {
+    /// The record of the rectangle written as it is, with `dof` degrees of freedom.
+    fn raw(dof: usize, tiles: usize) -> PatchMobility {
+        PatchMobility {
+            completed: false,
+            dof,
+            raw_dof: dof,
+            requested_tiles: tiles,
+            removed_tiles: 0,
+            added_tiles: 0,
+            covered_fraction: 1.0,
+        }
+    }
+
     /// A warning for a sheet that is not one mechanism with one DOF, naming its DOF.
     pub fn warning(&self) -> Option<String> {
         (self.dof != 1).then(|| {
@@ -378,11 +391,17 @@ fn finite_patch(
     request: &PatchRequest,
     settings: DeploySettings,
 ) -> Result<(FiniteSheet, PatchMobility), ExportError> {
-    let region = Region::Cells {
-        rows: request.rows,
-        cols: request.cols,
+    let sheet_request = SheetRequest {
+        region: Region::Cells {
+            rows: request.rows,
+            cols: request.cols,
+        },
+        complete: request.complete,
+        settings,
+        ..SheetRequest::default()
     };
     let mech = &run.mechanism;
+    let requested = requested_sheet(cell, mech, &sheet_request)?;
     if run.trajectory.steps.len() < 2 {
         // A design locked by contact has no opened state: its raw rectangle, counted closed.
         if request.complete {
@@ -391,30 +410,21 @@ fn finite_patch(
                 crate::Error::from(crate::finite::FiniteError::NoOneDofSheet { reason }).into(),
             );
         }
-        let tiles = region.tiles(mech, 1.0).map_err(crate::Error::from)?;
-        let sheet = FiniteSheet::new(cell, mech, tiles);
-        let poses = sheet.poses(mech, &mech.rest);
+        let poses = requested.poses(mech, &mech.rest);
         let m: SheetMobility =
-            crate::finite::sheet_mobility(&sheet, mech, &poses, None, settings.mobility)
+            crate::finite::sheet_mobility(&requested, mech, &poses, None, settings.mobility)
                 .map_err(crate::Error::from)?;
-        let info = PatchMobility {
-            completed: false,
-            dof: m.dof,
-            raw_dof: m.dof,
-            requested_tiles: sheet.len(),
-            removed_tiles: 0,
-            added_tiles: 0,
-            covered_fraction: 1.0,
-        };
-        return Ok((sheet, info));
+        let info = PatchMobility::raw(m.dof, requested.len());
+        return Ok((requested, info));
     }
-    let sheet_request = SheetRequest {
-        region,
-        complete: request.complete,
-        settings,
-        ..SheetRequest::default()
-    };
-    let analysis = sheet_of_trajectory(design, cell, mech, &run.trajectory, &sheet_request)?;
+    let analysis = sheet_of_trajectory(
+        design,
+        cell,
+        mech,
+        &run.trajectory,
+        &sheet_request,
+        requested,
+    )?;
     let info = match &analysis.completion {
         Some(c) => PatchMobility {
             completed: true,
@@ -425,15 +435,7 @@ fn finite_patch(
             added_tiles: c.report.added.len(),
             covered_fraction: c.report.covered_fraction,
         },
-        None => PatchMobility {
-            completed: false,
-            dof: analysis.raw_mobility.dof,
-            raw_dof: analysis.raw_mobility.dof,
-            requested_tiles: analysis.raw.len(),
-            removed_tiles: 0,
-            added_tiles: 0,
-            covered_fraction: 1.0,
-        },
+        None => PatchMobility::raw(analysis.raw_mobility.dof, analysis.raw.len()),
     };
     Ok((analysis.sheet().clone(), info))
 }

@@ -250,14 +250,9 @@ fn prune(
 fn drop_loose(ctx: &Context<'_>, mut sheet: FiniteSheet) -> FiniteSheet {
     loop {
         let pins = sheet.pins();
-        let (piece, count) = sheet.pieces();
-        let mut size = vec![0usize; count];
-        for &p in &piece {
-            size[p] += 1;
-        }
-        let largest = (0..count).max_by(|&a, &b| size[a].cmp(&size[b]).then(b.cmp(&a)));
+        let largest = sheet.in_largest_piece();
         let keep: Vec<bool> = (0..sheet.len())
-            .map(|t| pins[t] >= 2 && Some(piece[t]) == largest)
+            .map(|t| pins[t] >= 2 && largest[t])
             .collect();
         if keep.iter().all(|&k| k) {
             return sheet;

@@ -70,13 +70,10 @@ fn pin_rows(s_a: Vec2, theta_a: Real, s_b: Vec2, theta_b: Real) -> [[Real; 6]; 2
 
 /// The largest piece's lowest tile (the reference whose columns are left out).
 fn reference_tile(sheet: &FiniteSheet) -> usize {
-    let (piece, count) = sheet.pieces();
-    let mut size = vec![0usize; count];
-    for &p in &piece {
-        size[p] += 1;
-    }
-    let best = (0..count).max_by(|&a, &b| size[a].cmp(&size[b]).then(b.cmp(&a)));
-    best.and_then(|b| piece.iter().position(|&p| p == b))
+    sheet
+        .in_largest_piece()
+        .iter()
+        .position(|&inside| inside)
         .unwrap_or(0)
 }
 

@@ -139,6 +139,17 @@ impl FiniteSheet {
         (piece, count)
     }
 
+    /// Whether each tile is in the largest piece (the piece of the lowest tile on a tie).
+    pub fn in_largest_piece(&self) -> Vec<bool> {
+        let (piece, count) = self.pieces();
+        let mut size = vec![0usize; count];
+        for &p in &piece {
+            size[p] += 1;
+        }
+        let largest = (0..count).max_by(|&a, &b| size[a].cmp(&size[b]).then(b.cmp(&a)));
+        piece.iter().map(|&p| Some(p) == largest).collect()
+    }
+
     /// Pose (position in units of L, angle) of every tile at the periodic state `q` of
     /// `mech`: tile k's pose moved by its cell's lattice translate.
     pub fn poses(&self, mech: &Mechanism, q: &DVec) -> Vec<(Vec2, Real)> {
