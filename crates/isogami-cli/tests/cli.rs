@@ -29,8 +29,11 @@ fn families_lists_all_81() {
 
 #[test]
 fn cell_json_and_svg() {
-    let dir = std::env::temp_dir().join(format!("isogami-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir_guard = tempfile::Builder::new()
+        .prefix("isogami-cli-")
+        .tempdir()
+        .unwrap();
+    let dir = dir_guard.path();
     let svg = dir.join("cell.svg");
     let v = json(&[
         "cell",
@@ -56,7 +59,6 @@ fn cell_json_and_svg() {
     );
     // 3×3 cells of 8 tiles plus the cell outline and arrow heads.
     assert!(text.matches("<polygon").count() >= 72);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -144,8 +146,11 @@ fn refused_parameter_is_named() {
 
 #[test]
 fn deploy_json_and_outputs() {
-    let dir = std::env::temp_dir().join(format!("isogami-deploy-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir_guard = tempfile::Builder::new()
+        .prefix("isogami-deploy-")
+        .tempdir()
+        .unwrap();
+    let dir = dir_guard.path();
     let (gif, plot, out, frames) = (
         dir.join("d.gif"),
         dir.join("p.svg"),
@@ -192,7 +197,6 @@ fn deploy_json_and_outputs() {
     let saved: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
     assert_eq!(saved["frames"].as_array().unwrap().len(), fr.len());
     assert_eq!(std::fs::read_dir(&frames).unwrap().count(), fr.len());
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -266,8 +270,11 @@ fn deploy_all_steps_and_polar_t() {
 
 #[test]
 fn linkages_json_and_svg() {
-    let dir = std::env::temp_dir().join(format!("isogami-linkages-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir_guard = tempfile::Builder::new()
+        .prefix("isogami-linkages-")
+        .tempdir()
+        .unwrap();
+    let dir = dir_guard.path();
     let svg = dir.join("l.svg");
     let v = json(&[
         "linkages",
@@ -283,5 +290,4 @@ fn linkages_json_and_svg() {
     assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
     let out = isogami(&["linkages", "--design", "IH76::2x2:ab"]);
     assert_eq!(out.status.code(), Some(2));
-    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -89,7 +89,8 @@ fn malformed_invocations_fail_in_one_line_with_exit_2() {
 
 #[test]
 fn explore_refuses_bad_flags_before_touching_the_database() {
-    let dir = scratch("explore");
+    let dir_guard = scratch("explore");
+    let dir = dir_guard.path();
     let db = dir.join("never.db");
     let db = db.to_str().expect("utf-8 path");
     let base = [
@@ -118,11 +119,10 @@ fn explore_refuses_bad_flags_before_touching_the_database() {
         let args: Vec<&str> = base.iter().chain(extra).copied().collect();
         fails_in_one_line(&args);
         assert!(
-            std::fs::read_dir(&dir).expect("dir").next().is_none(),
+            std::fs::read_dir(dir).expect("dir").next().is_none(),
             "{args:?} left a file behind"
         );
     }
-    std::fs::remove_dir_all(&dir).expect("clean up");
 }
 
 #[test]

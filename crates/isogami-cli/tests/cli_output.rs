@@ -74,7 +74,8 @@ fn diverging_runs_never_print_nan_or_null() {
 
 #[test]
 fn report_files_are_checked_like_printed_reports() {
-    let dir = scratch("out");
+    let dir_guard = scratch("out");
+    let dir = dir_guard.path();
     for (design, method) in [
         ("IH93::1x1:---", "springs"),
         ("rotating-squares", "rigid-modes"),
@@ -106,5 +107,4 @@ fn report_files_are_checked_like_printed_reports() {
     }
     // Rotating squares deploys cleanly, so at least that file exists.
     assert!(dir.join("rigid-modes.json").exists());
-    std::fs::remove_dir_all(&dir).expect("clean up");
 }

@@ -9,9 +9,7 @@
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
 use serde_json::Value;
-use std::path::PathBuf;
 use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 const RS: &str = "rotating-squares";
 
@@ -32,17 +30,12 @@ fn isogami(args: &[String]) -> Output {
         .expect("binary runs")
 }
 
-/// A fresh scratch directory per case.
-fn scratch() -> PathBuf {
-    static NEXT: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "isogami-cli-props-{}-{}",
-        std::process::id(),
-        NEXT.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+/// A fresh scratch directory per case, removed when the guard drops.
+fn scratch() -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix("isogami-cli-props-")
+        .tempdir()
+        .expect("temp dir")
 }
 
 /// Every number in `v` is finite (serde_json cannot hold anything else) and `null` appears
@@ -183,7 +176,8 @@ proptest! {
 
     #[test]
     fn deploy_polar_t(values in prop::collection::vec(prop_oneof![3 => (0.0..=1.0f64).prop_map(|x| x.to_string()), 1 => number_text()], 0..14)) {
-        let dir = scratch();
+        let dir_guard = scratch();
+    let dir = dir_guard.path();
         let plot = dir.join("plot.svg");
         let list = values.join(",");
         let a = args(&["deploy", "--design", RS, &format!("--polar-t={list}"), "--plot", plot.to_str().expect("utf-8")]);
@@ -191,7 +185,6 @@ proptest! {
         well_behaved(&a, Some(valid))?;
         prop_assert_eq!(plot.exists(), valid);
         prop_assert_eq!(dir.join("plot-polar.svg").exists(), valid);
-        std::fs::remove_dir_all(&dir).expect("clean up");
     }
 
     #[test]
@@ -248,7 +241,8 @@ proptest! {
 /// A one-unit exploration (the square grid, minimal cell: a fraction of a second) into a
 /// fresh database with `extra` flags.
 fn explore(extra: &[String], expect: Option<bool>) -> Result<(), TestCaseError> {
-    let dir = scratch();
+    let dir_guard = scratch();
+    let dir = dir_guard.path();
     let db = dir.join("designs.db");
     let mut a = args(&[
         "explore",
@@ -266,7 +260,6 @@ fn explore(extra: &[String], expect: Option<bool>) -> Result<(), TestCaseError> 
         // A refused run leaves no database behind.
         prop_assert!(!db.exists(), "{a:?} created the database");
     }
-    std::fs::remove_dir_all(&dir).expect("clean up");
     result.map(|_| ())
 }
 

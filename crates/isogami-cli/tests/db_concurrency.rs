@@ -6,7 +6,7 @@
 //! (SIGSTOP) while the others try, so the checks never race its remaining quick units.
 
 use isogami_store::{Check, Store};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
@@ -14,11 +14,11 @@ fn bin() -> Command {
     Command::new(env!("CARGO_BIN_EXE_isogami"))
 }
 
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("isogami-db-conc-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn dir(name: &str) -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("isogami-db-conc-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 /// IH21's minimal cell keeps a writer busy for many seconds and runs first (longest first);
@@ -95,7 +95,8 @@ fn assert_busy(out: &Output) {
 
 #[test]
 fn a_second_writer_is_refused_while_the_first_runs() {
-    let d = dir("second");
+    let d_guard = dir("second");
+    let d = d_guard.path();
     let db = d.join("db");
     let mut first = slow_explore(&db);
     wait_for("the first unit", || committed(&db) >= 1);
@@ -174,12 +175,12 @@ fn a_second_writer_is_refused_while_the_first_runs() {
         "{units:?}"
     );
     assert_eq!(units.len(), before + 1, "{units:?}");
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 #[test]
 fn two_explores_started_together_on_a_new_file_one_refused() {
-    let d = dir("together");
+    let d_guard = dir("together");
+    let d = d_guard.path();
     let db = d.join("db");
     let mut a = slow_explore(&db);
     let mut b = slow_explore(&db);
@@ -206,5 +207,4 @@ fn two_explores_started_together_on_a_new_file_one_refused() {
     wait_for("the winner's first unit", || committed(&db) >= 1);
     winner.kill().unwrap();
     winner.wait().unwrap();
-    std::fs::remove_dir_all(&d).unwrap();
 }

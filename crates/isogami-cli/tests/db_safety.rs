@@ -10,11 +10,11 @@ fn bin() -> Command {
     Command::new(env!("CARGO_BIN_EXE_isogami"))
 }
 
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("isogami-db-safety-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn dir(name: &str) -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("isogami-db-safety-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 fn run(args: &[&str]) -> Output {
@@ -58,12 +58,12 @@ fn refused_everywhere(file: &Path, good: &Path, expect: &str) {
     let d = file.parent().unwrap();
     let before = listing(d);
     let f = file.to_str().unwrap();
-    let new_target = std::env::temp_dir().join(format!(
-        "isogami-db-safety-{}-new-{}.db",
-        std::process::id(),
+    // Outside `d`, whose listing must not change.
+    let new_guard = dir("new-target");
+    let new_target = new_guard.path().join(format!(
+        "new-{}.db",
         file.file_name().unwrap().to_string_lossy()
     ));
-    let _ = std::fs::remove_file(&new_target);
     let commands: Vec<Vec<&str>> = vec![
         vec!["db", "stats", "--db", f],
         vec!["db", "stats", "--json", "--db", f],
@@ -95,7 +95,8 @@ fn sqlite_file(path: &Path, sql: &str) {
 
 #[test]
 fn foreign_old_and_future_files_are_refused_unchanged() {
-    let root = dir("foreign");
+    let root_guard = dir("foreign");
+    let root = root_guard.path();
     let good = root.join("good.db");
     explore(&good);
     let case = |name: &str| {
@@ -148,16 +149,17 @@ fn foreign_old_and_future_files_are_refused_unchanged() {
 
 #[test]
 fn reading_commands_never_write() {
-    let d = dir("read");
+    let d_guard = dir("read");
+    let d = d_guard.path();
     let db = d.join("x.db");
     explore(&db);
-    let before = listing(&d);
+    let before = listing(d);
     for args in [
         vec!["db", "stats", "--db", db.to_str().unwrap()],
         vec!["db", "stats", "--json", "--db", db.to_str().unwrap()],
     ] {
         assert!(run(&args).status.success());
-        assert_eq!(listing(&d), before, "{args:?}");
+        assert_eq!(listing(d), before, "{args:?}");
     }
     // A missing or empty file is not created or filled by a reader.
     let missing = d.join("missing.db");
@@ -232,7 +234,8 @@ fn change_live(good: &[u8], needle: &[u8], offset: usize, probe: &Path) -> Vec<u
 
 #[test]
 fn damaged_copies_of_a_real_database_are_refused_unchanged() {
-    let root = dir("damage");
+    let root_guard = dir("damage");
+    let root = root_guard.path();
     let good = root.join("good.db");
     explore(&good);
     let bytes = std::fs::read(&good).unwrap();

@@ -12,11 +12,11 @@ fn bin() -> Command {
     Command::new(env!("CARGO_BIN_EXE_isogami"))
 }
 
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("isogami-explore-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn dir(name: &str) -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("isogami-explore-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 fn explore(db: &Path, extra: &[&str]) -> Output {
@@ -84,7 +84,8 @@ fn content_of(s: &Store) -> Content {
 
 #[test]
 fn shards_merged_equal_one_run() {
-    let d = dir("shards");
+    let d_guard = dir("shards");
+    let d = d_guard.path();
     let whole = d.join("whole.db");
     explore(&whole, &["--jobs", "2"]);
     let a = content(&whole);
@@ -122,12 +123,12 @@ fn shards_merged_equal_one_run() {
         let sizes: usize = shards.iter().map(|s| content(s).0.len()).sum();
         assert_eq!(sizes, a.0.len());
     }
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 #[test]
 fn killed_run_resumes_without_loss_or_duplicates() {
-    let d = dir("kill");
+    let d_guard = dir("kill");
+    let d = d_guard.path();
     // IH6 and IH7 come first and take a while, so the kill lands mid-run.
     let families = format!("IH6,IH7,{FAMILIES}");
     let reference = d.join("reference.db");
@@ -185,12 +186,12 @@ fn killed_run_resumes_without_loss_or_duplicates() {
         "{text}"
     );
     assert_eq!(content(&db), content(&reference));
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 #[test]
 fn database_checks() {
-    let d = dir("checks");
+    let d_guard = dir("checks");
+    let d = d_guard.path();
     let db = d.join("a.db");
     explore_families("IH90", &db, &[]);
     // Other settings on the same file are refused.
@@ -253,7 +254,6 @@ fn database_checks() {
             String::from_utf8_lossy(&out.stderr)
         );
     }
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 /// Removes one committed work unit with its designs, as if the run had been killed before it.
@@ -293,7 +293,8 @@ fn run(args: &[&str]) -> (Option<i32>, String, String) {
 #[test]
 fn merge_proves_the_shards_complete_and_reruns_add_nothing() {
     const FEW: &str = "IH83,IH84,IH90,IH91";
-    let d = dir("complete");
+    let d_guard = dir("complete");
+    let d = d_guard.path();
     let p = |name: &str| d.join(name).to_str().unwrap().to_string();
     let whole = d.join("whole.db");
     explore_families(FEW, &whole, &[]);
@@ -403,12 +404,12 @@ fn merge_proves_the_shards_complete_and_reruns_add_nothing() {
     ]);
     assert_eq!(code, Some(2));
     assert!(err.contains("holds shard 1/3"), "{err}");
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 #[test]
 fn db_units_lists_every_unit_with_its_time_and_peak_memory() {
-    let d = dir("units");
+    let d_guard = dir("units");
+    let d = d_guard.path();
     let db = d.join("u.db");
     explore_families("IH83,IH84,IH90", &db, &[]);
     let db_arg = db.to_str().unwrap();
@@ -449,12 +450,12 @@ fn db_units_lists_every_unit_with_its_time_and_peak_memory() {
     ]);
     assert_eq!(code, Some(2));
     assert_eq!(err.lines().count(), 1, "{err}");
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 #[test]
 fn db_motions_lists_shared_motions_and_stats_counts_them() {
-    let d = dir("motions");
+    let d_guard = dir("motions");
+    let d = d_guard.path();
     let db = d.join("m.db");
     explore_families("IH28,IH29,IH83,IH90", &db, &[]);
     let db_arg = db.to_str().unwrap();
@@ -480,5 +481,4 @@ fn db_motions_lists_shared_motions_and_stats_counts_them() {
         classes.len()
     );
     assert!(stats.contains(&line), "{stats}");
-    std::fs::remove_dir_all(&d).unwrap();
 }

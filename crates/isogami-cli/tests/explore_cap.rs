@@ -3,13 +3,12 @@
 //! 18 edges), and runs with different caps do not mix in one database.
 
 use isogami_store::{Check, Store};
-use std::path::PathBuf;
 
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("isogami-cap-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn dir(name: &str) -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("isogami-cap-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 fn run(args: &[&str]) -> (Option<i32>, String, String) {
@@ -37,7 +36,8 @@ fn refused(args: &[&str], db: &std::path::Path, needles: &[&str]) {
 
 #[test]
 fn requested_cells_over_the_cap_are_errors_naming_max_edges() {
-    let d = dir("over");
+    let d_guard = dir("over");
+    let d = d_guard.path();
     let db = d.join("a.db");
     let p = db.to_str().unwrap();
     // Issue 13: this printed "0 work units run" and exited 0.
@@ -100,12 +100,12 @@ fn requested_cells_over_the_cap_are_errors_naming_max_edges() {
             &["--max-edges", "1..=24"],
         );
     }
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 #[test]
 fn a_raised_cap_runs_ih77_and_caps_do_not_mix() {
-    let d = dir("ih77");
+    let d_guard = dir("ih77");
+    let d = d_guard.path();
     let db = d.join("a.db");
     let p = db.to_str().unwrap();
     let (code, out, err) = run(&[
@@ -147,12 +147,12 @@ fn a_raised_cap_runs_ih77_and_caps_do_not_mix() {
         "{err}"
     );
     assert_eq!(std::fs::read(&db).unwrap(), before);
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 #[test]
 fn plan_lists_what_a_run_runs_longest_first_and_touches_nothing() {
-    let d = dir("plan");
+    let d_guard = dir("plan");
+    let d = d_guard.path();
     let db = d.join("p.db");
     let db_arg = db.to_str().unwrap();
     let common = ["explore", "--quick", "--families", "IH83,IH84,IH90,IH28"];
@@ -209,5 +209,4 @@ fn plan_lists_what_a_run_runs_longest_first_and_touches_nothing() {
         &none,
         &["--max-edges"],
     );
-    std::fs::remove_dir_all(&d).unwrap();
 }

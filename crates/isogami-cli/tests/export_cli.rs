@@ -19,7 +19,8 @@ const IH22: &str = "IH22:0.1312,0.2611,0.4191:1x1:aa-a-";
 
 #[test]
 fn every_format_writes_a_file_that_parses() {
-    let dir = scratch("formats");
+    let dir_guard = scratch("formats");
+    let dir = dir_guard.path();
     let out = |name: &str| dir.join(name).to_string_lossy().into_owned();
     let run = |format: &str, file: &str, extra: &[&str]| {
         let target = out(file);
@@ -78,7 +79,7 @@ fn every_format_writes_a_file_that_parses() {
     let vertices = std::fs::read_to_string(dir.join("sim/vertices.txt")).unwrap();
     assert_eq!(vertices.lines().count(), faces);
     assert_eq!(
-        entries(&dir),
+        entries(dir),
         ["a.csv", "a.fold", "a.json", "a.obj", "sim"],
         "no temporary files left"
     );
@@ -86,7 +87,8 @@ fn every_format_writes_a_file_that_parses() {
 
 #[test]
 fn bad_values_fail_in_one_line_and_write_nothing() {
-    let dir = scratch("errors");
+    let dir_guard = scratch("errors");
+    let dir = dir_guard.path();
     let target = dir.join("out.fold").to_string_lossy().into_owned();
     let cases: &[&[&str]] = &[
         &["--patch", "0x3"],
@@ -125,17 +127,14 @@ fn bad_values_fail_in_one_line_and_write_nothing() {
         assert!(o.stdout.is_empty(), "{extra:?}");
         assert_eq!(stderr.lines().count(), 1, "{extra:?}: {stderr}");
         assert!(stderr.starts_with("error: "), "{extra:?}: {stderr}");
-        assert!(
-            entries(&dir).is_empty(),
-            "{extra:?} left {:?}",
-            entries(&dir)
-        );
+        assert!(entries(dir).is_empty(), "{extra:?} left {:?}", entries(dir));
     }
 }
 
 #[test]
 fn out_of_the_wrong_kind_is_refused() {
-    let dir = scratch("kinds");
+    let dir_guard = scratch("kinds");
+    let dir = dir_guard.path();
     let folder = dir.to_string_lossy().into_owned();
     let o = isogami(&[
         "export",
@@ -162,5 +161,5 @@ fn out_of_the_wrong_kind_is_refused() {
     ]);
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep");
-    assert_eq!(entries(&dir), ["f.txt"]);
+    assert_eq!(entries(dir), ["f.txt"]);
 }

@@ -7,7 +7,8 @@ use common::{isogami, scratch};
 
 #[test]
 fn svg_and_dxf_carry_the_preset_and_the_overrides() {
-    let dir = scratch("ok");
+    let dir_guard = scratch("ok");
+    let dir = dir_guard.path();
     let svg = dir.join("s.svg").to_string_lossy().into_owned();
     let base = ["export", "--design", "rotating-squares", "--patch", "2x2"];
     let out = isogami(
@@ -65,7 +66,8 @@ fn svg_and_dxf_carry_the_preset_and_the_overrides() {
 
 #[test]
 fn bad_laser_values_leave_no_file() {
-    let dir = scratch("bad");
+    let dir_guard = scratch("bad");
+    let dir = dir_guard.path();
     let target = dir.join("x.svg").to_string_lossy().into_owned();
     for extra in [
         &["--hinge-mm", "25"][..],
@@ -95,7 +97,7 @@ fn bad_laser_values_leave_no_file() {
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(err.trim().lines().count(), 1, "{extra:?}: {err}");
         assert_eq!(
-            std::fs::read_dir(&dir).unwrap().count(),
+            std::fs::read_dir(dir).unwrap().count(),
             0,
             "{extra:?} left a file"
         );

@@ -13,7 +13,8 @@ fn export(args: &[&str]) -> std::process::Output {
 
 #[test]
 fn stl_and_3mf_carry_the_asked_settings() {
-    let dir = scratch("print-ok");
+    let dir_guard = scratch("print-ok");
+    let dir = dir_guard.path();
     let mf = dir.join("s.3mf").to_string_lossy().into_owned();
     let out = export(&[
         "--format",
@@ -74,7 +75,8 @@ fn stl_and_3mf_carry_the_asked_settings() {
 
 #[test]
 fn bad_print_values_leave_no_file() {
-    let dir = scratch("print-bad");
+    let dir_guard = scratch("print-bad");
+    let dir = dir_guard.path();
     for format in ["stl", "3mf"] {
         let target = dir
             .join(format!("x.{format}"))
@@ -97,7 +99,7 @@ fn bad_print_values_leave_no_file() {
             assert_eq!(err.trim().lines().count(), 1, "{extra:?}: {err}");
             assert!(err.contains(needle), "{extra:?}: {err}");
             assert_eq!(
-                std::fs::read_dir(&dir).unwrap().count(),
+                std::fs::read_dir(dir).unwrap().count(),
                 0,
                 "{extra:?} left a file"
             );

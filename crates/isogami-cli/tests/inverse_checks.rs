@@ -33,7 +33,11 @@ fn quick_db() -> PathBuf {
         if let Some(p) = std::env::var_os("ISOGAMI_QUICK_DB") {
             return PathBuf::from(p);
         }
-        let dir = common::scratch("inverse-quick-db");
+        // Kept for the whole process (a static is never dropped): inside cargo's per-target
+        // scratch folder, not the system's temporary directory.
+        let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("inverse-checks-quick-db");
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
         let db = dir.join("quick.db");
         let out = common::isogami(&["explore", "--quick", "--db", db.to_str().unwrap()]);
         assert!(

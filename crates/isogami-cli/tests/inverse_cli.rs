@@ -5,8 +5,10 @@ mod common;
 
 use common::{isogami, scratch};
 
-fn small_db(name: &str) -> std::path::PathBuf {
-    let db = scratch(name).join("small.db");
+/// A small explored database, in a folder that lives as long as the returned guard.
+fn small_db(name: &str) -> (tempfile::TempDir, std::path::PathBuf) {
+    let dir = scratch(name);
+    let db = dir.path().join("small.db");
     let out = isogami(&[
         "explore",
         "--quick",
@@ -20,12 +22,13 @@ fn small_db(name: &str) -> std::path::PathBuf {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    db
+    (dir, db)
 }
 
 #[test]
 fn bad_input_is_one_line_and_exit_2() {
-    let dir = scratch("inverse-bad");
+    let dir_guard = scratch("inverse-bad");
+    let dir = dir_guard.path();
     let missing = dir.join("missing.db");
     for (args, want) in [
         (vec!["--target", "areas"], "unknown goal 'areas'"),
@@ -49,7 +52,7 @@ fn bad_input_is_one_line_and_exit_2() {
 
 #[test]
 fn a_run_prints_before_and_after_and_saves_once() {
-    let db = small_db("inverse-run");
+    let (_dir, db) = small_db("inverse-run");
     let db = db.to_str().unwrap();
     let args = [
         "inverse",

@@ -87,7 +87,8 @@ fn merge(into: &Path, inputs: &[&Path], extra: &[&str]) -> Output {
 
 #[test]
 fn parts_in_one_run_or_over_shards_equal_whole_units() {
-    let d = dir("equal");
+    let d_guard = dir("equal");
+    let d = d_guard.path();
     let whole = d.join("whole.db");
     ok(explore(&whole, &["--jobs", "2"]));
     let want = content(&whole);
@@ -147,12 +148,12 @@ fn parts_in_one_run_or_over_shards_equal_whole_units() {
     assert!(st["waiting_parts"].as_u64().unwrap() > 0);
     ok(merge(&stepwise, &[&shards[0]], &["--allow-incomplete"]));
     assert_eq!(content(&stepwise), want);
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 #[test]
 fn bad_part_counts_are_refused_in_one_line() {
-    let d = dir("bad");
+    let d_guard = dir("bad");
+    let d = d_guard.path();
     let db = d.join("a.db");
     for bad in ["0", "4097", "x"] {
         let out = explore(&db, &["--unit-parts", bad]);
@@ -180,5 +181,4 @@ fn bad_part_counts_are_refused_in_one_line() {
     let whole = d.join("whole.db");
     ok(explore(&whole, &[]));
     assert_eq!(content(&target), content(&whole));
-    std::fs::remove_dir_all(&d).unwrap();
 }

@@ -50,7 +50,8 @@ fn run(
 
 #[test]
 fn runs_every_planned_unit_once_and_resumes() {
-    let d = temp("explore-run");
+    let d_guard = temp("explore-run");
+    let d = d_guard.path();
     let db = d.join("a.db");
     let req = request(2);
     let planned: Vec<WorkUnit> = req.plan().unwrap().units();
@@ -99,12 +100,12 @@ fn runs_every_planned_unit_once_and_resumes() {
     assert_eq!(log, [("started", 2, 2, 0, String::new())]);
     assert_eq!((again.committed, again.skipped), (0, 2));
     assert_eq!(std::fs::read(&db).unwrap(), before);
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 #[test]
 fn cancelled_run_starts_nothing_and_a_rerun_finishes() {
-    let d = temp("explore-cancel");
+    let d_guard = temp("explore-cancel");
+    let d = d_guard.path();
     let db = d.join("a.db");
     let req = request(1);
     let (outcome, log) = run(&db, &req, true);
@@ -115,12 +116,12 @@ fn cancelled_run_starts_nothing_and_a_rerun_finishes() {
     let (outcome, _) = run(&db, &req, false);
     assert_eq!((outcome.committed, outcome.skipped), (2, 0));
     assert!(!outcome.cancelled);
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 #[test]
 fn bad_requests_are_refused_before_the_file_is_made() {
-    let d = temp("explore-bad");
+    let d_guard = temp("explore-bad");
+    let d = d_guard.path();
     let db = d.join("a.db");
     let flag = AtomicBool::new(false);
     for (req, what) in [
@@ -155,7 +156,6 @@ fn bad_requests_are_refused_before_the_file_is_made() {
         req.plan().unwrap(),
         ExplorePlan::new(&req.families, None, &req.settings.topology, None).unwrap()
     );
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 /// Everything stored about a unit but its timings: the design records (spec, summary, full
@@ -180,7 +180,8 @@ fn unit_content(
 
 #[test]
 fn one_and_two_jobs_store_the_same_designs() {
-    let d = temp("explore-jobs");
+    let d_guard = temp("explore-jobs");
+    let d = d_guard.path();
     // Quick settings on cells up to 2x2 of at most 10 edges: a low-symmetry hexagon cell
     // (IH28, hundreds of unique topologies deployed in parallel), rotating squares on 2x2,
     // triangle cells.
@@ -221,12 +222,12 @@ fn one_and_two_jobs_store_the_same_designs() {
     }
     assert!(designs > 10, "{designs} designs");
     assert_eq!(sa.stats().unwrap().designs, sb.stats().unwrap().designs);
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 #[test]
 fn runs_with_other_edge_caps_do_not_mix() {
-    let d = temp("explore-caps");
+    let d_guard = temp("explore-caps");
+    let d = d_guard.path();
     let db = d.join("a.db");
     let mut req = request(1);
     run(&db, &req, false);
@@ -253,12 +254,12 @@ fn runs_with_other_edge_caps_do_not_mix() {
         "{e}"
     );
     drop(w);
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 #[test]
 fn a_requested_cell_over_the_cap_is_refused_before_the_file_is_made() {
-    let d = temp("explore-over-cap");
+    let d_guard = temp("explore-over-cap");
+    let d = d_guard.path();
     let db = d.join("a.db");
     let mut req = request(1);
     req.families = vec![Family::from_number(76).unwrap()];
@@ -278,12 +279,12 @@ fn a_requested_cell_over_the_cap_is_refused_before_the_file_is_made() {
         "{e}"
     );
     assert!(!db.exists());
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 #[test]
 fn a_negative_zero_time_is_stored_as_zero_and_reads_back_intact() {
-    let d = temp("explore-negative-zero");
+    let d_guard = temp("explore-negative-zero");
+    let d = d_guard.path();
     let db = d.join("a.db");
     let mut outcome = isogami::catalog::run_unit(
         Family::from_number(90).unwrap(),
@@ -306,14 +307,14 @@ fn a_negative_zero_time_is_stored_as_zero_and_reads_back_intact() {
     let units = store.work_units().unwrap();
     assert_eq!(units.len(), 1);
     assert!(units[0].1.iter().all(|s| s.seconds.to_bits() == 0));
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 /// Issue 21: a fresh deploy of every stored design equals its stored summary (every summary
 /// is taken over all accepted states, so the stored frame count does not matter).
 #[test]
 fn a_fresh_deploy_of_every_stored_design_equals_its_row() {
-    let dir = temp("fresh-deploy");
+    let dir_guard = temp("fresh-deploy");
+    let dir = dir_guard.path();
     let db = dir.join("x.db");
     let req = request(2);
     explore_into(&db, &req, &mut |_| {}, &AtomicBool::new(false)).unwrap();

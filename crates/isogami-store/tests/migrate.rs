@@ -49,7 +49,8 @@ fn old_database(path: &Path) {
 
 #[test]
 fn old_files_are_refused_naming_the_migration_and_migrated_into_a_new_file() {
-    let dir = temp("migrate");
+    let dir_guard = temp("migrate");
+    let dir = dir_guard.path();
     let old = dir.join("old.db");
     old_database(&old);
     let before = std::fs::read(&old).unwrap();

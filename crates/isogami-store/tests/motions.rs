@@ -43,7 +43,8 @@ fn classes(db: &Path) -> Vec<MotionClass> {
 
 #[test]
 fn classes_cover_every_topology_and_do_not_depend_on_jobs_or_shards() {
-    let dir = temp("motions-equal");
+    let dir_guard = temp("motions-equal");
+    let dir = dir_guard.path();
     let one = dir.join("one.db");
     explore(&one, &request(1, None));
     let reference = classes(&one);
@@ -108,7 +109,8 @@ fn classes_cover_every_topology_and_do_not_depend_on_jobs_or_shards() {
 
 #[test]
 fn a_changed_class_fails_its_checksum_and_an_old_file_gets_its_classes() {
-    let dir = temp("motions-tamper");
+    let dir_guard = temp("motions-tamper");
+    let dir = dir_guard.path();
     let db = dir.join("t.db");
     explore(&db, &request(2, None));
     let reference = classes(&db);

@@ -24,7 +24,12 @@ const N: usize = 600;
 fn fixture() -> &'static (PathBuf, HashMap<String, usize>) {
     static CELL: OnceLock<(PathBuf, HashMap<String, usize>)> = OnceLock::new();
     CELL.get_or_init(|| {
-        let path = temp("query").join("db");
+        // Kept for the whole process (a static is never dropped): inside cargo's per-target
+        // scratch folder, not the system's temporary directory.
+        let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("store-query-fixture");
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("db");
         let mut w = StoreWriter::open(&path, Some(run()), Check::Quick).unwrap();
         let mut order = HashMap::new();
         for u in synthetic::units(entry(), N, 7) {
@@ -427,7 +432,8 @@ fn names_read_back() {
 #[test]
 fn rows_are_verified_as_they_are_listed() {
     // A page reads through the row checksums: a changed value in a listed row is reported.
-    let dir = temp("listed");
+    let dir_guard = temp("listed");
+    let dir = dir_guard.path();
     let path = dir.join("db");
     std::fs::copy(&fixture().0, &path).unwrap();
     let c = rusqlite::Connection::open(&path).unwrap();

@@ -10,7 +10,8 @@ use isogami_store::{
 
 #[test]
 fn reports_and_linkages_read_back_as_the_library_types() {
-    let path = temp("typed").join("db");
+    let path_guard = temp("typed");
+    let path = path_guard.path().join("db");
     real_db(&path);
     let store = Store::open_read(&path, Check::Full).unwrap();
     let mut n = 0;
@@ -111,7 +112,8 @@ fn records_with_non_finite_numbers_are_refused() {
 
 #[test]
 fn units_round_trip_and_resume_skips_them() {
-    let path = temp("units").join("db");
+    let path_guard = temp("units");
+    let path = path_guard.path().join("db");
     real_db(&path);
     let w = StoreWriter::open(&path, Some(run()), Check::Full).unwrap();
     let done = w.done_units().unwrap();
@@ -137,7 +139,8 @@ fn units_round_trip_and_resume_skips_them() {
 
 #[test]
 fn a_failed_unit_leaves_nothing_behind() {
-    let path = temp("atomic").join("db");
+    let path_guard = temp("atomic");
+    let path = path_guard.path().join("db");
     let mut w = StoreWriter::open(&path, Some(run()), Check::Full).unwrap();
     // The unit repeats a design: the second insert fails and the whole unit rolls back.
     let mut unit = outcomes()[0].clone();
@@ -156,7 +159,8 @@ fn a_failed_unit_leaves_nothing_behind() {
 
 #[test]
 fn user_designs_are_saved_marked_and_unique() {
-    let path = temp("user").join("db");
+    let path_guard = temp("user");
+    let path = path_guard.path().join("db");
     real_db(&path);
     let e = entry();
     let mut params = e.design.params.clone();
@@ -194,7 +198,8 @@ fn user_designs_are_saved_marked_and_unique() {
 
 #[test]
 fn other_settings_are_refused() {
-    let path = temp("settings").join("db");
+    let path_guard = temp("settings");
+    let path = path_guard.path().join("db");
     real_db(&path);
     let other = isogami_store::RunInfo {
         tool_version: "0.1.0",
@@ -208,7 +213,8 @@ fn other_settings_are_refused() {
 
 #[test]
 fn shards_merge_into_the_unsharded_result() {
-    let dir = temp("merge");
+    let dir_guard = temp("merge");
+    let dir = dir_guard.path();
     let whole = dir.join("whole.db");
     real_db(&whole);
     let shards: Vec<_> = (0..2).map(|i| dir.join(format!("shard{i}.db"))).collect();

@@ -33,7 +33,8 @@ fn sqlite_file(path: &Path, sql: &str) {
 
 #[test]
 fn foreign_files_are_refused_and_left_unchanged() {
-    let dir = temp("foreign");
+    let dir_guard = temp("foreign");
+    let dir = dir_guard.path();
     let text = dir.join("notes.txt");
     std::fs::write(&text, "isogami? no: just a text file\n".repeat(20)).unwrap();
     let unrelated = dir.join("unrelated.sqlite");
@@ -74,7 +75,8 @@ fn foreign_files_are_refused_and_left_unchanged() {
 
 #[test]
 fn other_schema_versions_are_refused_and_left_unchanged() {
-    let dir = temp("versions");
+    let dir_guard = temp("versions");
+    let dir = dir_guard.path();
     // Version 1 (issue 2): meta(key, value) and no application id.
     let v1 = dir.join("v1.db");
     sqlite_file(
@@ -112,7 +114,8 @@ fn other_schema_versions_are_refused_and_left_unchanged() {
 
 #[test]
 fn readers_need_an_existing_database_and_create_nothing() {
-    let dir = temp("readers");
+    let dir_guard = temp("readers");
+    let dir = dir_guard.path();
     let missing = dir.join("missing.db");
     assert!(matches!(
         Store::open_read(&missing, Check::Quick),
@@ -125,10 +128,10 @@ fn readers_need_an_existing_database_and_create_nothing() {
         Err(StoreError::EmptyFile)
     ));
     assert!(matches!(
-        Store::open_read(&dir, Check::Quick),
+        Store::open_read(dir, Check::Quick),
         Err(StoreError::NotAFile)
     ));
-    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "only empty.db");
+    assert_eq!(std::fs::read_dir(dir).unwrap().count(), 1, "only empty.db");
     // A real database: every read leaves it as it was, with nothing beside it.
     let db = dir.join("real.db");
     real_db(&db);
@@ -143,7 +146,8 @@ fn readers_need_an_existing_database_and_create_nothing() {
 
 #[test]
 fn writers_create_only_in_new_or_empty_files() {
-    let dir = temp("create");
+    let dir_guard = temp("create");
+    let dir = dir_guard.path();
     let empty = dir.join("empty.db");
     std::fs::write(&empty, b"").unwrap();
     let fresh = dir.join("fresh.db");
@@ -160,7 +164,8 @@ fn writers_create_only_in_new_or_empty_files() {
 
 #[test]
 fn one_writer_at_a_time_while_readers_read() {
-    let dir = temp("lock");
+    let dir_guard = temp("lock");
+    let dir = dir_guard.path();
     let db = dir.join("db");
     real_db(&db);
     let first = StoreWriter::open(&db, Some(run()), Check::Quick).unwrap();
@@ -217,7 +222,8 @@ fn sqlite_view(path: &Path) -> Option<(Vec<String>, bool)> {
 /// rows or its integrity check fails. (Free space inside pages can hold stale copies of old
 /// cells; changing those damages nothing.)
 fn change_live(good: &[u8], needle: &[u8], change: &dyn Fn(&mut [u8], usize)) -> Vec<u8> {
-    let dir = temp("probe");
+    let dir_guard = temp("probe");
+    let dir = dir_guard.path();
     let (probe, original) = (dir.join("probe.db"), dir.join("original.db"));
     std::fs::write(&original, good).unwrap();
     let reference = sqlite_view(&original).unwrap();
@@ -303,10 +309,11 @@ fn damaged_copies(original: &Path, dir: &Path) -> Vec<(String, PathBuf)> {
 
 #[test]
 fn damaged_copies_are_refused_and_left_unchanged() {
-    let dir = temp("damage");
+    let dir_guard = temp("damage");
+    let dir = dir_guard.path();
     let original = dir.join("original.db");
     real_db(&original);
-    let copies = damaged_copies(&original, &dir);
+    let copies = damaged_copies(&original, dir);
     assert!(copies.len() >= 9);
     for (name, path) in &copies {
         let before = snapshot(path);
@@ -330,10 +337,11 @@ fn damaged_copies_are_refused_and_left_unchanged() {
 
 #[test]
 fn quick_check_misses_changed_values_but_reading_them_does_not() {
-    let dir = temp("payload");
+    let dir_guard = temp("payload");
+    let dir = dir_guard.path();
     let original = dir.join("original.db");
     real_db(&original);
-    let copies = damaged_copies(&original, &dir);
+    let copies = damaged_copies(&original, dir);
     let (_, path) = copies
         .iter()
         .find(|(n, _)| n == "flip-in-stored-number")
@@ -359,7 +367,8 @@ fn quick_check_misses_changed_values_but_reading_them_does_not() {
 
 #[test]
 fn an_interrupted_write_is_refused_by_readers_and_rolled_back_by_the_next_writer() {
-    let dir = temp("journal");
+    let dir_guard = temp("journal");
+    let dir = dir_guard.path();
     let db = dir.join("db");
     real_db(&db);
     let committed = snapshot(&db);

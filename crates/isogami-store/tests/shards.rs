@@ -46,7 +46,8 @@ fn check(paths: &[&PathBuf]) -> Result<(), ShardSetError> {
 
 #[test]
 fn a_shard_records_its_plan_and_reruns_add_nothing() {
-    let d = temp("shard-record");
+    let d_guard = temp("shard-record");
+    let d = d_guard.path();
     let db = d.join("s1.db");
     let req = request(&FAMILIES, Some((1, 2)));
     let first = explore(&db, &req, false).unwrap();
@@ -81,12 +82,12 @@ fn a_shard_records_its_plan_and_reruns_add_nothing() {
     explore(&whole, &request(&[83], None), false).unwrap();
     assert_eq!(open(&whole).shard().unwrap(), None);
     assert_eq!(open(&whole).stats().unwrap().shard, None);
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 #[test]
 fn another_plan_into_a_shard_database_is_refused_unchanged() {
-    let d = temp("shard-other");
+    let d_guard = temp("shard-other");
+    let d = d_guard.path();
     let db = d.join("s0.db");
     explore(&db, &request(&FAMILIES, Some((0, 2))), false).unwrap();
     let before = std::fs::read(&db).unwrap();
@@ -113,12 +114,12 @@ fn another_plan_into_a_shard_database_is_refused_unchanged() {
     let resumed = explore(&old, &request(&FAMILIES, Some((0, 2))), false).unwrap();
     assert_eq!((resumed.skipped, resumed.committed), (1, 1));
     assert_eq!(open(&old).shard().unwrap().map(|r| r.index), Some(0));
-    std::fs::remove_dir_all(&d).unwrap();
 }
 
 #[test]
 fn a_set_of_shards_is_proved_complete_or_the_problem_named() {
-    let d = temp("shard-set");
+    let d_guard = temp("shard-set");
+    let d = d_guard.path();
     let n = 3;
     let paths: Vec<PathBuf> = (0..n).map(|i| d.join(format!("s{i}.db"))).collect();
     for (i, p) in paths.iter().enumerate() {
@@ -174,5 +175,4 @@ fn a_set_of_shards_is_proved_complete_or_the_problem_named() {
     ));
     // Databases without records are merged as they are.
     assert_eq!(check(&[&whole]), Ok(()));
-    std::fs::remove_dir_all(&d).unwrap();
 }

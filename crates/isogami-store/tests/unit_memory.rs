@@ -17,7 +17,8 @@ fn explore(db: &std::path::Path) {
 #[cfg(target_os = "linux")]
 #[test]
 fn every_explored_unit_has_a_peak_at_least_the_process_baseline_and_merge_keeps_it() {
-    let dir = temp("unit-memory-measured");
+    let dir_guard = temp("unit-memory-measured");
+    let dir = dir_guard.path();
     let db = dir.join("a.db");
     explore(&db);
     let units = Store::open_read(&db, Check::Full)
@@ -59,7 +60,8 @@ fn every_explored_unit_has_a_peak_at_least_the_process_baseline_and_merge_keeps_
 
 #[test]
 fn a_database_without_the_table_reads_as_unmeasured_and_a_writer_adds_it() {
-    let dir = temp("unit-memory-old");
+    let dir_guard = temp("unit-memory-old");
+    let dir = dir_guard.path();
     let db = dir.join("old.db");
     explore(&db);
     // What a database made before the table existed looks like.
@@ -85,7 +87,8 @@ fn a_database_without_the_table_reads_as_unmeasured_and_a_writer_adds_it() {
 #[cfg(target_os = "linux")]
 #[test]
 fn a_changed_peak_fails_its_checksum() {
-    let dir = temp("unit-memory-tampered");
+    let dir_guard = temp("unit-memory-tampered");
+    let dir = dir_guard.path();
     let db = dir.join("t.db");
     explore(&db);
     let changed = Connection::open(&db)

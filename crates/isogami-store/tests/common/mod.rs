@@ -9,6 +9,7 @@ use isogami::tiling::Family;
 use isogami_store::{sidecar_paths, Check, ExploreRequest, RunInfo, StoreWriter, UnitRecords};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
+use tempfile::TempDir;
 
 /// The quick exploration's settings.
 pub fn quick_settings() -> CatalogSettings {
@@ -67,11 +68,12 @@ pub fn entry() -> &'static CatalogEntry {
 }
 
 /// A fresh directory for one test.
-pub fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("isogami-store-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// Removed with everything in it when the returned guard drops.
+pub fn temp(name: &str) -> TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("isogami-store-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 pub const SETTINGS: &str = "{\"threshold\":0.1}";
