@@ -120,6 +120,13 @@ create_exception!(
     "Shape-aware mobility that cannot be computed: a design without exactly one degree of freedom, a pinned parameter, a path that leaves the well-shaped tiles."
 );
 
+create_exception!(
+    isogami,
+    FiniteError,
+    IsogamiError,
+    "A finite sheet that cannot be made or deployed: an empty or bad region, a request out of range, no one-DOF sheet in the region, or a floppy sheet asked to deploy."
+);
+
 /// The Python exception of a library error.
 pub fn library(e: isogami::Error) -> PyErr {
     use isogami::Error as E;
@@ -138,6 +145,7 @@ pub fn library(e: isogami::Error) -> PyErr {
         E::Settings(_) => SettingsError::new_err(message),
         E::Inverse(_) => InverseError::new_err(message),
         E::Shape(_) => ShapeError::new_err(message),
+        E::Finite(_) => FiniteError::new_err(message),
         _ => IsogamiError::new_err(message),
     }
 }
@@ -193,6 +201,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
         ("ExportError", py.get_type::<ExportError>()),
         ("InverseError", py.get_type::<InverseError>()),
         ("ShapeError", py.get_type::<ShapeError>()),
+        ("FiniteError", py.get_type::<FiniteError>()),
     ] {
         m.add(name, class)?;
     }

@@ -6,7 +6,7 @@
 //!
 //! One module per concern: `design`, `family`, `cell`, `mobility`, `settings`,
 //! `deployment` (with `progress`), `measure`, `linkage`, `compare`, `query` and `database`,
-//! `export`, `inverse`, `shape`, `errors`, and `convert` for the boundary's conversions.
+//! `export`, `inverse`, `shape`, `finite` (finite sheets), `errors`, and `convert` for the boundary's conversions.
 
 mod cell;
 mod compare;
@@ -17,6 +17,7 @@ mod design;
 mod errors;
 mod export;
 mod family;
+mod finite;
 mod inverse;
 mod linkage;
 mod measure;
@@ -47,6 +48,8 @@ fn _isogami(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<database::PyRecord>()?;
     m.add_class::<database::PyStoredDesign>()?;
     m.add_class::<inverse::PyInverseResult>()?;
+    m.add_class::<finite::PyFiniteSheet>()?;
+    m.add_class::<finite::PySheetDeployment>()?;
     m.add_function(wrap_pyfunction!(design::design, m)?)?;
     m.add_function(wrap_pyfunction!(family::families, m)?)?;
     m.add_function(wrap_pyfunction!(family::family, m)?)?;
@@ -62,6 +65,8 @@ fn _isogami(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(shape::shape_mobility, m)?)?;
     m.add_function(wrap_pyfunction!(shape::follow_shape, m)?)?;
     m.add_function(wrap_pyfunction!(shape::rank_drop_shape, m)?)?;
+    m.add_function(wrap_pyfunction!(finite::finite_sheet, m)?)?;
+    m.add_function(wrap_pyfunction!(finite::deploy_sheet, m)?)?;
     for f in [
         wrap_pyfunction!(measure::deformation_gradient, m)?,
         wrap_pyfunction!(measure::polar, m)?,

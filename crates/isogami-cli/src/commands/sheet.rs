@@ -2,7 +2,9 @@
 //! and its completion to a sheet that opens with the design's one motion.
 
 use crate::output::{emit, print_json, CliResult};
-use isogami::api::{finite_sheet, resolve_design, SheetRequest};
+use isogami::api::{
+    deploy_sheet, finite_sheet, resolve_design, SheetDeployRequest, SheetDeployment, SheetRequest,
+};
 use isogami::finite::{FiniteSheet, Region, SheetMobility};
 
 /// Arguments of `sheet`.
@@ -29,6 +31,13 @@ pub struct Args {
     /// Only the raw region: no completion.
     #[arg(long)]
     raw: bool,
+    /// Deploy the (completed) sheet with contact among its own tiles to its contact limit,
+    /// and compare it with the periodic sheet. A raw region deploys only when it is one-DOF.
+    #[arg(long)]
+    deploy: bool,
+    /// Frames of tile poses in the JSON of --deploy (at least 2).
+    #[arg(long, default_value_t = 24, requires = "deploy")]
+    frames: usize,
     /// Print JSON (the sheets' tiles as cell and tile index, the mobility, the completion).
     #[arg(long)]
     json: bool,
@@ -45,7 +54,21 @@ pub fn run(args: Args) -> CliResult {
         min_covered: args.min_cover / 100.0,
         ..SheetRequest::default()
     };
-    let out = finite_sheet(&design, &request, &mut |_| true).map_err(|e| e.to_string())?;
+    let deployment = if args.deploy {
+        let request = SheetDeployRequest {
+            sheet: request.clone(),
+            frames: args.frames,
+            ..SheetDeployRequest::default()
+        };
+        Some(deploy_sheet(&design, &request, &mut |_| true).map_err(|e| e.to_string())?)
+    } else {
+        None
+    };
+    let out = match &deployment {
+        Some(d) if args.json => return print_json(d),
+        Some(d) => d.analysis.clone(),
+        None => finite_sheet(&design, &request, &mut |_| true).map_err(|e| e.to_string())?,
+    };
     if args.json {
         return print_json(&out);
     }
@@ -89,7 +112,60 @@ pub fn run(args: Args) -> CliResult {
             }
         );
     }
+    if let Some(d) = &deployment {
+        describe_deployment(&mut o, d);
+    }
     emit(&o)
+}
+
+/// What the finite deployment did, against the periodic sheet.
+fn describe_deployment(o: &mut String, d: &SheetDeployment) {
+    let p = &d.periodic;
+    outln!(
+        o,
+        "deployed    {} after {} states: hull area ×{:.4} (largest ×{:.4}), stretches {:.4} × {:.4}",
+        d.end_reason,
+        d.steps,
+        d.end.hull_area_ratio,
+        d.max_hull_area_ratio,
+        d.end.stretches[0],
+        d.end.stretches[1]
+    );
+    outln!(
+        o,
+        "periodic    {} after {} states: these tiles at hull area ×{:.4}",
+        p.end_reason,
+        p.steps,
+        p.measures.hull_area_ratio
+    );
+    let a = &d.agreement;
+    outln!(
+        o,
+        "            same poses as the periodic sheet to {:.1e} L, {:.1e} rad over {} states (to t = {:.3} of the periodic motion)",
+        a.max_position_deviation,
+        a.max_angle_deviation,
+        a.compared_steps,
+        a.until_periodic_t
+    );
+    if d.one_dof_throughout {
+        outln!(
+            o,
+            "            one DOF at each of {} states checked",
+            d.checks.len()
+        );
+    } else {
+        let bad: Vec<String> = d
+            .checks
+            .iter()
+            .filter(|c| c.dof != 1 || !c.follows_periodic)
+            .map(|c| format!("t = {:.3}: {} DOF", c.t, c.dof))
+            .collect();
+        outln!(
+            o,
+            "warning: the sheet is not one-DOF everywhere along the way ({}); it may leave this path",
+            bad.join(", ")
+        );
+    }
 }
 
 /// "1 DOF ✓" or "N DOF: M extra modes, K loose tiles".

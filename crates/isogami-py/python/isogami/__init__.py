@@ -16,7 +16,8 @@ the browser's filters. Long calls release the GIL and can be interrupted with Ct
 Main entry points: ``design``, ``families``/``family``, ``cell``, ``analyze``, ``deploy``
 (with ``DeploySettings``), ``linkages``, ``compare``, ``open_database`` (with ``Query``),
 ``export`` (``export_formats``), ``inverse`` (inverse design on a database), ``shape_mobility`` / ``follow_shape`` /
-``rank_drop_shape`` (shape-aware mobility) and the measure functions (``polar``, ``principal_expansions``, ``expansion_profile``, ...).
+``rank_drop_shape`` (shape-aware mobility), ``finite_sheet`` / ``deploy_sheet`` (finite sheets: a region's
+degrees of freedom, its completion to one DOF and its deployment) and the measure functions (``polar``, ``principal_expansions``, ``expansion_profile``, ...).
 Every library error is an ``IsogamiError`` subclass carrying the library's message.
 """
 
@@ -39,6 +40,8 @@ from ._isogami import (
     DesignError,
     ExploreError,
     ExportError,
+    FiniteError,
+    FiniteSheet,
     InverseError,
     InverseResult,
     ShapeError,
@@ -55,6 +58,7 @@ from ._isogami import (
     QueryError,
     Record,
     SettingsError,
+    SheetDeployment,
     StoredDesign,
     StoreError,
     TilingError,
@@ -65,11 +69,13 @@ from ._isogami import (
     compare,
     deformation_gradient,
     deploy,
+    deploy_sheet,
     design,
     directional_expansion,
     expansion_profile,
     export,
     export_formats,
+    finite_sheet,
     inverse,
     follow_shape,
     rank_drop_shape,
@@ -103,6 +109,8 @@ __all__ = [
     "DesignError",
     "ExploreError",
     "ExportError",
+    "FiniteError",
+    "FiniteSheet",
     "InverseError",
     "InverseResult",
     "ShapeError",
@@ -119,6 +127,7 @@ __all__ = [
     "QueryError",
     "Record",
     "SettingsError",
+    "SheetDeployment",
     "StoredDesign",
     "StoreError",
     "TilingError",
@@ -129,11 +138,13 @@ __all__ = [
     "compare",
     "deformation_gradient",
     "deploy",
+    "deploy_sheet",
     "design",
     "directional_expansion",
     "expansion_profile",
     "export",
     "export_formats",
+    "finite_sheet",
     "inverse",
     "follow_shape",
     "rank_drop_shape",

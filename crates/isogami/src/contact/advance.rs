@@ -3,7 +3,7 @@
 
 use super::clearance::pair_clearance;
 use super::model::ContactModel;
-use super::pairs::{for_each_near_pair_in, CandidatePair};
+use super::pairs::CandidatePair;
 use super::placement::Placement;
 use super::reach::{far_limit, skin_for, Rates, Spread};
 use super::verlet::PairCache;
@@ -87,7 +87,10 @@ impl ContactModel {
         let skin = skin_for(&spread, &step_rates);
         let limit = far_limit(&spread, &step_rates, skin).min(1.0);
         let mut pairs = Vec::with_capacity(64);
-        if for_each_near_pair_in(cache, &placed, &self.extents, skin, |p| pairs.push(p)).is_err() {
+        if self
+            .for_each_pair(cache, &placed, skin, |p| pairs.push(p))
+            .is_err()
+        {
             return 0.0;
         }
         let rates = self.approach_rates(&pairs, dq);

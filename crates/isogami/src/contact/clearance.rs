@@ -3,7 +3,7 @@
 
 use super::model::ContactModel;
 use super::narrow::{min_vertex_edge_distance, polygon_distance, shifted_into, OVERLAP_TOL};
-use super::pairs::{for_each_near_pair_in, CandidatePair};
+use super::pairs::CandidatePair;
 use super::placement::Placement;
 use super::verlet::PairCache;
 use crate::geometry::interiors_overlap;
@@ -83,21 +83,20 @@ impl ContactModel {
         };
         let mut best = CLEARANCE_REACH;
         let mut other = Vec::new();
-        let listed =
-            for_each_near_pair_in(cache, &placed, &self.extents, CLEARANCE_REACH, |pair| {
-                let shift = placed.shift(pair.offset);
-                let (ta, tb) = (&placed.tiles[pair.a], &placed.tiles[pair.b]);
-                if ta.aabb.gap(&tb.aabb.shifted(shift)) >= best {
-                    return;
-                }
-                shifted_into(&tb.world, shift, &mut other);
-                let d = if check_overlap {
-                    polygon_distance(&ta.world, &other)
-                } else {
-                    min_vertex_edge_distance(&ta.world, &other)
-                };
-                best = best.min(d);
-            });
+        let listed = self.for_each_pair(cache, &placed, CLEARANCE_REACH, |pair| {
+            let shift = placed.shift(pair.offset);
+            let (ta, tb) = (&placed.tiles[pair.a], &placed.tiles[pair.b]);
+            if ta.aabb.gap(&tb.aabb.shifted(shift)) >= best {
+                return;
+            }
+            shifted_into(&tb.world, shift, &mut other);
+            let d = if check_overlap {
+                polygon_distance(&ta.world, &other)
+            } else {
+                min_vertex_edge_distance(&ta.world, &other)
+            };
+            best = best.min(d);
+        });
         if listed.is_err() {
             return 0.0;
         }

@@ -6,7 +6,6 @@ use super::distance::{point_edge_derivatives, Mat6, Vec6};
 use super::local::{PairVars, TermJacobian, MAX_LOCAL};
 use super::model::ContactModel;
 use super::narrow::{for_each_close, shifted_into, VertexEdge};
-use super::pairs::for_each_near_pair_in;
 use super::psd::project_psd;
 use super::verlet::PairCache;
 use crate::kinematics::Mechanism;
@@ -90,7 +89,10 @@ impl ContactModel {
         }
         let dhat = self.settings.dhat;
         let mut pairs = Vec::with_capacity(64);
-        if for_each_near_pair_in(cache, &placed, &self.extents, dhat, |p| pairs.push(p)).is_err() {
+        if self
+            .for_each_pair(cache, &placed, dhat, |p| pairs.push(p))
+            .is_err()
+        {
             return;
         }
         let mut other = Vec::new();

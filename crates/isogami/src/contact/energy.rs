@@ -3,7 +3,6 @@
 use super::barrier::barrier_energy;
 use super::model::ContactModel;
 use super::narrow::{for_each_close, shifted_into, OVERLAP_TOL};
-use super::pairs::for_each_near_pair_in;
 use super::verlet::PairCache;
 use crate::geometry::interiors_overlap;
 use crate::kinematics::Mechanism;
@@ -52,7 +51,7 @@ impl ContactModel {
         let mut total = 0.0;
         let mut other = Vec::new();
         let mut blocked = false;
-        let listed = for_each_near_pair_in(cache, &placed, &self.extents, dhat, |pair| {
+        let listed = self.for_each_pair(cache, &placed, dhat, |pair| {
             if blocked {
                 return;
             }

@@ -2,11 +2,15 @@
 
 use super::error::ContactError;
 use super::inset::inset_polygon;
-use super::pairs::{near_pairs, CandidatePair};
+use super::lattice::LatticeProblem;
+use super::pairs::{for_each_near_pair_in, CandidatePair};
 use super::placement::Placement;
 use super::settings::ContactSettings;
+use super::verlet::PairCache;
 use crate::kinematics::{Mechanism, StateLayout};
 use crate::math::{DVec, Real, Vec2};
+use std::collections::HashSet;
+use std::sync::Arc;
 
 /// Collision geometry and barrier of one mechanism, precomputed once.
 ///
@@ -23,6 +27,9 @@ pub struct ContactModel {
     /// Largest |s| over each inset polygon's vertices: the lever arm of a rotation and the
     /// radius of the polygon's bounding circle about its reference point.
     pub(crate) extents: Vec<Real>,
+    /// When set, the only pairs that can touch (canonical, see [`CandidatePair::canonical`]):
+    /// the pairs of tiles a finite sheet holds ([`ContactModel::restricted_to`]).
+    pub(crate) only: Option<Arc<HashSet<CandidatePair>>>,
 }
 
 impl ContactModel {
@@ -54,7 +61,46 @@ impl ContactModel {
             layout,
             shapes,
             extents,
+            only: None,
         })
+    }
+
+    /// This model with contact only between `pairs` (in either orientation): a finite sheet
+    /// that moves with the periodic motion touches only where two of its own tiles meet, so
+    /// its contact is the periodic model's restricted to the pairs of tiles it holds. Every
+    /// query (energy, derivatives, clearance, overlap, safe step) sees only those pairs.
+    pub fn restricted_to(mut self, pairs: impl IntoIterator<Item = CandidatePair>) -> ContactModel {
+        let set = pairs
+            .into_iter()
+            .filter_map(|p| CandidatePair::canonical(p.a, p.b, p.offset))
+            .collect();
+        self.only = Some(Arc::new(set));
+        self
+    }
+
+    /// Whether the model sees only some pairs ([`ContactModel::restricted_to`]).
+    pub fn is_restricted(&self) -> bool {
+        self.only.is_some()
+    }
+
+    /// Calls `f` with every pair the model sees whose bounding circles come within `margin`
+    /// at `placed` (from the Verlet lists of `cache` when given): the one place every
+    /// contact query takes its pairs from.
+    pub(crate) fn for_each_pair(
+        &self,
+        cache: Option<&mut PairCache>,
+        placed: &Placement,
+        margin: Real,
+        mut f: impl FnMut(CandidatePair),
+    ) -> Result<(), LatticeProblem> {
+        match &self.only {
+            None => for_each_near_pair_in(cache, placed, &self.extents, margin, f),
+            Some(only) => for_each_near_pair_in(cache, placed, &self.extents, margin, |p| {
+                if only.contains(&p) {
+                    f(p)
+                }
+            }),
+        }
     }
 
     /// The settings the model was built with.
@@ -81,7 +127,8 @@ impl ContactModel {
     /// [`ContactModel::pairs_at`] on a placement.
     pub(crate) fn near(&self, placed: &Placement, margin: Real) -> Option<Vec<CandidatePair>> {
         let mut out = Vec::new();
-        near_pairs(placed, &self.extents, margin, &mut out).ok()?;
+        self.for_each_pair(None, placed, margin, |p| out.push(p))
+            .ok()?;
         Some(out)
     }
 
@@ -147,4 +194,56 @@ fn inset_all(tiles: &[Vec<Vec2>], h: Real) -> Result<Vec<Vec<Vec2>>, ContactErro
             })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::topology::Design;
+
+    /// Rotating squares turned into overlap: tile 1 by a tenth of a radian.
+    fn squares() -> (Mechanism, ContactModel, DVec) {
+        let design = Design::resolve("rotating-squares").unwrap();
+        let mech = Mechanism::new(&design.cell().unwrap(), &design.joints).unwrap();
+        let model = ContactModel::new(&mech, ContactSettings::default()).unwrap();
+        let mut q = mech.rest.clone();
+        q[mech.layout.tile(1) + 2] += 0.1;
+        (mech, model, q)
+    }
+
+    #[test]
+    fn a_model_restricted_to_every_near_pair_is_the_whole_model() {
+        let (mech, full, q) = squares();
+        let pairs = full.pairs_at(&mech, &q, 1.0).unwrap();
+        assert!(!pairs.is_empty());
+        // Listed in the other orientation: the restriction canonicalises.
+        let flipped = pairs.iter().map(|p| CandidatePair {
+            a: p.b,
+            b: p.a,
+            offset: [-p.offset[0], -p.offset[1]],
+        });
+        let restricted = full.clone().restricted_to(flipped);
+        assert!(restricted.is_restricted());
+        assert_eq!(restricted.pairs_at(&mech, &q, 1.0).unwrap(), pairs);
+        assert!(full.overlapping_pair(&mech, &q).is_some());
+        assert_eq!(
+            restricted.overlapping_pair(&mech, &q),
+            full.overlapping_pair(&mech, &q)
+        );
+        let rest = &mech.rest;
+        assert_eq!(
+            restricted.min_clearance(&mech, rest),
+            full.min_clearance(&mech, rest)
+        );
+    }
+
+    #[test]
+    fn a_model_restricted_to_no_pair_sees_no_contact() {
+        let (mech, full, q) = squares();
+        let none = full.restricted_to(std::iter::empty());
+        assert_eq!(none.pairs_at(&mech, &q, 1.0).unwrap(), Vec::new());
+        assert!(none.overlapping_pair(&mech, &q).is_none());
+        assert_eq!(none.energy(&mech, &q), 0.0);
+        assert_eq!(none.min_clearance(&mech, &q), super::super::CLEARANCE_REACH);
+    }
 }

@@ -24,10 +24,31 @@ pub struct CandidatePair {
     pub offset: [i32; 2],
 }
 
+impl CandidatePair {
+    /// The listed orientation of the pair tile `a` (centre cell) – tile `b` (cell at
+    /// `offset`), as [`near_pairs`] lists it: a < b, or a == b with the offset
+    /// lexicographically positive. `None` for a tile against itself.
+    pub fn canonical(a: usize, b: usize, offset: [i32; 2]) -> Option<CandidatePair> {
+        let flipped = [-offset[0], -offset[1]];
+        if a < b || (a == b && (offset[0], offset[1]) > (0, 0)) {
+            Some(CandidatePair { a, b, offset })
+        } else if a > b || (offset[0], offset[1]) < (0, 0) {
+            Some(CandidatePair {
+                a: b,
+                b: a,
+                offset: flipped,
+            })
+        } else {
+            None
+        }
+    }
+}
+
 /// Fills `out` with every physical pair whose bounding circles (radii `extents` about the
 /// tiles' reference points) are at most `margin` apart at `placed`. (a, 0)–(b, o) is the
 /// translate of (b, 0)–(a, −o), so only a < b, or a == b with o lexicographically positive,
 /// is listed; a tile is never paired with itself.
+#[cfg(test)]
 pub(crate) fn near_pairs(
     placed: &Placement,
     extents: &[Real],

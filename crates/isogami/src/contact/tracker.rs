@@ -4,7 +4,6 @@
 
 use super::clearance::CLEARANCE_REACH;
 use super::model::ContactModel;
-use super::pairs::for_each_near_pair_in;
 use super::placement::Placement;
 use super::reach::{clearance_drop_rate, Rates, Spread};
 use super::verlet::PairCache;
@@ -83,13 +82,9 @@ impl ClearanceTracker {
         }
         let rate = contact.approach_rate(d);
         let mut near: Real = 0.0;
-        let listed = for_each_near_pair_in(
-            cache.as_deref_mut(),
-            &placed,
-            &contact.extents,
-            CLEARANCE_REACH,
-            |p| near = near.max(rate(&p)),
-        );
+        let listed = contact.for_each_pair(cache.as_deref_mut(), &placed, CLEARANCE_REACH, |p| {
+            near = near.max(rate(&p))
+        });
         if listed.is_err() {
             return 0.0;
         }

@@ -28,6 +28,15 @@ pub enum FiniteError {
     /// The dense eigen-solver did not converge.
     #[error("the eigen-solver did not converge on the sheet's constraints")]
     Eigen,
+    /// A frame of a finite deployment failed its check (two of the sheet's collision
+    /// polygons overlap).
+    #[error("frame at step {step} of the finite deployment fails its check: {problem}")]
+    FrameCheck {
+        /// Step index.
+        step: usize,
+        /// What is wrong.
+        problem: String,
+    },
     /// No sheet with one degree of freedom moving like the periodic sheet exists in the
     /// region.
     #[error("no one-DOF sheet in this region: {reason}")]

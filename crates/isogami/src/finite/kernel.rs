@@ -21,7 +21,7 @@ use crate::mobility::MobilitySettings;
 use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, Side};
-use std::collections::HashMap;
+use std::collections::BTreeMap;
 
 /// Sheets with at most this many unknowns use the dense eigen-solver.
 const DENSE_MAX: usize = 90;
@@ -106,7 +106,7 @@ pub fn sheet_kernel(
     };
     let size = 3 * (n - 1);
     // H = JᵀJ accumulated pin by pin (lower triangle and diagonal).
-    let mut entries: HashMap<(usize, usize), Real> = HashMap::new();
+    let mut entries: BTreeMap<(usize, usize), Real> = BTreeMap::new();
     for j in &sheet.joints {
         let joint = &mech.joints[j.joint];
         let rows = pin_rows(joint.s_a, poses[j.a].1, joint.s_b, poses[j.b].1);
@@ -172,7 +172,7 @@ pub fn sheet_kernel(
 
 /// Ascending eigenvalues and their vectors of the whole reduced H (dense).
 fn dense_spectrum(
-    entries: &HashMap<(usize, usize), Real>,
+    entries: &BTreeMap<(usize, usize), Real>,
     size: usize,
 ) -> Result<(Vec<Real>, DMat), FiniteError> {
     let mut h = DMat::zeros(size, size);
@@ -187,7 +187,7 @@ fn dense_spectrum(
 /// The smallest eigenvalues (every one below `threshold` and at least two above it, or all)
 /// and their vectors, by shift-inverted subspace iteration on a sparse Cholesky factor.
 fn sparse_spectrum(
-    entries: &HashMap<(usize, usize), Real>,
+    entries: &BTreeMap<(usize, usize), Real>,
     size: usize,
     threshold: Real,
 ) -> Result<(Vec<Real>, DMat), FiniteError> {

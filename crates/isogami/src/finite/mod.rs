@@ -10,13 +10,16 @@
 //!   boundary (sparse Cholesky and subspace iteration);
 //! - [`mobility`]: degrees of freedom and the floppy parts — every motion but the periodic
 //!   one, in a local basis, with the tiles that move in each;
-//! - [`complete`]: boundary completion to a sheet whose one motion is the periodic one.
+//! - [`complete`]: boundary completion to a sheet whose one motion is the periodic one;
+//! - [`deploy`]: a one-DOF sheet opening with contact among its own tiles (the periodic
+//!   deployment with the sheet's contact pairs), its measures and checks.
 //!
 //! Counts are made at a generic opened state of the periodic motion: the closed state is a
 //! singular configuration (a closed rotating-squares patch has many first-order modes that
 //! no finite motion follows), so front ends report it separately.
 
 pub mod complete;
+pub mod deploy;
 mod error;
 pub mod kernel;
 pub mod mobility;
@@ -24,6 +27,10 @@ pub mod region;
 pub mod sheet;
 
 pub use complete::{complete, Completion, CompletionReport, Context};
+pub use deploy::{
+    check_states, periodic_agreement, sheet_measures, sheet_pairs, sheet_polygons,
+    PeriodicAgreement, SheetMeasures, StateCheck,
+};
 pub use error::FiniteError;
 pub use kernel::{sheet_kernel, SheetKernel};
 pub use mobility::{periodic_velocity, sheet_mobility, FloppyMode, SheetMobility, MOVER_FRACTION};

@@ -7,7 +7,7 @@ mod polygon;
 mod segment;
 
 pub use polygon::{
-    centroid, interiors_overlap, is_simple_problem, point_in_polygon_strict, signed_area,
-    SimplicityProblem,
+    centroid, convex_hull, interiors_overlap, is_simple_problem, point_in_polygon_strict,
+    signed_area, SimplicityProblem,
 };
 pub use segment::{point_segment_distance, segment_distance, segments_properly_cross};

@@ -12,6 +12,32 @@ pub fn signed_area(poly: &[Vec2]) -> Real {
         * 0.5
 }
 
+/// Convex hull of `points`, counter-clockwise, without collinear points (Andrew's monotone
+/// chain). Fewer than three distinct points come back as they are, sorted.
+pub fn convex_hull(points: &[Vec2]) -> Vec<Vec2> {
+    let mut p: Vec<Vec2> = points.to_vec();
+    p.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    p.dedup();
+    if p.len() < 3 {
+        return p;
+    }
+    let turn = |o: &Vec2, a: &Vec2, b: &Vec2| cross(&(a - o), &(b - o));
+    let mut hull: Vec<Vec2> = Vec::with_capacity(2 * p.len());
+    for pass in [p.clone(), p.iter().rev().copied().collect()] {
+        let start = hull.len();
+        for v in pass {
+            while hull.len() >= start + 2
+                && turn(&hull[hull.len() - 2], &hull[hull.len() - 1], &v) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(v);
+        }
+        hull.pop();
+    }
+    hull
+}
+
 /// Area centroid of a polygon with non-zero area.
 pub fn centroid(poly: &[Vec2]) -> Vec2 {
     let n = poly.len();
@@ -184,6 +210,24 @@ pub fn interiors_overlap(p: &[Vec2], q: &[Vec2], tol: Real) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn hull_of_a_square_and_its_inner_points() {
+        let pts: Vec<Vec2> = [
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (0.5, 0.5),
+            (1.0, 1.0),
+            (0.0, 1.0),
+            (0.5, 0.0),
+        ]
+        .iter()
+        .map(|&(x, y)| Vec2::new(x, y))
+        .collect();
+        let h = convex_hull(&pts);
+        assert_eq!(h.len(), 4, "{h:?}");
+        assert!((signed_area(&h) - 1.0).abs() < 1e-15);
+    }
     use crate::math::vec2;
 
     fn square(x: Real, y: Real, s: Real) -> Vec<Vec2> {

@@ -1,0 +1,160 @@
+//! Finite deployment (issue 22): a completed sheet opens with the periodic motion until
+//! contact, its end state is checked here with other code than the solver's (joints closed
+//! from the tiles' attachment points, kerf-inset tiles disjoint by `geo`), and a floppy raw
+//! region is refused with its count.
+
+use geo::{Coord, Intersects, LineString, Polygon};
+use isogami::api::{deploy_path, deploy_sheet, resolve_design, SheetDeployRequest, SheetRequest};
+use isogami::contact::inset_polygon;
+use isogami::deploy::DeploySettings;
+use isogami::finite::Region;
+use isogami::kinematics::Mechanism;
+use isogami::math::{rotation, Real, Vec2};
+use isogami::Error;
+
+const DESIGNS: [&str; 3] = [
+    "rotating-squares",
+    "IH44:0.5,0.027564102564:1x2:-aaabbaa",
+    "IH9:0.04739750492,0.35,0.225335752741:1x2:--aaabb--aa-",
+];
+
+fn request(rows: usize) -> SheetDeployRequest {
+    SheetDeployRequest {
+        sheet: SheetRequest {
+            region: Region::Cells { rows, cols: rows },
+            ..SheetRequest::default()
+        },
+        ..SheetDeployRequest::default()
+    }
+}
+
+#[test]
+fn a_completed_sheet_moves_with_the_periodic_sheet_until_contact() {
+    let settings = DeploySettings::default();
+    for spec in DESIGNS {
+        let design = resolve_design(spec).unwrap();
+        let out = deploy_sheet(&design, &request(4), &mut |_| true).unwrap();
+        assert!(out.one_dof_throughout, "{spec}: {:?}", out.checks);
+        assert!(!out.checks.is_empty());
+        // Every state before the periodic sheet's first contact is compared.
+        let periodic = deploy_path(&design, &settings, &mut |_| true).unwrap();
+        let before_contact = periodic
+            .trajectory
+            .steps
+            .iter()
+            .take_while(|s| s.min_clearance >= settings.contact.dhat)
+            .count();
+        let a = out.agreement;
+        assert!(
+            a.compared_steps >= before_contact.min(out.steps) && a.compared_steps >= 2,
+            "{spec}: compared {} of {before_contact} contact-free periodic states",
+            a.compared_steps
+        );
+        assert!(
+            a.max_position_deviation <= 1e-6 && a.max_angle_deviation <= 1e-6,
+            "{spec}: {a:?}"
+        );
+        // The sheet opens: as far as the periodic sheet, or further where it lacks the pair
+        // that stops the periodic sheet (the finite deployment's contact is a subset).
+        assert!(out.max_hull_area_ratio > 1.05, "{spec}");
+        assert!(
+            out.max_hull_area_ratio >= out.periodic.measures.hull_area_ratio * (1.0 - 1e-3),
+            "{spec}: finite {} < periodic {}",
+            out.max_hull_area_ratio,
+            out.periodic.measures.hull_area_ratio
+        );
+        let frames = &out.frames;
+        assert_eq!(frames.first().unwrap().step, 0);
+        assert_eq!(frames.last().unwrap().step, out.steps - 1);
+        assert!(frames
+            .iter()
+            .all(|f| f.poses.len() == out.analysis.sheet().len()));
+    }
+}
+
+/// The last frame rebuilt from its poses with the design's tile shapes: every pin of the
+/// sheet closed to 1e-9 L, and no two kerf-inset tiles touching (`geo`'s intersection test).
+#[test]
+fn the_end_state_has_closed_joints_and_no_overlap() {
+    for spec in DESIGNS {
+        let design = resolve_design(spec).unwrap();
+        let cell = design.cell().unwrap();
+        let mech = Mechanism::new(&cell, &design.joints).unwrap();
+        let out = deploy_sheet(&design, &request(4), &mut |_| true).unwrap();
+        let sheet = out.analysis.sheet();
+        let last = out.frames.last().unwrap();
+        let scale = mech.length_scale;
+        let pose = |k: usize| {
+            let p = &last.poses[k];
+            (Vec2::new(p.x / scale, p.y / scale), p.theta)
+        };
+        let mut worst: Real = 0.0;
+        for pin in &sheet.joints {
+            let j = &mech.joints[pin.joint];
+            let (pa, ta) = pose(pin.a);
+            let (pb, tb) = pose(pin.b);
+            worst = worst.max((pa + rotation(ta) * j.s_a - pb - rotation(tb) * j.s_b).norm());
+        }
+        assert!(worst <= 1e-9, "{spec}: a pin opens by {worst:e} L");
+        let kerf = DeploySettings::default().contact.kerf;
+        let polygons: Vec<Polygon> = sheet
+            .tiles
+            .iter()
+            .enumerate()
+            .map(|(k, t)| {
+                let inset = inset_polygon(&mech.tile_shapes[t.tile], 0.5 * kerf).unwrap();
+                let (p, th) = pose(k);
+                let ring: Vec<Coord> = inset
+                    .iter()
+                    .map(|v| {
+                        let w = p + rotation(th) * v;
+                        Coord { x: w.x, y: w.y }
+                    })
+                    .collect();
+                Polygon::new(LineString::from(ring), Vec::new())
+            })
+            .collect();
+        for a in 0..polygons.len() {
+            for b in a + 1..polygons.len() {
+                assert!(
+                    !polygons[a].intersects(&polygons[b]),
+                    "{spec}: tiles {a} and {b} touch at the end state"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn a_floppy_raw_region_is_refused_with_its_count() {
+    let design = resolve_design(DESIGNS[1]).unwrap();
+    let mut req = request(6);
+    req.sheet.complete = false;
+    match deploy_sheet(&design, &req, &mut |_| true) {
+        Err(Error::Finite(e)) => {
+            let msg = e.to_string();
+            assert!(
+                msg.contains("degrees of freedom") && msg.contains("complete it"),
+                "{msg}"
+            );
+        }
+        other => panic!("expected a refusal, got {:?}", other.map(|d| d.steps)),
+    }
+    // Rotating squares' raw region is one-DOF already and deploys as it is.
+    let squares = resolve_design("rotating-squares").unwrap();
+    let mut req = request(3);
+    req.sheet.complete = false;
+    let out = deploy_sheet(&squares, &req, &mut |_| true).unwrap();
+    assert!(out.analysis.completion.is_none() && out.one_dof_throughout);
+}
+
+#[test]
+fn too_few_frames_is_a_bad_request() {
+    let design = resolve_design("rotating-squares").unwrap();
+    let mut req = request(2);
+    req.frames = 1;
+    assert!(matches!(
+        deploy_sheet(&design, &req, &mut |_| true),
+        Err(Error::Finite(_))
+    ));
+}
