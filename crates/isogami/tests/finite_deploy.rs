@@ -158,3 +158,24 @@ fn too_few_frames_is_a_bad_request() {
         Err(Error::Finite(_))
     ));
 }
+
+#[test]
+fn a_sheet_without_the_blocking_pair_moves_past_the_periodic_limit() {
+    // One loop of IH27's four tiles: the pair of tiles that stops the periodic sheet is not
+    // in it, so it keeps moving (with the full contact model it would stop with the periodic
+    // sheet); a 2×2 sheet holds that pair and stops where the periodic sheet stops.
+    let design = resolve_design("IH27:0.066304,0.465108,0.534891:1x1:-aaaaaaaa-").unwrap();
+    let one = deploy_sheet(&design, &request(1), &mut |_| true).unwrap();
+    assert!(
+        one.steps > one.periodic.steps + 10,
+        "{} states, periodic {}",
+        one.steps,
+        one.periodic.steps
+    );
+    assert!(one.one_dof_throughout);
+    let a = one.agreement;
+    assert!(a.compared_steps >= 2 && a.max_position_deviation <= 1e-6, "{a:?}");
+    let two = deploy_sheet(&design, &request(2), &mut |_| true).unwrap();
+    assert_eq!(two.steps, two.periodic.steps);
+    assert_eq!(two.end, two.periodic.measures);
+}
