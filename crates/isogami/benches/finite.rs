@@ -55,7 +55,8 @@ fn bench(c: &mut Criterion) {
             q: &q,
             motion: &motion,
             settings: settings.mobility,
-            min_covered: 0.5,
+            // IH9 keeps 47.5 % of a 10×10 region: below the default 50 %, still a completion.
+            min_covered: 0.0,
         };
         group.bench_with_input(BenchmarkId::new("mobility", name), &raw, |b, raw| {
             b.iter(|| {

@@ -174,7 +174,10 @@ fn a_sheet_without_the_blocking_pair_moves_past_the_periodic_limit() {
     );
     assert!(one.one_dof_throughout);
     let a = one.agreement;
-    assert!(a.compared_steps >= 2 && a.max_position_deviation <= 1e-6, "{a:?}");
+    assert!(
+        a.compared_steps >= 2 && a.max_position_deviation <= 1e-6,
+        "{a:?}"
+    );
     let two = deploy_sheet(&design, &request(2), &mut |_| true).unwrap();
     assert_eq!(two.steps, two.periodic.steps);
     assert_eq!(two.end, two.periodic.measures);
