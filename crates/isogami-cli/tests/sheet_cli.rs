@@ -63,6 +63,11 @@ fn bad_requests_are_one_line_and_exit_2() {
     for (args, needle) in [
         (vec!["--region", "0x3"], "region"),
         (vec!["--region", "4x4", "--t", "0"], "t = 0"),
+        (vec!["--region", "4x4", "--deploy", "--t", "NaN"], "t = NaN"),
+        (
+            vec!["--region", "4x4", "--deploy", "--min-cover", "200"],
+            "covered",
+        ),
         (
             vec!["--region", "4x4", "--raw", "--deploy"],
             "degrees of freedom",

@@ -72,6 +72,7 @@ def test_the_finite_deployment_follows_the_periodic_sheet(cli):
         (lambda: isogami.finite_sheet(IH44, "6x6", min_cover=2.0), "covered"),
         (lambda: isogami.deploy_sheet(IH44, "4x4", complete=False), "degrees of freedom"),
         (lambda: isogami.deploy_sheet(IH44, "4x4", frames=1), "frames"),
+        (lambda: isogami.deploy_sheet(IH44, "4x4", t=1.5), "t = 1.5"),
     ],
 )
 def test_bad_requests_raise_finite_error(call, message):

@@ -33,6 +33,29 @@ pub struct SheetRequest {
     pub settings: DeploySettings,
 }
 
+impl SheetRequest {
+    /// Checks the counting state t (in (0, 1]) and the smallest covered fraction (in
+    /// [0, 1]); the region is checked when its tiles are made.
+    pub fn validate(&self) -> Result<()> {
+        let request = self;
+        if !(request.t.is_finite() && request.t > 0.0 && request.t <= 1.0) {
+            return Err(FiniteError::BadRequest(format!(
+                "state t = {} must be in (0, 1] (an opened state)",
+                request.t
+            ))
+            .into());
+        }
+        if !(0.0..=1.0).contains(&request.min_covered) {
+            return Err(FiniteError::BadRequest(format!(
+                "smallest covered fraction {} must be in [0, 1]",
+                request.min_covered
+            ))
+            .into());
+        }
+        Ok(())
+    }
+}
+
 impl Default for SheetRequest {
     /// 6×6 cells, 20 mm edges, counted at t = 0.3, completed keeping at least half the
     /// region, default settings.
@@ -84,20 +107,7 @@ pub fn finite_sheet(
     request: &SheetRequest,
     progress: Progress<'_>,
 ) -> Result<SheetAnalysis> {
-    if !(request.t.is_finite() && request.t > 0.0 && request.t <= 1.0) {
-        return Err(FiniteError::BadRequest(format!(
-            "state t = {} must be in (0, 1] (an opened state)",
-            request.t
-        ))
-        .into());
-    }
-    if !(0.0..=1.0).contains(&request.min_covered) {
-        return Err(FiniteError::BadRequest(format!(
-            "smallest covered fraction {} must be in [0, 1]",
-            request.min_covered
-        ))
-        .into());
-    }
+    request.validate()?;
     let (cell, mech) = assemble(design)?;
     // The region is made and checked before the deployment, which costs more.
     let requested = requested_sheet(&cell, &mech, request)?;

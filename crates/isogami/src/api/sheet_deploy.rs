@@ -108,6 +108,7 @@ pub fn deploy_sheet(
         ))
         .into());
     }
+    request.sheet.validate()?;
     let settings = &request.sheet.settings;
     let (cell, mech) = assemble(design)?;
     let requested = requested_sheet(&cell, &mech, &request.sheet)?;
