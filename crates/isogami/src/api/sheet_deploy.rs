@@ -6,7 +6,7 @@ use super::{assemble, deploy_path, SheetAnalysis, SheetRequest};
 use crate::deploy::{deploy_with, select_frames, EndReason, Progress, TilePose};
 use crate::error::Result;
 use crate::finite::{
-    check_states, periodic_agreement, sheet_measures, sheet_pairs, FiniteError, PeriodicAgreement,
+    check_states, periodic_agreement, sheet_pairs, ClosedSheet, FiniteError, PeriodicAgreement,
     SheetMeasures, StateCheck,
 };
 use crate::math::Real;
@@ -144,10 +144,15 @@ pub fn deploy_sheet(
     let contact = path.contact.clone().restricted_to(pairs.iter().copied());
     let traj = deploy_with(&mech, &contact, settings, progress)?;
     let periodic = &path.trajectory;
+    let closed = ClosedSheet::of(&sheet, &mech, &mech.rest).ok_or(FiniteError::BadRequest(
+        "the sheet has fewer than three tiles or no area".into(),
+    ))?;
     let measure = |q| {
-        sheet_measures(&sheet, &mech, &mech.rest, q).ok_or(FiniteError::BadRequest(
-            "the sheet has fewer than three tiles or no area".into(),
-        ))
+        closed
+            .measures(&sheet, &mech, q)
+            .ok_or(FiniteError::BadRequest(
+                "the sheet's measures are not finite".into(),
+            ))
     };
     let checks = check_states(&sheet, &mech, &traj, request.checks, settings.mobility)?;
     let mut max_hull_area_ratio: Real = 0.0;

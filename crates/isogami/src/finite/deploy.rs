@@ -72,37 +72,51 @@ pub fn sheet_polygons(sheet: &FiniteSheet, mech: &Mechanism, q: &DVec) -> Vec<Ve
         .collect()
 }
 
-/// [`SheetMeasures`] of `sheet` at `q`, against the closed state `rest`. `None` when the
-/// sheet has fewer than three tiles or its closed hull has no area.
-pub fn sheet_measures(
-    sheet: &FiniteSheet,
-    mech: &Mechanism,
-    rest: &DVec,
-    q: &DVec,
-) -> Option<SheetMeasures> {
-    if sheet.len() < 3 {
-        return None;
+/// What the measures of a sheet are taken against: its closed hull area and tile centres,
+/// computed once per deployment rather than at every state.
+#[derive(Debug, Clone)]
+pub struct ClosedSheet {
+    hull_area: Real,
+    centres: Vec<Vec2>,
+}
+
+/// Area of the convex hull of every tile vertex of `sheet` at `q`.
+fn hull_area(sheet: &FiniteSheet, mech: &Mechanism, q: &DVec) -> Real {
+    let points: Vec<Vec2> = sheet_polygons(sheet, mech, q)
+        .into_iter()
+        .flatten()
+        .collect();
+    signed_area(&convex_hull(&points)).abs()
+}
+
+impl ClosedSheet {
+    /// `sheet` at the closed state `rest`. `None` when it has fewer than three tiles or its
+    /// closed hull has no area.
+    pub fn of(sheet: &FiniteSheet, mech: &Mechanism, rest: &DVec) -> Option<ClosedSheet> {
+        let hull_area = hull_area(sheet, mech, rest);
+        if sheet.len() < 3 || hull_area.is_nan() || hull_area <= 0.0 {
+            return None;
+        }
+        Some(ClosedSheet {
+            hull_area,
+            centres: centres(&sheet.poses(mech, rest)),
+        })
     }
-    let hull_area = |q: &DVec| {
-        let points: Vec<Vec2> = sheet_polygons(sheet, mech, q)
-            .into_iter()
-            .flatten()
-            .collect();
-        signed_area(&convex_hull(&points)).abs()
-    };
-    let closed = hull_area(rest);
-    if closed.is_nan() || closed <= 0.0 {
-        return None;
+
+    /// [`SheetMeasures`] of `sheet` at `q` against this closed sheet (`None` when not finite).
+    pub fn measures(
+        &self,
+        sheet: &FiniteSheet,
+        mech: &Mechanism,
+        q: &DVec,
+    ) -> Option<SheetMeasures> {
+        let ratio = hull_area(sheet, mech, q) / self.hull_area;
+        let stretches = centre_stretches(&self.centres, &centres(&sheet.poses(mech, q)))?;
+        (ratio.is_finite() && stretches.iter().all(|s| s.is_finite())).then_some(SheetMeasures {
+            hull_area_ratio: ratio,
+            stretches,
+        })
     }
-    let ratio = hull_area(q) / closed;
-    let stretches = centre_stretches(
-        &centres(&sheet.poses(mech, rest)),
-        &centres(&sheet.poses(mech, q)),
-    )?;
-    (ratio.is_finite() && stretches.iter().all(|s| s.is_finite())).then_some(SheetMeasures {
-        hull_area_ratio: ratio,
-        stretches,
-    })
 }
 
 fn centres(poses: &[(Vec2, Real)]) -> Vec<Vec2> {

@@ -28,8 +28,8 @@ pub mod sheet;
 
 pub use complete::{complete, Completion, CompletionReport, Context};
 pub use deploy::{
-    check_states, periodic_agreement, sheet_measures, sheet_pairs, sheet_polygons,
-    PeriodicAgreement, SheetMeasures, StateCheck,
+    check_states, periodic_agreement, sheet_pairs, sheet_polygons, ClosedSheet, PeriodicAgreement,
+    SheetMeasures, StateCheck,
 };
 pub use error::FiniteError;
 pub use kernel::{sheet_kernel, SheetKernel};
