@@ -24,8 +24,9 @@ fn every_format_writes_a_file_that_parses() {
     let out = |name: &str| dir.join(name).to_string_lossy().into_owned();
     let run = |format: &str, file: &str, extra: &[&str]| {
         let target = out(file);
+        // The rectangle as it is (--raw): the counts below are whole cells.
         let mut args = vec![
-            "export", "--design", IH22, "--format", format, "--out", &target,
+            "export", "--design", IH22, "--format", format, "--out", &target, "--raw",
         ];
         args.extend_from_slice(extra);
         let o = isogami(&args);
@@ -83,6 +84,79 @@ fn every_format_writes_a_file_that_parses() {
         ["a.csv", "a.fold", "a.json", "a.obj", "sim"],
         "no temporary files left"
     );
+}
+
+const IH44: &str = "IH44:0.5,0.027564102564:1x2:-aaabbaa";
+
+/// The tiles of a tiles-json file as (cell, tile).
+fn tile_keys(path: &Path) -> Vec<(i64, i64, i64)> {
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    json["tiles"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| {
+            let cell = &t["cell"];
+            (
+                cell[0].as_i64().unwrap(),
+                cell[1].as_i64().unwrap(),
+                t["tile"].as_i64().unwrap(),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn export_writes_the_completed_sheet_unless_raw() {
+    let dir_guard = scratch("complete");
+    let dir = dir_guard.path();
+    let path = |name: &str| dir.join(name).to_string_lossy().into_owned();
+    let (done, raw) = (path("done.json"), path("raw.json"));
+    let common = ["export", "--design", IH44, "--format", "tiles-json"];
+    let o = isogami(&[&common[..], &["--patch", "4x4", "--out", &done]].concat());
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(stdout.contains("one-DOF completion"), "{stdout}");
+    assert!(o.stderr.is_empty(), "a one-DOF sheet has no warning");
+    let o = isogami(&[&common[..], &["--patch", "4x4", "--out", &raw, "--raw"]].concat());
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(stdout.contains("raw rectangle"), "{stdout}");
+    assert!(stderr.contains("degrees of freedom"), "{stderr}");
+    // The raw file is the 4x4 rectangle; the completed one differs from it (IH44 4x4 flops
+    // at its boundary) and holds ring tiles outside the rectangle's cells.
+    let (done, raw) = (tile_keys(Path::new(&done)), tile_keys(Path::new(&raw)));
+    assert!(raw
+        .iter()
+        .all(|&(i, j, _)| (0..4).contains(&i) && (0..4).contains(&j)));
+    assert_ne!(done, raw);
+    assert!(done
+        .iter()
+        .any(|&(i, j, _)| !(0..4).contains(&i) || !(0..4).contains(&j)));
+    // No one-DOF sheet: refused in one line naming --raw; --raw writes the rectangle.
+    let iso = [
+        "export",
+        "--design",
+        "IH10::2x2:--a--aa-a-bb",
+        "--format",
+        "obj",
+    ];
+    let o = isogami(&[&iso[..], &["--out", &path("iso.obj")]].concat());
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("no one-DOF sheet") && stderr.contains("--raw"),
+        "{stderr}"
+    );
+    assert!(!dir.join("iso.obj").exists());
+    let o = isogami(&[&iso[..], &["--out", &path("iso.obj"), "--raw"]].concat());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // --complete (the default, kept for old scripts) and --raw contradict each other.
+    let o = isogami(&[&iso[..], &["--out", &path("x.obj"), "--raw", "--complete"]].concat());
+    assert_eq!(o.status.code(), Some(2));
 }
 
 #[test]

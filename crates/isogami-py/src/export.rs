@@ -228,7 +228,9 @@ fn set_all<const N: usize>(pairs: [(&mut f64, Option<f64>); N]) {
 /// ``edge_mm`` (mean tile edge, default 20 mm) or ``width_mm`` (patch width at the state);
 /// ``t`` is the state (a number in [0, 1], the nearest accepted state; 0 closed) or ``"open"``
 /// (largest area ratio); ``kerf`` is the deployment's cut width relative to the mean edge
-/// (default 0.01); ``frames`` the states animated formats keep (2..100, default 11).
+/// (default 0.01); ``frames`` the states animated formats keep (2..100, default 11);
+/// ``complete`` (default ``True``) writes the rectangle's one-DOF completion (``FiniteError``
+/// when there is none), ``complete=False`` the rectangle as it is (the CLI's ``--raw``).
 ///
 /// Each format reads one group of settings (``export_formats()`` names it); a setting of
 /// another group raises ``TypeError``. Laser formats (svg, dxf): ``material`` (``"card"``,
@@ -243,7 +245,7 @@ fn set_all<const N: usize>(pairs: [(&mut f64, Option<f64>); N]) {
 #[pyfunction]
 #[pyo3(signature = (
     design, format, *, patch=None, edge_mm=None, width_mm=None, t=None, kerf=None, frames=None,
-    complete=false, material=None, hinge_mm=None, kerf_mm=None, thickness_mm=None, margin_mm=None,
+    complete=true, material=None, hinge_mm=None, kerf_mm=None, thickness_mm=None, margin_mm=None,
     stroke_mm=None, cut_colour=None, score_colour=None, engrave_colour=None, labels=false,
     gap_mm=None, lamella_mm=None, nozzle_mm=None, creator=None, progress=None, timeout=None
 ))]

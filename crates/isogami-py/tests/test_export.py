@@ -125,3 +125,22 @@ def test_export_bad_designs():
         isogami.export("IH90::1x1:x", "obj")
     with pytest.raises(TypeError):
         isogami.export(None, "obj")
+
+
+IH44 = "IH44:0.5,0.027564102564:1x2:-aaabbaa"
+
+
+def test_the_completed_sheet_is_the_default_and_complete_false_is_raw(cli_raw, tmp_path):
+    done = isogami.export(IH44, "tiles-json", patch="4x4")
+    raw = isogami.export(IH44, "tiles-json", patch="4x4", complete=False)
+    assert done == cli_export(cli_raw, tmp_path, IH44, "tiles-json", "--patch", "4x4")
+    assert raw == cli_export(cli_raw, tmp_path, IH44, "tiles-json", "--patch", "4x4", "--raw")
+    cells = lambda data: {tuple(t["cell"]) for t in json.loads(data)["tiles"]}
+    assert cells(raw) == {(i, j) for i in range(4) for j in range(4)}
+    # IH44's 4x4 rectangle flops at its boundary: the completion adds ring tiles outside it.
+    assert cells(done) - cells(raw)
+    # No one-DOF sheet in the region: the default export is refused, the raw one written.
+    isostatic = "IH10::2x2:--a--aa-a-bb"
+    with pytest.raises(isogami.FiniteError, match="no one-DOF sheet"):
+        isogami.export(isostatic, "obj")
+    assert isogami.export(isostatic, "obj", complete=False).startswith(b"#")

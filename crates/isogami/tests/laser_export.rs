@@ -325,11 +325,18 @@ fn sheets_of_export_patches_read_back_sound() {
     use isogami::export::laser::laser_sheet;
     use isogami::export::{patch_at, PatchRequest};
     let settings = LaserSettings::default();
-    for spec in ["rotating-squares", "IH53:0.35,0.15,0.35:1x1:bbaab-b-"] {
+    // The completed sheets (the default) of rotating squares and IH44, and the rectangle of
+    // IH53, which is locked by contact (no completion: it does not open).
+    for (spec, complete) in [
+        ("rotating-squares", true),
+        ("IH44:0.5,0.027564102564:1x2:-aaabbaa", true),
+        ("IH53:0.35,0.15,0.35:1x1:bbaab-b-", false),
+    ] {
         let design = isogami::api::resolve_design(spec).unwrap();
         let request = PatchRequest {
             rows: 3,
             cols: 3,
+            complete,
             ..PatchRequest::default()
         };
         let patch = patch_at(&design, &request).unwrap();

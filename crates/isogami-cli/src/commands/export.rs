@@ -56,11 +56,16 @@ pub struct Args {
     /// Deployment states written as frames by animated formats (FOLD), 2..=100.
     #[arg(long, default_value_t = PatchRequest::default().frames)]
     frames: usize,
-    /// Write the ROWSxCOLS rectangle's completion instead of the rectangle: a sheet with
+    /// Write the ROWSxCOLS rectangle as it is, floppy boundary and all (a warning names its
+    /// degrees of freedom). Without it the rectangle's completion is written: a sheet with
     /// exactly the design's one motion (tiles held by fewer than two pins or flopping at the
-    /// boundary pruned, the ring of tiles that closes open linkage loops added), or refuse
-    /// with the reason when there is none; `isogami sheet` shows what completion does.
+    /// boundary pruned, the ring of tiles that closes open linkage loops added), or the
+    /// export is refused with the reason when there is none; `isogami sheet` shows what
+    /// completion does.
     #[arg(long)]
+    raw: bool,
+    /// The default (write the completion); kept for scripts written when it was opt-in.
+    #[arg(long, hide = true, conflicts_with = "raw")]
     complete: bool,
     #[command(flatten)]
     laser: super::laser_args::LaserArgs,
@@ -88,7 +93,7 @@ pub fn run(args: Args) -> CliResult {
     let (patch, files) = export_design(&design, &request, args.format, &options, &mut |_| true)
         .map_err(|e| match e {
             ExportError::Library(isogami::Error::Finite(FiniteError::NoOneDofSheet { .. })) => {
-                format!("{e}; without --complete the rectangle is exported as it is")
+                format!("{e}; --raw exports the rectangle as it is")
             }
             e => e.to_string(),
         })?;
@@ -170,7 +175,7 @@ fn request(args: &Args) -> Result<PatchRequest, String> {
         state,
         kerf: args.kerf,
         frames: args.frames,
-        complete: args.complete,
+        complete: !args.raw,
     };
     request.validate().map_err(|e| e.to_string())?;
     Ok(request)

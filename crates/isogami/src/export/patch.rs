@@ -68,14 +68,15 @@ pub struct PatchRequest {
     /// States kept in [`Patch::states`] for animated formats, nearest to evenly spaced t,
     /// 2..=[`MAX_PATCH_FRAMES`].
     pub frames: usize,
-    /// Write the rectangle's completion to a one-DOF sheet ([`crate::finite::complete`])
-    /// instead of the R×C rectangle as it is (floppy boundary and all); refused when there
-    /// is none.
+    /// Write the rectangle's completion to a one-DOF sheet ([`crate::finite::complete`]),
+    /// the default, refused when there is none; `false` writes the R×C rectangle as it is
+    /// (floppy boundary and all, its DOF named by [`PatchMobility::warning`]).
     pub complete: bool,
 }
 
 impl Default for PatchRequest {
-    /// 6×6 cells, 20 mm mean edge, closed, default kerf, 11 states, the rectangle as it is.
+    /// 6×6 cells, 20 mm mean edge, closed, default kerf, 11 states, the rectangle's one-DOF
+    /// completion.
     fn default() -> Self {
         PatchRequest {
             rows: 6,
@@ -84,7 +85,7 @@ impl Default for PatchRequest {
             state: State::T(0.0),
             kerf: ContactSettings::default().kerf,
             frames: 11,
-            complete: false,
+            complete: true,
         }
     }
 }
@@ -211,8 +212,9 @@ impl PatchMobility {
     pub fn warning(&self) -> Option<String> {
         (self.dof != 1).then(|| {
             format!(
-                "this patch has {} degrees of freedom with a free boundary (its boundary tiles \
-                 flop); --complete writes its one-DOF completion",
+                "this raw patch has {} degrees of freedom with a free boundary (its boundary \
+                 tiles flop), not the design's one; the completed sheet (the default export) \
+                 opens with one",
                 self.dof
             )
         })

@@ -41,6 +41,9 @@ fn make(state: State) -> Vec<Patch> {
                 cols: COLS,
                 scale: Scale::EdgeMm(EDGE_MM),
                 state,
+                // The R×C rectangle (`--raw`): the format tests check its cells; the
+                // completed sheet, the default, has its own tests.
+                complete: false,
                 ..PatchRequest::default()
             };
             patch_at(&design, &request).unwrap_or_else(|e| panic!("{spec}: {e}"))

@@ -48,6 +48,8 @@ fn a_width_scale_gives_that_width_at_the_state() {
             cols: 3,
             scale: Scale::WidthMm(150.0),
             state,
+            // This IH44 cell is isostatic (no one-DOF sheet): the rectangle as it is.
+            complete: false,
             ..PatchRequest::default()
         };
         let p = patch_at(&design, &request).unwrap();
@@ -288,15 +290,16 @@ fn the_default_patch_is_the_one_dof_completion() {
     use isogami::finite::Region;
     let spec = "IH44:0.5,0.027564102564:1x2:-aaabbaa";
     let design = resolve_design(spec).unwrap();
-    let completed = patch_at(
+    assert!(PatchRequest::default().complete);
+    let completed = patch_at(&design, &PatchRequest::default()).unwrap();
+    let raw = patch_at(
         &design,
         &PatchRequest {
-            complete: true,
+            complete: false,
             ..PatchRequest::default()
         },
     )
     .unwrap();
-    let raw = patch_at(&design, &PatchRequest::default()).unwrap();
     let sheet = finite_sheet(
         &design,
         &SheetRequest {
@@ -327,19 +330,14 @@ fn the_default_patch_is_the_one_dof_completion() {
         .warning()
         .unwrap()
         .contains(&format!("{} degrees of freedom", raw.finite.dof)));
-    // A design with no one-DOF sheet: completion is refused, the rectangle exported.
+    // A design with no one-DOF sheet: completion (the default) is refused, the raw
+    // rectangle exported on request.
     let isostatic = resolve_design("IH10::2x2:--a--aa-a-bb").unwrap();
-    let complete = PatchRequest {
-        complete: true,
+    let e = patch_at(&isostatic, &PatchRequest::default()).unwrap_err();
+    assert!(e.to_string().contains("no one-DOF sheet"), "{e}");
+    let raw = PatchRequest {
+        complete: false,
         ..PatchRequest::default()
     };
-    let e = patch_at(&isostatic, &complete).unwrap_err();
-    assert!(e.to_string().contains("no one-DOF sheet"), "{e}");
-    assert!(
-        patch_at(&isostatic, &PatchRequest::default())
-            .unwrap()
-            .finite
-            .dof
-            > 1
-    );
+    assert!(patch_at(&isostatic, &raw).unwrap().finite.dof > 1);
 }
