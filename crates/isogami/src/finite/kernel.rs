@@ -21,7 +21,6 @@ use crate::mobility::MobilitySettings;
 use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, Side};
-use std::collections::BTreeMap;
 
 /// Sheets with at most this many unknowns use the dense eigen-solver.
 const DENSE_MAX: usize = 90;
@@ -105,8 +104,9 @@ pub fn sheet_kernel(
         }
     };
     let size = 3 * (n - 1);
-    // H = JᵀJ accumulated pin by pin (lower triangle and diagonal).
-    let mut entries: BTreeMap<(usize, usize), Real> = BTreeMap::new();
+    // H = JᵀJ pin by pin (lower triangle and diagonal), then summed per entry in (row,
+    // column) order: a fixed order, so that results repeat to the last digit.
+    let mut listed: Vec<((usize, usize), Real)> = Vec::with_capacity(36 * sheet.joints.len());
     for j in &sheet.joints {
         let joint = &mech.joints[j.joint];
         let rows = pin_rows(joint.s_a, poses[j.a].1, joint.s_b, poses[j.b].1);
@@ -128,14 +128,22 @@ pub fn sheet_kernel(
                 }
                 let v = rows[0][r] * rows[0][c] + rows[1][r] * rows[1][c];
                 if v != 0.0 {
-                    *entries.entry((cr, cc)).or_insert(0.0) += v;
+                    listed.push(((cr, cc), v));
                 }
             }
         }
     }
+    listed.sort_by_key(|&(rc, _)| rc);
+    let mut entries: Vec<((usize, usize), Real)> = Vec::with_capacity(listed.len());
+    for (rc, v) in listed {
+        match entries.last_mut() {
+            Some((last, sum)) if *last == rc => *sum += v,
+            _ => entries.push((rc, v)),
+        }
+    }
     // Gershgorin bound on λ_max (H is symmetric: row sums over both triangles).
     let mut row_sum = vec![0.0; size];
-    for (&(r, c), &v) in &entries {
+    for &((r, c), v) in &entries {
         row_sum[r] += v.abs();
         if r != c {
             row_sum[c] += v.abs();
@@ -172,11 +180,11 @@ pub fn sheet_kernel(
 
 /// Ascending eigenvalues and their vectors of the whole reduced H (dense).
 fn dense_spectrum(
-    entries: &BTreeMap<(usize, usize), Real>,
+    entries: &[((usize, usize), Real)],
     size: usize,
 ) -> Result<(Vec<Real>, DMat), FiniteError> {
     let mut h = DMat::zeros(size, size);
-    for (&(r, c), &v) in entries {
+    for &((r, c), v) in entries {
         h[(r, c)] = v;
         h[(c, r)] = v;
     }
@@ -187,7 +195,7 @@ fn dense_spectrum(
 /// The smallest eigenvalues (every one below `threshold` and at least two above it, or all)
 /// and their vectors, by shift-inverted subspace iteration on a sparse Cholesky factor.
 fn sparse_spectrum(
-    entries: &BTreeMap<(usize, usize), Real>,
+    entries: &[((usize, usize), Real)],
     size: usize,
     threshold: Real,
 ) -> Result<(Vec<Real>, DMat), FiniteError> {
@@ -197,7 +205,7 @@ fn sparse_spectrum(
     let llt = loop {
         let mut triplets: Vec<Triplet<usize, usize, Real>> = entries
             .iter()
-            .map(|(&(r, c), &v)| Triplet {
+            .map(|&((r, c), v)| Triplet {
                 row: r,
                 col: c,
                 val: v,
@@ -216,7 +224,7 @@ fn sparse_spectrum(
             Err(_) => return Err(FiniteError::Factorisation),
         }
     };
-    let listed: Vec<(usize, usize, Real)> = entries.iter().map(|(&(r, c), &v)| (r, c, v)).collect();
+    let listed: Vec<(usize, usize, Real)> = entries.iter().map(|&((r, c), v)| (r, c, v)).collect();
     let multiply = |x: &DMat| -> DMat {
         let mut y = DMat::zeros(x.nrows(), x.ncols());
         for &(r, c, v) in &listed {
