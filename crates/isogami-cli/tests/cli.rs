@@ -1,17 +1,7 @@
 //! The `isogami` binary end to end: outputs, JSON contracts and exit codes.
 
 mod common;
-use common::isogami;
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = isogami(args);
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("valid JSON")
-}
+use common::{isogami, json};
 
 #[test]
 fn families_lists_all_81() {

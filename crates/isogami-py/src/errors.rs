@@ -153,9 +153,9 @@ pub fn library(e: isogami::Error) -> PyErr {
 /// The class of a deployment error, looking through the wrapping of a comparison.
 fn deploy(e: &LibDeployError, message: String) -> PyErr {
     match e {
-        LibDeployError::Settings(_) | LibDeployError::ModeOutOfRange { .. } => {
-            SettingsError::new_err(message)
-        }
+        LibDeployError::Settings(_)
+        | LibDeployError::ModeOutOfRange { .. }
+        | LibDeployError::Grip { .. } => SettingsError::new_err(message),
         LibDeployError::Contact(_) => ContactError::new_err(message),
         LibDeployError::Mobility(_) => MobilityError::new_err(message),
         LibDeployError::Measure(_) => MeasureError::new_err(message),

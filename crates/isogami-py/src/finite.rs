@@ -26,7 +26,7 @@ use pyo3::types::PyDict;
 /// opened periodic state ``t`` (the closed state, a singular configuration, separately).
 #[pyclass(name = "FiniteSheet", module = "isogami", frozen)]
 pub struct PyFiniteSheet {
-    inner: SheetAnalysis,
+    pub(crate) inner: SheetAnalysis,
 }
 
 fn tile_rows<'py>(py: Python<'py>, sheet: &FiniteSheet) -> PyResult<Bound<'py, PyArray2<i64>>> {
@@ -317,7 +317,7 @@ impl PySheetDeployment {
 }
 
 #[allow(clippy::too_many_arguments)]
-fn sheet_request(
+pub(crate) fn sheet_request(
     region: &str,
     edge_mm: f64,
     t: f64,
@@ -370,12 +370,10 @@ pub fn finite_sheet(
     overrides: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyFiniteSheet> {
     let request = sheet_request(region, edge_mm, t, complete, min_cover, settings, overrides)?;
-    let design = design_of(design)?;
-    let mut watch = Watch::new(progress.filter(|p| !p.is_none()), timeout)?;
-    let result = py.detach(|| lib_finite_sheet(&design, &request, &mut |n| watch.tick(n)));
-    Ok(PyFiniteSheet {
-        inner: watch.finish(result)?,
-    })
+    let inner = run_detached(py, design, progress, timeout, |design, progress| {
+        lib_finite_sheet(design, &request, progress)
+    })?;
+    Ok(PyFiniteSheet { inner })
 }
 
 /// Deploys the finite sheet ``finite_sheet`` would make (same arguments) with contact among
@@ -410,10 +408,23 @@ pub fn deploy_sheet(
         frames,
         ..SheetDeployRequest::default()
     };
+    let inner = run_detached(py, design, progress, timeout, |design, progress| {
+        lib_deploy_sheet(design, &request, progress)
+    })?;
+    Ok(PySheetDeployment { inner })
+}
+
+/// Runs `f` on the design with the GIL released, its progress reported to the Python
+/// callback and bounded by `timeout` (the plumbing every finite-sheet entry point shares).
+pub(crate) fn run_detached<T: Send>(
+    py: Python<'_>,
+    design: &Bound<'_, PyAny>,
+    progress: Option<Bound<'_, PyAny>>,
+    timeout: Option<f64>,
+    f: impl FnOnce(&isogami::api::Design, isogami::deploy::Progress<'_>) -> isogami::Result<T> + Send,
+) -> PyResult<T> {
     let design = design_of(design)?;
     let mut watch = Watch::new(progress.filter(|p| !p.is_none()), timeout)?;
-    let result = py.detach(|| lib_deploy_sheet(&design, &request, &mut |n| watch.tick(n)));
-    Ok(PySheetDeployment {
-        inner: watch.finish(result)?,
-    })
+    let result = py.detach(|| f(&design, &mut |n| watch.tick(n)));
+    watch.finish(result)
 }

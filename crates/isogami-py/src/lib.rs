@@ -23,6 +23,7 @@ mod linkage;
 mod measure;
 mod mobility;
 mod progress;
+mod pull;
 mod query;
 mod settings;
 mod shape;
@@ -50,6 +51,7 @@ fn _isogami(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<inverse::PyInverseResult>()?;
     m.add_class::<finite::PyFiniteSheet>()?;
     m.add_class::<finite::PySheetDeployment>()?;
+    m.add_class::<pull::PySheetPull>()?;
     m.add_function(wrap_pyfunction!(design::design, m)?)?;
     m.add_function(wrap_pyfunction!(family::families, m)?)?;
     m.add_function(wrap_pyfunction!(family::family, m)?)?;
@@ -67,6 +69,7 @@ fn _isogami(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(shape::rank_drop_shape, m)?)?;
     m.add_function(wrap_pyfunction!(finite::finite_sheet, m)?)?;
     m.add_function(wrap_pyfunction!(finite::deploy_sheet, m)?)?;
+    m.add_function(wrap_pyfunction!(pull::pull_sheet, m)?)?;
     for f in [
         wrap_pyfunction!(measure::deformation_gradient, m)?,
         wrap_pyfunction!(measure::polar, m)?,

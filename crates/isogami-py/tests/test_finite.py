@@ -78,3 +78,36 @@ def test_the_finite_deployment_follows_the_periodic_sheet(cli):
 def test_bad_requests_raise_finite_error(call, message):
     with pytest.raises(isogami.FiniteError, match=message):
         call()
+
+
+IH9 = "IH9:0.04739750492,0.35,0.225335752741:1x2:--aaabb--aa-"
+
+
+def test_a_pulled_raw_sheet_leaves_the_motion_and_equals_the_cli(cli):
+    run = isogami.pull_sheet(IH9, "2x2", frames=6)
+    assert run.dof > 1 and not run.sheet.completed
+    assert run.poses.shape == (6, len(run.sheet.tiles), 3)
+    assert run.deviation.shape == run.extension.shape == run.periodic_t.shape == (6,)
+    assert run.max_deviation == pytest.approx(run.deviation.max())
+    assert run.max_deviation > 0.01 and len(run.leaving) > 0
+    assert run.leaves["dof"] > 1
+    report = cli("sheet", "--design", IH9, "--region", "2x2", "--raw", "--pull", "--frames", "6", "--json")
+    assert run.report() == report
+    assert "SheetPull(" in repr(run)
+
+
+def test_a_pulled_one_dof_sheet_follows_the_motion():
+    run = isogami.pull_sheet("rotating-squares", "3x3", grips=(0, 35), frames=5)
+    assert run.grips == (0, 35) and run.dof == 1
+    assert run.leaves is None and run.max_deviation < 1e-6
+    # The grips' distance grows monotonically while the squares turn.
+    assert all(b >= a for a, b in zip(run.extension, run.extension[1:]))
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [(dict(grips=(0, 0)), "grips"), (dict(grips=(0, 10**6)), "grips"), (dict(frames=1), "frames")],
+)
+def test_bad_pulls_raise_finite_error(kwargs, message):
+    with pytest.raises(isogami.FiniteError, match=message):
+        isogami.pull_sheet("rotating-squares", "2x2", **kwargs)

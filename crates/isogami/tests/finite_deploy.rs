@@ -1,13 +1,18 @@
 //! Finite deployment (issue 22): a completed sheet opens with the periodic motion until
 //! contact, its end state is checked here with other code than the solver's (joints closed
 //! from the tiles' attachment points, kerf-inset tiles disjoint by `geo`), and a floppy raw
-//! region is refused with its count.
+//! region is refused with its count. Pulled sheets: a one-DOF sheet pulled apart by two
+//! tiles follows the periodic motion, a floppy raw one leaves it through its extra modes, a
+//! completed one only at a branch point of its motion.
 
 use geo::{Coord, Intersects, LineString, Polygon};
-use isogami::api::{deploy_path, deploy_sheet, resolve_design, SheetDeployRequest, SheetRequest};
+use isogami::api::{
+    deploy_path, deploy_sheet, pull_sheet, resolve_design, SheetDeployRequest, SheetPull,
+    SheetPullRequest, SheetRequest,
+};
 use isogami::contact::inset_polygon;
-use isogami::deploy::DeploySettings;
-use isogami::finite::Region;
+use isogami::deploy::{DeploySettings, EndReason, TilePose};
+use isogami::finite::{FiniteSheet, Region, LEAVE_TOLERANCE};
 use isogami::kinematics::Mechanism;
 use isogami::math::{rotation, Real, Vec2};
 use isogami::Error;
@@ -72,8 +77,57 @@ fn a_completed_sheet_moves_with_the_periodic_sheet_until_contact() {
     }
 }
 
-/// The last frame rebuilt from its poses with the design's tile shapes: every pin of the
-/// sheet closed to 1e-9 L, and no two kerf-inset tiles touching (`geo`'s intersection test).
+/// A frame rebuilt from its poses (tiling units, as the API gives them) with the design's
+/// tile shapes: every pin of the sheet closed to `tolerance` L, and no two kerf-inset tiles
+/// touching (`geo`'s intersection test).
+fn check_frame(
+    spec: &str,
+    mech: &Mechanism,
+    sheet: &FiniteSheet,
+    poses: &[TilePose],
+    tolerance: Real,
+) {
+    let scale = mech.length_scale;
+    let pose = |k: usize| {
+        let p = &poses[k];
+        (Vec2::new(p.x / scale, p.y / scale), p.theta)
+    };
+    let mut worst: Real = 0.0;
+    for pin in &sheet.joints {
+        let j = &mech.joints[pin.joint];
+        let (pa, ta) = pose(pin.a);
+        let (pb, tb) = pose(pin.b);
+        worst = worst.max((pa + rotation(ta) * j.s_a - pb - rotation(tb) * j.s_b).norm());
+    }
+    assert!(worst <= tolerance, "{spec}: a pin opens by {worst:e} L");
+    let kerf = DeploySettings::default().contact.kerf;
+    let polygons: Vec<Polygon> = sheet
+        .tiles
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            let inset = inset_polygon(&mech.tile_shapes[t.tile], 0.5 * kerf).unwrap();
+            let (p, th) = pose(k);
+            let ring: Vec<Coord> = inset
+                .iter()
+                .map(|v| {
+                    let w = p + rotation(th) * v;
+                    Coord { x: w.x, y: w.y }
+                })
+                .collect();
+            Polygon::new(LineString::from(ring), Vec::new())
+        })
+        .collect();
+    for a in 0..polygons.len() {
+        for b in a + 1..polygons.len() {
+            assert!(
+                !polygons[a].intersects(&polygons[b]),
+                "{spec}: tiles {a} and {b} touch"
+            );
+        }
+    }
+}
+
 #[test]
 fn the_end_state_has_closed_joints_and_no_overlap() {
     for spec in DESIGNS {
@@ -81,47 +135,8 @@ fn the_end_state_has_closed_joints_and_no_overlap() {
         let cell = design.cell().unwrap();
         let mech = Mechanism::new(&cell, &design.joints).unwrap();
         let out = deploy_sheet(&design, &request(4), &mut |_| true).unwrap();
-        let sheet = out.analysis.sheet();
         let last = out.frames.last().unwrap();
-        let scale = mech.length_scale;
-        let pose = |k: usize| {
-            let p = &last.poses[k];
-            (Vec2::new(p.x / scale, p.y / scale), p.theta)
-        };
-        let mut worst: Real = 0.0;
-        for pin in &sheet.joints {
-            let j = &mech.joints[pin.joint];
-            let (pa, ta) = pose(pin.a);
-            let (pb, tb) = pose(pin.b);
-            worst = worst.max((pa + rotation(ta) * j.s_a - pb - rotation(tb) * j.s_b).norm());
-        }
-        assert!(worst <= 1e-9, "{spec}: a pin opens by {worst:e} L");
-        let kerf = DeploySettings::default().contact.kerf;
-        let polygons: Vec<Polygon> = sheet
-            .tiles
-            .iter()
-            .enumerate()
-            .map(|(k, t)| {
-                let inset = inset_polygon(&mech.tile_shapes[t.tile], 0.5 * kerf).unwrap();
-                let (p, th) = pose(k);
-                let ring: Vec<Coord> = inset
-                    .iter()
-                    .map(|v| {
-                        let w = p + rotation(th) * v;
-                        Coord { x: w.x, y: w.y }
-                    })
-                    .collect();
-                Polygon::new(LineString::from(ring), Vec::new())
-            })
-            .collect();
-        for a in 0..polygons.len() {
-            for b in a + 1..polygons.len() {
-                assert!(
-                    !polygons[a].intersects(&polygons[b]),
-                    "{spec}: tiles {a} and {b} touch at the end state"
-                );
-            }
-        }
+        check_frame(spec, &mech, out.analysis.sheet(), &last.poses, 1e-9);
     }
 }
 
@@ -181,4 +196,92 @@ fn a_sheet_without_the_blocking_pair_moves_past_the_periodic_limit() {
     let two = deploy_sheet(&design, &request(2), &mut |_| true).unwrap();
     assert_eq!(two.steps, two.periodic.steps);
     assert_eq!(two.end, two.periodic.measures);
+}
+
+const IH9: &str = "IH9:0.04739750492,0.35,0.225335752741:1x2:--aaabb--aa-";
+
+fn pull(spec: &str, rows: usize, complete: bool) -> SheetPull {
+    let design = resolve_design(spec).unwrap();
+    let request = SheetPullRequest {
+        sheet: SheetRequest {
+            region: Region::Cells { rows, cols: rows },
+            complete,
+            ..SheetRequest::default()
+        },
+        ..SheetPullRequest::default()
+    };
+    let out = pull_sheet(&design, &request, &mut |_| true).unwrap();
+    // Every frame rebuilt from its poses: pins closed, no two tiles touching.
+    let mech = Mechanism::new(&design.cell().unwrap(), &design.joints).unwrap();
+    for f in &out.frames {
+        check_frame(spec, &mech, out.analysis.sheet(), &f.poses, 1e-8);
+    }
+    out
+}
+
+#[test]
+fn a_one_dof_sheet_pulled_apart_follows_the_periodic_motion() {
+    // Rotating squares, 3x3 cells as they are (one DOF): every tile where the periodic motion
+    // puts it, until the pull stalls where the squares stand at 45°, when the distance
+    // between any two square centres has grown by cos 45° + sin 45° = √2.
+    let out = pull("rotating-squares", 3, false);
+    assert_eq!(out.dof, 1);
+    assert!(out.leaves.is_none() && out.leaving.is_empty());
+    assert!(out.max_deviation <= 1e-6, "{}", out.max_deviation);
+    assert_eq!(out.end_reason, EndReason::Stalled);
+    assert!(
+        (out.extension - 2f64.sqrt()).abs() < 1e-3,
+        "{}",
+        out.extension
+    );
+}
+
+#[test]
+fn a_floppy_raw_sheet_pulled_apart_leaves_the_periodic_motion() {
+    let out = pull(IH9, 2, false);
+    assert!(out.dof > 1, "{}", out.dof);
+    assert!(out.max_deviation > LEAVE_TOLERANCE, "{}", out.max_deviation);
+    assert!(!out.leaving.is_empty());
+    let leaves = out.leaves.expect("leaves the motion");
+    assert!(leaves.dof > 1, "{leaves:?}");
+    // The same design's completed 3x3 sheet follows the motion to the end of the pull.
+    let done = pull(IH9, 3, true);
+    assert_eq!(done.dof, 1);
+    assert!(done.leaves.is_none(), "{:?}", done.leaves);
+    assert!(
+        done.max_deviation <= LEAVE_TOLERANCE,
+        "{}",
+        done.max_deviation
+    );
+    assert!(done.extension > 1.05, "{}", done.extension);
+}
+
+#[test]
+fn a_completed_sheet_leaves_the_motion_only_at_a_branch_point() {
+    // IH9's completed 2x2 sheet is one DOF at the counting state, but at t ≈ 0.03 of the
+    // periodic motion it has a second motion; pulled, it takes that branch.
+    let out = pull(IH9, 2, true);
+    assert_eq!(out.dof, 1);
+    let leaves = out.leaves.expect("leaves at the branch point");
+    assert_eq!(leaves.dof, 2, "{leaves:?}");
+    assert!(leaves.before_periodic_t < 0.1, "{leaves:?}");
+}
+
+#[test]
+fn bad_grips_and_frames_are_bad_requests() {
+    let design = resolve_design("rotating-squares").unwrap();
+    for (grips, frames) in [(Some([0, 0]), 24), (Some([0, 999]), 24), (None, 1)] {
+        let request = SheetPullRequest {
+            sheet: SheetRequest {
+                region: Region::Cells { rows: 2, cols: 2 },
+                ..SheetRequest::default()
+            },
+            grips,
+            frames,
+        };
+        match pull_sheet(&design, &request, &mut |_| true) {
+            Err(Error::Finite(e)) => assert!(!e.to_string().is_empty()),
+            other => panic!("{grips:?}/{frames}: {:?}", other.map(|p| p.steps)),
+        }
+    }
 }

@@ -3,12 +3,14 @@
 
 use crate::output::{emit, print_json, CliResult};
 use isogami::api::{
-    deploy_sheet, finite_sheet, resolve_design, SheetDeployRequest, SheetDeployment, SheetRequest,
+    deploy_sheet, finite_sheet, pull_sheet, resolve_design, SheetAnalysis, SheetDeployRequest,
+    SheetDeployment, SheetPull, SheetPullRequest, SheetRequest,
 };
 use isogami::finite::{FiniteSheet, Region, SheetMobility};
 
 /// Arguments of `sheet`.
 #[derive(Debug, clap::Args)]
+#[command(group(clap::ArgGroup::new("motion").args(["deploy", "pull"])))]
 pub struct Args {
     /// The design: a name, a spec string FAMILY:PARAMS:CELL:JOINTS, or design JSON.
     #[arg(long, allow_hyphen_values = true)]
@@ -35,8 +37,18 @@ pub struct Args {
     /// and compare it with the periodic sheet. A raw region deploys only when it is one-DOF.
     #[arg(long)]
     deploy: bool,
-    /// Frames of tile poses in the JSON of --deploy (at least 2).
-    #[arg(long, default_value_t = 24, requires = "deploy")]
+    /// Pull the sheet apart by two of its tiles, as a tester would (one held, the other
+    /// pulled away along the direction the design opens most), with contact among its own
+    /// tiles, and say how far its tiles leave the periodic motion. Works on a floppy raw
+    /// region (with --raw): its extra modes show.
+    #[arg(long, conflicts_with = "deploy")]
+    pull: bool,
+    /// With --pull: the held and the pulled tile, as indices into the sheet's tiles
+    /// (the JSON's order) [default: the ends of the sheet along its opening direction].
+    #[arg(long, value_parser = parse_grips, requires = "pull")]
+    grips: Option<[usize; 2]>,
+    /// Frames of tile poses in the JSON of --deploy and --pull (at least 2).
+    #[arg(long, default_value_t = 24, requires = "motion")]
     frames: usize,
     /// Print JSON (the sheets' tiles as cell and tile index, the mobility, the completion).
     #[arg(long)]
@@ -64,10 +76,22 @@ pub fn run(args: Args) -> CliResult {
     } else {
         None
     };
-    let out = match &deployment {
-        Some(d) if args.json => return print_json(d),
-        Some(d) => d.analysis.clone(),
-        None => finite_sheet(&design, &request, &mut |_| true).map_err(|e| e.to_string())?,
+    let pull = if args.pull {
+        let request = SheetPullRequest {
+            sheet: request.clone(),
+            grips: args.grips,
+            frames: args.frames,
+        };
+        Some(pull_sheet(&design, &request, &mut |_| true).map_err(|e| e.to_string())?)
+    } else {
+        None
+    };
+    let out: SheetAnalysis = match (&deployment, &pull) {
+        (Some(d), _) if args.json => return print_json(d),
+        (_, Some(p)) if args.json => return print_json(p),
+        (Some(d), _) => d.analysis.clone(),
+        (_, Some(p)) => p.analysis.clone(),
+        _ => finite_sheet(&design, &request, &mut |_| true).map_err(|e| e.to_string())?,
     };
     if args.json {
         return print_json(&out);
@@ -115,7 +139,72 @@ pub fn run(args: Args) -> CliResult {
     if let Some(d) = &deployment {
         describe_deployment(&mut o, d);
     }
+    if let Some(p) = &pull {
+        describe_pull(&mut o, p);
+    }
     emit(&o)
+}
+
+/// `A,B`: two tile indices.
+fn parse_grips(text: &str) -> Result<[usize; 2], String> {
+    let bad = || format!("'{text}': expected two tile indices A,B");
+    let (a, b) = text.split_once(',').ok_or_else(bad)?;
+    let a = a.trim().parse().map_err(|_| bad())?;
+    let b = b.trim().parse().map_err(|_| bad())?;
+    Ok([a, b])
+}
+
+/// What the pull did, against the periodic motion.
+fn describe_pull(o: &mut String, p: &SheetPull) {
+    let sheet = p.analysis.sheet();
+    let name = |t: usize| {
+        let s = sheet.tiles[t];
+        format!("{t} ([{},{}]#{})", s.cell[0], s.cell[1], s.tile)
+    };
+    outln!(
+        o,
+        "pulled      held tile {}, pulled tile {}: {} after {} states, grips ×{:.4} apart, hull area ×{:.4} (largest ×{:.4})",
+        name(p.grips[0]),
+        name(p.grips[1]),
+        p.end_reason,
+        p.steps,
+        p.extension,
+        p.end.hull_area_ratio,
+        p.max_hull_area_ratio
+    );
+    if p.leaving.is_empty() {
+        outln!(
+            o,
+            "            every tile follows the periodic motion (to {:.1e} L)",
+            p.max_deviation
+        );
+    } else {
+        outln!(
+            o,
+            "            {} of {} tiles leave the periodic motion (by up to {:.3} L)",
+            p.leaving.len(),
+            sheet.len(),
+            p.max_deviation
+        );
+    }
+    if let Some(l) = &p.leaves {
+        let why = if p.dof > 1 {
+            format!("through its {} extra modes", p.dof - 1)
+        } else if l.dof > 1 {
+            format!(
+                "at a branch point of its motion ({} DOF there): a one-DOF sheet has a second motion at such a state",
+                l.dof
+            )
+        } else {
+            "where no branch point was found at the states checked".into()
+        };
+        outln!(
+            o,
+            "            leaves between t = {:.3} and {:.3} of the periodic motion, {why}",
+            l.after_periodic_t,
+            l.before_periodic_t
+        );
+    }
 }
 
 /// What the finite deployment did, against the periodic sheet.

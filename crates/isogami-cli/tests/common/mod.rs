@@ -12,6 +12,17 @@ pub fn isogami(args: &[&str]) -> Output {
         .expect("binary runs")
 }
 
+/// Runs `isogami` with `args`, which must succeed, and parses what it prints as JSON.
+pub fn json(args: &[&str]) -> serde_json::Value {
+    let out = isogami(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("valid JSON")
+}
+
 /// A fresh, empty folder for one test, named after it, removed with everything in it when the
 /// returned guard drops, so a run leaves nothing behind.
 pub fn scratch(name: &str) -> TempDir {

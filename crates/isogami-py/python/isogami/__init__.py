@@ -16,7 +16,7 @@ the browser's filters. Long calls release the GIL and can be interrupted with Ct
 Main entry points: ``design``, ``families``/``family``, ``cell``, ``analyze``, ``deploy``
 (with ``DeploySettings``), ``linkages``, ``compare``, ``open_database`` (with ``Query``),
 ``export`` (``export_formats``), ``inverse`` (inverse design on a database), ``shape_mobility`` / ``follow_shape`` /
-``rank_drop_shape`` (shape-aware mobility), ``finite_sheet`` / ``deploy_sheet`` (finite sheets: a region's
+``rank_drop_shape`` (shape-aware mobility), ``finite_sheet`` / ``deploy_sheet`` / ``pull_sheet`` (finite sheets: a region's
 degrees of freedom, its completion to one DOF and its deployment) and the measure functions (``polar``, ``principal_expansions``, ``expansion_profile``, ...).
 Every library error is an ``IsogamiError`` subclass carrying the library's message.
 """
@@ -59,6 +59,7 @@ from ._isogami import (
     Record,
     SettingsError,
     SheetDeployment,
+    SheetPull,
     StoredDesign,
     StoreError,
     TilingError,
@@ -70,6 +71,7 @@ from ._isogami import (
     deformation_gradient,
     deploy,
     deploy_sheet,
+    pull_sheet,
     design,
     directional_expansion,
     expansion_profile,
@@ -128,6 +130,7 @@ __all__ = [
     "Record",
     "SettingsError",
     "SheetDeployment",
+    "SheetPull",
     "StoredDesign",
     "StoreError",
     "TilingError",
@@ -139,6 +142,7 @@ __all__ = [
     "deformation_gradient",
     "deploy",
     "deploy_sheet",
+    "pull_sheet",
     "design",
     "directional_expansion",
     "expansion_profile",

@@ -568,7 +568,7 @@ def export(
     t: Union[float, Literal["open"], None] = None,
     kerf: Optional[float] = None,
     frames: Optional[int] = None,
-    complete: bool = False,
+    complete: bool = True,
     material: Optional[Literal["card", "felt", "pla"]] = None,
     hinge_mm: Optional[float] = None,
     kerf_mm: Optional[float] = None,
@@ -588,9 +588,9 @@ def export(
 ) -> Union[bytes, Dict[str, bytes]]:
     """A patch of a design in mm in one export format (bytes, or {name: bytes} for a folder).
 
-    ``complete=True`` writes the one-DOF completion of the ``patch`` rectangle (the sheet
-    that opens with the design's one motion; refused when there is none) instead of the
-    rectangle as it is."""
+    By default the one-DOF completion of the ``patch`` rectangle is written (the sheet that
+    opens with the design's one motion; ``FiniteError`` when there is none);
+    ``complete=False`` writes the rectangle as it is (the CLI's ``--raw``)."""
 
 def export_formats() -> List[Dict[str, Optional[str]]]:
     """The export formats: name, description, extension, media_type, settings group."""
@@ -709,6 +709,58 @@ class SheetDeployment:
     @property
     def poses(self) -> FloatArray: ...
     def report(self) -> Dict[str, Any]: ...
+
+class SheetPull:
+    """A finite sheet pulled apart by two of its tiles, as a tester would."""
+
+    @property
+    def sheet(self) -> FiniteSheet: ...
+    @property
+    def dof(self) -> int: ...
+    @property
+    def grips(self) -> Tuple[int, int]: ...
+    @property
+    def end_reason(self) -> str: ...
+    @property
+    def steps(self) -> int: ...
+    @property
+    def final_extension(self) -> float: ...
+    @property
+    def max_hull_area_ratio(self) -> float: ...
+    @property
+    def max_deviation(self) -> float: ...
+    @property
+    def leaving(self) -> IntArray: ...
+    @property
+    def leaves(self) -> Optional[Dict[str, Any]]: ...
+    @property
+    def extension(self) -> FloatArray: ...
+    @property
+    def deviation(self) -> FloatArray: ...
+    @property
+    def periodic_t(self) -> FloatArray: ...
+    @property
+    def hull_area_ratio(self) -> FloatArray: ...
+    @property
+    def poses(self) -> FloatArray: ...
+    def report(self) -> Dict[str, Any]: ...
+
+def pull_sheet(
+    design: DesignLike,
+    region: str = "6x6",
+    *,
+    edge_mm: float = 20.0,
+    t: float = 0.3,
+    complete: bool = False,
+    min_cover: float = 0.5,
+    grips: Optional[Tuple[int, int]] = None,
+    frames: int = 24,
+    settings: Optional[DeploySettings] = None,
+    progress: Optional[Progress] = None,
+    timeout: Optional[float] = None,
+    **overrides: Any,
+) -> SheetPull:
+    """The (raw, by default) finite sheet held by one tile and pulled apart by another."""
 
 def finite_sheet(
     design: DesignLike,

@@ -128,6 +128,14 @@ pub(crate) fn requested_sheet(
     Ok(requested)
 }
 
+/// Index of the opened state of `traj` (never the closed one) nearest `t`: where a sheet is
+/// counted.
+pub(crate) fn opened_step(traj: &Trajectory, t: Real) -> usize {
+    (1..traj.steps.len())
+        .min_by(|&a, &b| (traj.t(a) - t).abs().total_cmp(&(traj.t(b) - t).abs()))
+        .unwrap_or(0)
+}
+
 /// [`finite_sheet`] on a deployment already made (`traj` of `mech`, assembled from `cell`) and
 /// the region's sheet ([`requested_sheet`]): what the export uses, so that a patch is deployed
 /// once.
@@ -145,13 +153,7 @@ pub(crate) fn sheet_of_trajectory(
         }
         .into());
     }
-    let k = (1..traj.steps.len())
-        .min_by(|&a, &b| {
-            (traj.t(a) - request.t)
-                .abs()
-                .total_cmp(&(traj.t(b) - request.t).abs())
-        })
-        .unwrap_or(1);
+    let k = opened_step(traj, request.t);
     let mobility = request.settings.mobility;
     let motion_at = |q: &DVec| -> Result<DVec> {
         let m = crate::mobility::analyze(mech, q, mobility)?;

@@ -42,12 +42,14 @@ use serde::Serialize;
 mod finite;
 mod sheet;
 mod sheet_deploy;
+mod sheet_pull;
 pub use finite::{finite_sheet, SheetAnalysis, SheetRequest};
 pub(crate) use finite::{requested_sheet, sheet_of_trajectory};
 pub use sheet::{sheet_geometry, tile_linkages, EdgeGeometry, SheetGeometry};
 pub use sheet_deploy::{
     deploy_sheet, PeriodicEnd, SheetDeployRequest, SheetDeployment, SheetFrame,
 };
+pub use sheet_pull::{pull_sheet, PullFrame, PullLeave, SheetPull, SheetPullRequest};
 
 /// Most frames a deployment report may hold when frames are picked evenly in t.
 pub const MAX_FRAME_COUNT: usize = 10_000;

@@ -34,6 +34,14 @@ pub enum DeployError {
         /// Degrees of freedom found.
         dof: usize,
     },
+    /// A pull whose grip is the held tile or not a tile of the mechanism.
+    #[error("invalid setting: grip tile {grip} must be one of tiles 1..{tiles} (tile 0 is held)")]
+    Grip {
+        /// The grip asked for.
+        grip: usize,
+        /// Tiles of the mechanism.
+        tiles: usize,
+    },
     /// A first-order mode asked for that the design does not have.
     #[error("invalid setting: mode {mode} does not exist: the design has {dof} degree(s) of freedom (modes 0..{dof})")]
     ModeOutOfRange {

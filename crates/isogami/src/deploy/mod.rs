@@ -11,6 +11,9 @@
 //!   the *initial* eigenvector v⁰ and measured from the closed state.
 //! - [`Method::Springs`] (Liu et al. 2022a): springs pull the tiling vectors towards an
 //!   isotropically enlarged cell; each load step is a relaxation.
+//! - [`pull_with`]: a finite sheet's mechanism pulled apart by two of its tiles, as a tester
+//!   would, for sheets with any number of degrees of freedom (the same step problem, its
+//!   progress term on the grip's move, plus a drag for the motions nothing resists).
 //!
 //! Every accepted state keeps every joint closed to 1e-9 L and is checked free of overlap by
 //! the exact polygon test of `contact`. The line search never leaves the intersection-free
@@ -26,6 +29,7 @@ mod march;
 mod ncm;
 mod newton;
 mod opening;
+mod pull;
 mod report;
 mod rigid_modes;
 mod settings;
@@ -41,8 +45,9 @@ pub use error::{DeployError, FrameProblem, InsertProblem, ReportField};
 pub use frames::{
     frame_records, frame_records_for, plan_frames, select_frames, FramePick, FrameRecord,
 };
-pub use insert::PROJECTION_MAX_ITER;
+pub use insert::{project_between, PROJECTION_MAX_ITER};
 pub use newton::{minimize, Objective, SolveOutcome};
+pub use opening::PROBE_KERFS;
 pub use report::{build_report, DeploymentReport, FrameReport, TilePose};
 pub use settings::{DeploySettings, Method};
 pub use summary::{
@@ -55,6 +60,7 @@ pub type Progress<'a> = &'a mut dyn FnMut(usize) -> bool;
 
 use crate::contact::ContactModel;
 use crate::kinematics::Mechanism;
+use crate::math::DVec;
 use crate::mobility::analyze;
 
 /// Deploys `mech` with `settings`. Refuses rigid designs with a clear error; a design whose
@@ -113,4 +119,72 @@ pub fn deploy_with(
         traj.end_reason = EndReason::Stalled;
     }
     Ok(traj)
+}
+
+/// Pulls `mech` apart by two tiles, as a tester would: tile 0 held, tile `grip` pulled away
+/// from it a load step at a time, on the same step loop, Newton solver and contact model as
+/// every deployment (see `pull`). For a finite sheet's mechanism (no joint across cells,
+/// tiling vectors far enough apart that no two copies of the sheet meet), with any number
+/// of degrees of freedom. `dof` is recorded in the trajectory. Ends stalled when pulling no
+/// longer moves the grip away, or at the contact limit.
+pub fn pull_with(
+    mech: &Mechanism,
+    contact: &ContactModel,
+    settings: &DeploySettings,
+    grip: usize,
+    dof: usize,
+    progress: Progress<'_>,
+) -> Result<Trajectory, DeployError> {
+    settings.validate()?;
+    if contact.settings() != &settings.contact {
+        return Err(DeployError::Contact(
+            crate::contact::ContactError::SettingsMismatch,
+        ));
+    }
+    if grip == 0 || grip >= mech.tile_count() {
+        return Err(DeployError::Grip {
+            grip,
+            tiles: mech.tile_count(),
+        });
+    }
+    let policy = pull::Pull { grip };
+    let mut steps = vec![march::rest_step(mech, contact)];
+    let zero = DVec::zeros(mech.rest.len());
+    let mut attempts = 0;
+    let mut cache = crate::contact::PairCache::new();
+    let end = match march::march(
+        mech,
+        contact,
+        settings,
+        &policy,
+        &mut steps,
+        &zero,
+        &zero,
+        None,
+        &mut attempts,
+        progress,
+        &mut cache,
+    )? {
+        march::MarchEnd::Ended(EndReason::StepSizeExhausted) => EndReason::Stalled,
+        march::MarchEnd::Ended(e) => e,
+        march::MarchEnd::Reached => EndReason::MaxSteps,
+    };
+    let (_, axis) = pull::grip_axis(mech, &mech.rest, grip);
+    let mut initial_direction = zero;
+    let g = mech.layout.tile(grip);
+    initial_direction[g] = axis.x;
+    initial_direction[g + 1] = axis.y;
+    Ok(Trajectory {
+        steps,
+        end_reason: end,
+        initial_direction,
+        attempts,
+        dof,
+    })
+}
+
+/// Distance between tile 0's and tile `grip`'s centres at q (units of L): what
+/// [`pull_with`] pulls apart.
+pub fn grip_distance(mech: &Mechanism, q: &DVec, grip: usize) -> crate::math::Real {
+    pull::grip_axis(mech, q, grip).0
 }

@@ -47,6 +47,7 @@ impl StepPolicy for Ncm {
             )),
             springs: Vec::new(),
             spring_k: 0.0,
+            drag: None,
         };
         let out = minimize_cached(mech, contact, &obj, &start, stepper.clearance(), 50, cache);
         let achieved = (&out.q - &mech.rest).dot(initial);

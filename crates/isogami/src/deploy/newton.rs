@@ -5,7 +5,7 @@ use crate::contact::{ClearanceTracker, ContactModel, HessianProjection, PairCach
 use crate::kinematics::Mechanism;
 use crate::math::{DMat, DVec, Real};
 
-/// The energy minimised by a step: E_joints + E_coll + progress + springs.
+/// The energy minimised by a step: E_joints + E_coll + progress + springs + drag.
 #[derive(Debug, Clone)]
 pub struct Objective {
     /// Progress term ½·w·(dirᵀ(q − origin) − beta)², if any: (dir, origin, beta, w).
@@ -14,6 +14,10 @@ pub struct Objective {
     pub springs: Vec<(usize, Real)>,
     /// Spring stiffness k.
     pub spring_k: Real,
+    /// Drag term ½·k·|q − origin|² over every coordinate, if any: (origin, k). It keeps
+    /// what no force moves where it was (a sheet with several degrees of freedom has motions
+    /// nothing else in the objective resists) and makes the Hessian positive definite.
+    pub drag: Option<(DVec, Real)>,
 }
 
 impl Objective {
@@ -23,6 +27,15 @@ impl Objective {
             progress: None,
             springs: Vec::new(),
             spring_k: 0.0,
+            drag: None,
+        }
+    }
+
+    /// Just the joints and contact, with a drag of stiffness `k` towards `origin`.
+    pub fn constraints_with_drag(origin: &DVec, k: Real) -> Objective {
+        Objective {
+            drag: Some((origin.clone(), k)),
+            ..Objective::constraints_only()
         }
     }
 
@@ -34,6 +47,9 @@ impl Objective {
         }
         for &(i, target) in &self.springs {
             e += 0.5 * self.spring_k * (q[i] - target).powi(2);
+        }
+        if let Some((origin, k)) = &self.drag {
+            e += 0.5 * k * (q - origin).norm_squared();
         }
         e
     }
@@ -47,6 +63,12 @@ impl Objective {
         for &(i, target) in &self.springs {
             g[i] += self.spring_k * (q[i] - target);
             h[(i, i)] += self.spring_k;
+        }
+        if let Some((origin, k)) = &self.drag {
+            g.axpy(*k, &(q - origin), 1.0);
+            for i in 0..h.nrows() {
+                h[(i, i)] += k;
+            }
         }
     }
 }

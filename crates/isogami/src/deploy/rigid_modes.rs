@@ -39,6 +39,7 @@ impl StepPolicy for RigidModes {
             progress: Some((v.clone(), q.clone(), beta, settings.step_weight)),
             springs: Vec::new(),
             spring_k: 0.0,
+            drag: None,
         };
         let out = minimize_cached(mech, contact, &obj, &start, stepper.clearance(), 50, cache);
         let progress_error = ((&out.q - q).dot(&v) - beta).abs() / beta;

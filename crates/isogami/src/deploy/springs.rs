@@ -46,6 +46,7 @@ impl StepPolicy for Springs {
             progress: None,
             springs,
             spring_k: settings.step_weight,
+            drag: None,
         };
         let relaxed = minimize_cached(mech, contact, &relax, q, Some(clearance), 50, cache);
         let out = minimize_cached(

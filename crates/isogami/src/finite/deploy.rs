@@ -173,23 +173,33 @@ pub fn check_states(
     picks.dedup();
     picks
         .into_iter()
-        .map(|step| {
-            let q = &traj.steps[step].q;
-            let motion = analyze(mech, q, settings)
-                .map_err(|_| FiniteError::Eigen)?
-                .motion
-                .map_or_else(|| DVec::zeros(q.len()), |m| m.vector);
-            let poses = sheet.poses(mech, q);
-            let periodic = periodic_velocity(sheet, mech, &motion);
-            let m = sheet_mobility(sheet, mech, &poses, Some(&periodic), settings)?;
-            Ok(StateCheck {
-                step,
-                t: traj.t(step),
-                dof: m.dof,
-                follows_periodic: m.follows_periodic,
-            })
-        })
+        .map(|step| state_check(sheet, mech, traj, step, settings))
         .collect()
+}
+
+/// The sheet's degrees of freedom at accepted state `step` of `traj`, against the
+/// mechanism's periodic motion there ([`crate::mobility::analyze`]).
+pub fn state_check(
+    sheet: &FiniteSheet,
+    mech: &Mechanism,
+    traj: &Trajectory,
+    step: usize,
+    settings: MobilitySettings,
+) -> Result<StateCheck, FiniteError> {
+    let q = &traj.steps[step].q;
+    let motion = analyze(mech, q, settings)
+        .map_err(|_| FiniteError::Eigen)?
+        .motion
+        .map_or_else(|| DVec::zeros(q.len()), |m| m.vector);
+    let poses = sheet.poses(mech, q);
+    let periodic = periodic_velocity(sheet, mech, &motion);
+    let m = sheet_mobility(sheet, mech, &poses, Some(&periodic), settings)?;
+    Ok(StateCheck {
+        step,
+        t: traj.t(step),
+        dof: m.dof,
+        follows_periodic: m.follows_periodic,
+    })
 }
 
 /// How far the sheet's tiles are from where the periodic deployment puts them, over the

@@ -12,7 +12,9 @@
 //!   one, in a local basis, with the tiles that move in each;
 //! - [`complete`]: boundary completion to a sheet whose one motion is the periodic one;
 //! - [`deploy`]: a one-DOF sheet opening with contact among its own tiles (the periodic
-//!   deployment with the sheet's contact pairs), its measures and checks.
+//!   deployment with the sheet's contact pairs), its measures and checks;
+//! - [`pull`]: any sheet, floppy or not, as a mechanism of its own pulled apart by two
+//!   tiles, and how far its tiles leave the periodic motion.
 //!
 //! Counts are made at a generic opened state of the periodic motion: the closed state is a
 //! singular configuration (a closed rotating-squares patch has many first-order modes that
@@ -23,16 +25,21 @@ pub mod deploy;
 mod error;
 pub mod kernel;
 pub mod mobility;
+pub mod pull;
 pub mod region;
 pub mod sheet;
 
 pub use complete::{complete, Completion, CompletionReport, Context};
 pub use deploy::{
-    check_states, periodic_agreement, sheet_pairs, sheet_polygons, ClosedSheet, PeriodicAgreement,
-    SheetMeasures, StateCheck,
+    check_states, periodic_agreement, sheet_pairs, sheet_polygons, state_check, ClosedSheet,
+    PeriodicAgreement, SheetMeasures, StateCheck,
 };
 pub use error::FiniteError;
 pub use kernel::{sheet_kernel, SheetKernel};
 pub use mobility::{periodic_velocity, sheet_mobility, FloppyMode, SheetMobility, MOVER_FRACTION};
+pub use pull::{
+    default_grips, motion_deviation, sheet_mechanism, MotionDeviation, SheetMechanism,
+    LEAVE_TOLERANCE,
+};
 pub use region::{Region, MAX_REGION_CELLS};
 pub use sheet::{FiniteSheet, SheetJoint, SheetTile};
