@@ -141,19 +141,19 @@ impl PySheetPull {
 
 /// Pulls the finite sheet ``finite_sheet`` would make apart by two of its tiles, as a
 /// tester would: ``grips`` = (held, pulled) indices into its tiles, or ``None`` for the
-/// ends of the sheet along the direction it opens most. ``complete`` defaults to ``False``
-/// here: a raw region, floppy boundary and all, shows what an uncompleted patch does (its
-/// extra modes carry tiles away from the periodic motion); a completed sheet follows the
-/// motion, or leaves it only at a branch point. ``frames`` frames of tile poses (at least
-/// 2); other arguments as for ``finite_sheet``.
+/// ends of the sheet along the direction it opens most. With ``complete=False`` the raw
+/// region is pulled, floppy boundary and all: what an uncompleted patch does (its extra
+/// modes carry tiles away from the periodic motion); a completed sheet (the default) follows
+/// the motion, or leaves it only at a branch point. ``frames`` frames of tile poses (at
+/// least 2); other arguments as for ``finite_sheet``.
 ///
 /// Returns a ``SheetPull``. Raises ``FiniteError`` for bad grips or requests.
 ///
-/// >>> run = isogami.pull_sheet("rotating-squares", "2x2")
+/// >>> run = isogami.pull_sheet("rotating-squares", "2x2", complete=False)
 /// >>> run.dof, run.leaves is None
 /// (1, True)
 #[pyfunction]
-#[pyo3(signature = (design, region="6x6", *, edge_mm=20.0, t=0.3, complete=false, min_cover=0.5, grips=None, frames=24, settings=None, progress=None, timeout=None, **overrides))]
+#[pyo3(signature = (design, region="6x6", *, edge_mm=20.0, t=0.3, complete=true, min_cover=0.5, grips=None, frames=24, settings=None, progress=None, timeout=None, **overrides))]
 #[allow(clippy::too_many_arguments)]
 pub fn pull_sheet(
     py: Python<'_>,

@@ -751,7 +751,7 @@ def pull_sheet(
     *,
     edge_mm: float = 20.0,
     t: float = 0.3,
-    complete: bool = False,
+    complete: bool = True,
     min_cover: float = 0.5,
     grips: Optional[Tuple[int, int]] = None,
     frames: int = 24,
@@ -760,7 +760,7 @@ def pull_sheet(
     timeout: Optional[float] = None,
     **overrides: Any,
 ) -> SheetPull:
-    """The (raw, by default) finite sheet held by one tile and pulled apart by another."""
+    """The finite sheet (``complete=False``: the raw region) held by one tile and pulled apart by another."""
 
 def finite_sheet(
     design: DesignLike,

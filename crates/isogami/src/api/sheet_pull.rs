@@ -30,14 +30,12 @@ pub struct SheetPullRequest {
 }
 
 impl Default for SheetPullRequest {
-    /// The default sheet request but raw (what an uncompleted patch does), default grips, 24
+    /// The default sheet request (completed, like every finite-sheet entry point: set
+    /// `sheet.complete` to false for what an uncompleted patch does), default grips, 24
     /// frames.
     fn default() -> Self {
         SheetPullRequest {
-            sheet: SheetRequest {
-                complete: false,
-                ..SheetRequest::default()
-            },
+            sheet: SheetRequest::default(),
             grips: None,
             frames: 24,
         }
