@@ -292,13 +292,8 @@ impl PySheetDeployment {
     /// Tile poses per frame, shape (f, n, 3) as (x, y, θ).
     #[getter]
     fn poses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f64>>> {
-        let f = &self.inner.frames;
         let n = self.inner.analysis.sheet().len();
-        let v = f
-            .iter()
-            .flat_map(|r| r.poses.iter().flat_map(|p| [p.x, p.y, p.theta]))
-            .collect();
-        array(py, (f.len(), n, 3), v)
+        poses_array(py, self.inner.frames.iter().map(|f| &f.poses[..]), n)
     }
     /// The whole result as a dict (what ``isogami sheet --deploy --json`` prints).
     fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
@@ -412,6 +407,19 @@ pub fn deploy_sheet(
         lib_deploy_sheet(design, &request, progress)
     })?;
     Ok(PySheetDeployment { inner })
+}
+
+/// Tile poses of every frame as an (f, n, 3) array of (x, y, θ).
+pub(crate) fn poses_array<'py, 'a>(
+    py: Python<'py>,
+    frames: impl ExactSizeIterator<Item = &'a [isogami::deploy::TilePose]>,
+    tiles: usize,
+) -> PyResult<Bound<'py, PyArray3<f64>>> {
+    let count = frames.len();
+    let v = frames
+        .flat_map(|poses| poses.iter().flat_map(|p| [p.x, p.y, p.theta]))
+        .collect();
+    array(py, (count, tiles, 3), v)
 }
 
 /// Runs `f` on the design with the GIL released, its progress reported to the Python

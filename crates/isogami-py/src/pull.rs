@@ -2,8 +2,8 @@
 //! held by one tile and pulled apart by another, as a tester would, and how far its tiles
 //! leave the periodic motion (the library's `api::pull_sheet`), as numpy arrays.
 
-use crate::convert::{array, int_array, to_python};
-use crate::finite::{run_detached, sheet_request, PyFiniteSheet};
+use crate::convert::{int_array, to_python};
+use crate::finite::{poses_array, run_detached, sheet_request, PyFiniteSheet};
 use isogami::api::{pull_sheet as lib_pull_sheet, PullFrame, SheetPull, SheetPullRequest};
 use numpy::{PyArray1, PyArray3};
 use pyo3::prelude::*;
@@ -113,13 +113,8 @@ impl PySheetPull {
     /// Tile poses per frame, shape (f, n, 3) as (x, y, θ).
     #[getter]
     fn poses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f64>>> {
-        let f = &self.inner.frames;
         let n = self.inner.analysis.sheet().len();
-        let v = f
-            .iter()
-            .flat_map(|r| r.poses.iter().flat_map(|p| [p.x, p.y, p.theta]))
-            .collect();
-        array(py, (f.len(), n, 3), v)
+        poses_array(py, self.inner.frames.iter().map(|f| &f.poses[..]), n)
     }
     /// The whole result as a dict (what ``isogami sheet --pull --json`` prints).
     fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {

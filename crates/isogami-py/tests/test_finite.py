@@ -85,6 +85,7 @@ IH9 = "IH9:0.04739750492,0.35,0.225335752741:1x2:--aaabb--aa-"
 
 def test_a_pulled_raw_sheet_leaves_the_motion_and_equals_the_cli(cli):
     run = isogami.pull_sheet(IH9, "2x2", complete=False, frames=6)
+    assert isinstance(run, isogami.SheetPull)
     assert run.dof > 1 and not run.sheet.completed
     assert run.poses.shape == (6, len(run.sheet.tiles), 3)
     assert run.deviation.shape == run.extension.shape == run.periodic_t.shape == (6,)

@@ -115,6 +115,30 @@ pub fn finite_sheet(
     sheet_of_trajectory(design, &cell, &mech, &path.trajectory, request, requested)
 }
 
+/// What the finite deployment and the pull start from: the design's mechanism, its periodic
+/// deployment and the sheet `request` asks for, counted (and completed) on it. `frames` is
+/// checked first (at least 2, closed and last; `what` names the run in the refusal).
+pub(crate) fn sheet_on_its_path(
+    design: &Design,
+    request: &SheetRequest,
+    frames: usize,
+    what: &str,
+    progress: Progress<'_>,
+) -> Result<(Mechanism, super::DeployedPath, SheetAnalysis)> {
+    if frames < 2 {
+        return Err(FiniteError::BadRequest(format!(
+            "{frames} frames: a {what} has at least 2 (closed and last)"
+        ))
+        .into());
+    }
+    request.validate()?;
+    let (cell, mech) = assemble(design)?;
+    let requested = requested_sheet(&cell, &mech, request)?;
+    let path = deploy_path(design, &request.settings, progress)?;
+    let analysis = sheet_of_trajectory(design, &cell, &mech, &path.trajectory, request, requested)?;
+    Ok((mech, path, analysis))
+}
+
 /// The raw sheet of the request's region (refused when it holds no tile).
 pub(crate) fn requested_sheet(
     cell: &UnitCell,

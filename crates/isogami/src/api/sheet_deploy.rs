@@ -1,8 +1,8 @@
 //! The finite-deployment entry point: a one-DOF finite sheet of a design opened to its own
 //! contact limit, compared with the periodic sheet (see [`crate::finite::deploy`]).
 
-use super::finite::{requested_sheet, sheet_of_trajectory};
-use super::{assemble, deploy_path, SheetAnalysis, SheetRequest};
+use super::finite::sheet_on_its_path;
+use super::{SheetAnalysis, SheetRequest};
 use crate::deploy::{deploy_with, select_frames, EndReason, Progress, TilePose};
 use crate::error::Result;
 use crate::finite::{
@@ -101,26 +101,14 @@ pub fn deploy_sheet(
     request: &SheetDeployRequest,
     progress: Progress<'_>,
 ) -> Result<SheetDeployment> {
-    if request.frames < 2 {
-        return Err(FiniteError::BadRequest(format!(
-            "{} frames: a finite deployment has at least 2 (closed and last)",
-            request.frames
-        ))
-        .into());
-    }
-    request.sheet.validate()?;
-    let settings = &request.sheet.settings;
-    let (cell, mech) = assemble(design)?;
-    let requested = requested_sheet(&cell, &mech, &request.sheet)?;
-    let path = deploy_path(design, settings, &mut *progress)?;
-    let analysis = sheet_of_trajectory(
+    let (mech, path, analysis) = sheet_on_its_path(
         design,
-        &cell,
-        &mech,
-        &path.trajectory,
         &request.sheet,
-        requested,
+        request.frames,
+        "finite deployment",
+        &mut *progress,
     )?;
+    let settings = &request.sheet.settings;
     let mobility = analysis
         .completion
         .as_ref()

@@ -2,8 +2,8 @@
 //! held by one tile and pulled apart by another, as a tester would, and how far its tiles
 //! leave the periodic motion (see [`crate::finite::pull`]).
 
-use super::finite::{opened_step, requested_sheet, sheet_of_trajectory};
-use super::{assemble, deploy_path, SheetAnalysis, SheetRequest};
+use super::finite::{opened_step, sheet_on_its_path};
+use super::{SheetAnalysis, SheetRequest};
 use crate::contact::ContactModel;
 use crate::deploy::{pull_with, select_frames, EndReason, Progress, TilePose, PROBE_KERFS};
 use crate::error::Result;
@@ -118,26 +118,14 @@ pub fn pull_sheet(
     request: &SheetPullRequest,
     progress: Progress<'_>,
 ) -> Result<SheetPull> {
-    if request.frames < 2 {
-        return Err(FiniteError::BadRequest(format!(
-            "{} frames: a pull has at least 2 (closed and last)",
-            request.frames
-        ))
-        .into());
-    }
-    request.sheet.validate()?;
-    let settings = &request.sheet.settings;
-    let (cell, mech) = assemble(design)?;
-    let requested = requested_sheet(&cell, &mech, &request.sheet)?;
-    let path = deploy_path(design, settings, &mut *progress)?;
-    let analysis = sheet_of_trajectory(
+    let (mech, path, analysis) = sheet_on_its_path(
         design,
-        &cell,
-        &mech,
-        &path.trajectory,
         &request.sheet,
-        requested,
+        request.frames,
+        "pull",
+        &mut *progress,
     )?;
+    let settings = &request.sheet.settings;
     let sheet = analysis.sheet().clone();
     let dof = analysis
         .completion
