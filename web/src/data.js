@@ -124,6 +124,12 @@ class ServerData {
     });
   }
 
+  /** A finite region of a design: DOF, floppy tiles, completion, finite deployment
+   * (URLSearchParams of GET /api/sheet). */
+  sheet(params, signal) {
+    return getJson(`./api/sheet?${params}`, { signal });
+  }
+
   save(body) {
     return getJson('./api/designs', {
       method: 'POST',
@@ -238,6 +244,10 @@ class StaticData {
 
   async save() {
     return this.deploy();
+  }
+
+  async sheet() {
+    throw new ApiError('the finite sheet needs `isogami serve`', 'static', 'run `isogami sheet` from the command line, or `isogami serve --db FILE` and open the design there');
   }
 
   thumbnailUrl(spec) {

@@ -149,7 +149,7 @@ async fn every_format_downloads_the_librarys_bytes_with_its_type_and_name() {
     };
     for format in Format::ALL {
         let uri = format!(
-            "/api/export?design={}&format={format}&patch=2x3&edge_mm=12.5&t=0.5&kerf=0.02&frames=4",
+            "/api/export?design={}&format={format}&patch=2x3&edge_mm=12.5&t=0.5&kerf=0.02&frames=4&raw=true",
             enc(design)
         );
         let (reply, disposition) = download(&app, &uri).await;

@@ -23,6 +23,8 @@ use isogami::export::laser::LaserError;
 use isogami::export::{
     export_design, ExportError, ExportFiles, Format, PatchRequest, MAX_PATCH, MAX_PATCH_FRAMES,
 };
+use isogami::finite::FiniteError;
+use isogami::Error;
 use query::ExportQuery;
 use serde_json::{json, Value};
 use std::time::Duration;
@@ -65,6 +67,7 @@ pub fn catalog() -> Value {
             "t": 0.0,
             "kerf": ContactSettings::default().kerf,
             "frames": d.frames,
+            "raw": false,
         },
         "limits": {
             "max_patch": MAX_PATCH,
@@ -142,7 +145,8 @@ pub async fn export_bounded(query: ExportQuery, timeout: Duration) -> ApiResult<
 }
 
 /// An export error as an answer: the deployment's failures as for a live deployment (422,
-/// `timeout` when stopped), a sheet the library cannot lay out from the design's own geometry
+/// `timeout` when stopped), a rectangle without a one-DOF completion 422 `no_one_dof_sheet`
+/// with the library's reason and the hint to export it raw, a sheet the library cannot lay out from the design's own geometry
 /// 422 `export_failed`, every other refusal (a value of the request) 400 with the library's
 /// message.
 pub fn explain_export(e: &ExportError, timeout: Duration) -> ApiError {
@@ -153,6 +157,14 @@ pub fn explain_export(e: &ExportError, timeout: Duration) -> ApiError {
                 .into(),
             ..timed_out(timeout)
         },
+        ExportError::Library(Error::Finite(FiniteError::NoOneDofSheet { .. })) => ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "no_one_dof_sheet",
+            e.to_string(),
+            "export the raw rectangle instead (raw=true; `isogami export --raw`): it is written \
+             as it is, with its floppy boundary; `isogami sheet` shows why there is no \
+             completion",
+        ),
         ExportError::Library(inner) => explain(inner),
         ExportError::Degenerate { .. }
         | ExportError::Encode { .. }
