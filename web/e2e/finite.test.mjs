@@ -174,6 +174,7 @@ test('a floppy raw region names its DOF and highlights the API’s floppy tiles;
   assert.equal(Number(await data(page, 'tiles')), a.raw.tiles.length);
   const raw = await canvasPixels(page, '[data-testid="finite-canvas"]');
   assert.ok(pixelsOf(raw, FLOPPY_FILL) > flops.size * 4, 'the floppy tiles are filled in the highlight colour');
+  assert.ok((await screenshot(browser, page, 'design-finite-raw')) > 50);
 
   await byTestId(page, 'finite-view-completed').check();
   await byTestId(page, 't-slider').fill('0');
@@ -195,6 +196,7 @@ test('a floppy raw region names its DOF and highlights the API’s floppy tiles;
   assert.ok(summary.includes(`${(100 * c.report.covered_fraction).toFixed(1)} %`), summary);
   // Ghosts stay with the sheet as it opens (placed by the lattice of the deployed tiles).
   await byTestId(page, 't-slider').fill('1');
+  assert.ok((await screenshot(browser, page, 'design-finite-completed-open')) > 50);
   assert.equal(Number(await data(page, 'removed')), c.report.removed.length);
   assert.deepEqual(problems(page, floppy.live ? [/^404 GET \S+\/api\/design\?spec=/] : []), []);
 });
