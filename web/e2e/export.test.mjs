@@ -162,6 +162,7 @@ test('the download is the completed sheet by default and the rectangle when raw 
   const want = sheet.analysis.completion.sheet.tiles.map((t) => key([t.cell[0], t.cell[1], t.tile])).sort();
   assert.deepEqual(fold['faces_isogami:tile'].map(key).sort(), want, 'the file holds the API’s completed sheet');
   assert.notEqual(fold.faces_vertices.length, 16 * tiles);
+  assert.doesNotMatch(await byTestId(page, 'export-status').textContent(), /warning/);
 
   await byTestId(page, 'export-sheet-raw').check();
   const commandRaw = await byTestId(page, 'export-command').textContent();
@@ -169,6 +170,9 @@ test('the download is the completed sheet by default and the rectangle when raw 
   const raw = await downloadExport(page);
   assert.equal(raw.name, completed.name);
   const rect = JSON.parse(raw.bytes.toString('utf8'));
+  // The raw rectangle's DOF, as the finite-sheet analysis counts it, in the library's warning.
+  const dof = sheet.analysis.raw_mobility.dof;
+  if (dof !== 1) assert.match(await byTestId(page, 'export-status').textContent(), new RegExp(`warning: .*\\b${dof} degrees of freedom`));
   assert.equal(rect.faces_vertices.length, 16 * tiles);
   const cells = new Set(rect['faces_isogami:tile'].map(([i, j]) => `${i},${j}`));
   assert.equal(cells.size, 16);

@@ -32,8 +32,9 @@ async function asJson(res) {
   throw new ApiError(`${res.status} ${res.statusText} for ${res.url}`, 'http', '', res.status);
 }
 
-/** A file download: the body as a Blob and the file name of its Content-Disposition. Errors
- * come back as ApiError with the server's message (no file). */
+/** A file download: the body as a Blob, the file name of its Content-Disposition and the
+ * server's warning about it (or null). Errors come back as ApiError with the server's message
+ * (no file). */
 async function getFile(url, signal) {
   let res;
   try {
@@ -43,7 +44,13 @@ async function getFile(url, signal) {
     throw new ApiError(`cannot reach ${url}: ${e.message}`, 'network', 'is `isogami serve` still running?');
   }
   if (!res.ok) await asJson(res);
-  return { blob: await res.blob(), disposition: res.headers.get('content-disposition') || '' };
+  // The library's warning about the sheet written (a raw rectangle's DOF), percent-encoded.
+  const warning = res.headers.get('x-isogami-warning');
+  return {
+    blob: await res.blob(),
+    disposition: res.headers.get('content-disposition') || '',
+    warning: warning ? decodeURIComponent(warning.replace(/\+/g, ' ')) : null,
+  };
 }
 
 async function getJson(url, options) {

@@ -116,7 +116,7 @@ export function createExportPanel(container, { data, current, initial }) {
     el.button.disabled = true;
     el.status.textContent = 'exporting…';
     try {
-      const { blob, disposition } = await data.exportFile(exportParams(f, catalog), controller.signal);
+      const { blob, disposition, warning } = await data.exportFile(exportParams(f, catalog), controller.signal);
       const name = attachmentName(disposition) ?? exportFileName(f.spec, f.rows, f.cols, formatOf(catalog, f.format));
       const url = URL.createObjectURL(blob);
       const a = h('a', { href: url, download: name, hidden: true });
@@ -124,7 +124,7 @@ export function createExportPanel(container, { data, current, initial }) {
       a.click();
       a.remove();
       setTimeout(() => URL.revokeObjectURL(url), 10000);
-      el.status.textContent = `saved ${name} (${size(blob.size)})`;
+      el.status.textContent = `saved ${name} (${size(blob.size)})${warning ? `; warning: ${warning}` : ''}`;
     } catch (e) {
       if (e.name === 'AbortError') return;
       el.status.textContent = '';

@@ -8,7 +8,8 @@
 
 mod common;
 
-use axum::http::StatusCode;
+use axum::body::Body;
+use axum::http::{Request, StatusCode};
 use common::{app_with, assert_error, catalogue, enc, get, numbers};
 use isogami::api::{deploy_sheet, finite_sheet, resolve_design, SheetDeployRequest, SheetRequest};
 use isogami::contact::ContactSettings;
@@ -19,6 +20,7 @@ use isogami::math::{rotation, Vec2};
 use isogami_web::ServerSettings;
 use serde_json::Value;
 use std::time::{Duration, Instant};
+use tower::ServiceExt;
 
 /// A design whose raw 6×6 region flops and whose completion keeps 79.2 % of it, growing the
 /// ring and pruning (the README's example).
@@ -367,6 +369,37 @@ async fn exports_write_the_completed_sheet_unless_raw_is_asked() {
     }
     let reply = get(&app, &format!("{base}&raw=true&complete=true")).await;
     assert_error(&reply, StatusCode::BAD_REQUEST, "raw and complete");
+    // The raw rectangle comes with the library's warning naming its DOF; the completion not.
+    let warning = |query: &str| {
+        let app = app.clone();
+        let uri = format!("{base}{query}");
+        async move {
+            let response = app
+                .oneshot(Request::builder().uri(uri).body(Body::empty()).unwrap())
+                .await
+                .unwrap();
+            response.headers().get("x-isogami-warning").map(|v| {
+                form_urlencoded::parse(format!("w={}", v.to_str().unwrap()).as_bytes())
+                    .next()
+                    .unwrap()
+                    .1
+                    .into_owned()
+            })
+        }
+    };
+    let design = resolve_design(FLOPPY).unwrap();
+    let raw_dof = finite_sheet(&design, &request("6x6"), &mut |_| true)
+        .unwrap()
+        .raw_mobility
+        .dof;
+    let said = warning("&raw=true")
+        .await
+        .expect("a warning for the raw rectangle");
+    assert!(
+        said.contains(&format!("{raw_dof} degrees of freedom")),
+        "{said}"
+    );
+    assert_eq!(warning("").await, None);
 }
 
 #[tokio::test]

@@ -86,6 +86,9 @@ pub struct Download {
     pub media_type: &'static str,
     /// `<design-slug>-<R>x<C>.<ext>` (`….<format>.zip` for a folder format).
     pub file_name: String,
+    /// The library's warning about the sheet written (a raw rectangle that is not one DOF
+    /// names its DOF), as `isogami export` prints it.
+    pub warning: Option<String>,
 }
 
 /// The download's file name for the design `spec`.
@@ -122,24 +125,26 @@ pub async fn export_bounded(query: ExportQuery, timeout: Duration) -> ApiResult<
     let spec = design.to_string();
     let name = file_name(&spec, &query);
     let format = query.format;
-    let files = run_bounded(timeout, move |deadline| {
+    let (patch, files) = run_bounded(timeout, move |deadline| {
         export_design(&design, &query.request, format, &query.options, &mut |_| {
             deadline.keep_going()
         })
     })
     .await?
-    .map_err(|e| explain_export(&e, timeout))?
-    .1;
+    .map_err(|e| explain_export(&e, timeout))?;
+    let warning = patch.finite.warning();
     Ok(match files {
         ExportFiles::One(bytes) => Download {
             bytes,
             media_type: format.media_type(),
             file_name: name,
+            warning,
         },
         ExportFiles::Folder(named) => Download {
             bytes: archive::zip_files(&named)?,
             media_type: ZIP,
             file_name: name,
+            warning,
         },
     })
 }
