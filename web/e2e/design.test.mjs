@@ -71,9 +71,23 @@ test('moving a shape slider brings a new trajectory and the plot changes', async
     for (const key of ['ArrowRight', 'ArrowLeft']) {
       const slider = byTestId(page, 'param-v0');
       await slider.focus();
+      // The key presses may start more than one deployment (each one 100 ms after the last
+      // press, the previous one aborted); the page shows the last to answer, once settled.
+      const responses = [];
+      const listener = (r) => {
+        if (r.url().endsWith('/api/deploy') && r.request().method() === 'POST') responses.push(r);
+      };
+      page.on('response', listener);
       const response = page.waitForResponse((r) => r.url().endsWith('/api/deploy') && r.request().method() === 'POST');
       for (let k = 0; k < 6; k += 1) await slider.press(key);
-      const res = await response;
+      await response;
+      let seen = -1;
+      while (seen !== responses.length) {
+        seen = responses.length;
+        await page.waitForTimeout(1000);
+      }
+      page.off('response', listener);
+      const res = responses[responses.length - 1];
       if (res.status() !== 200) continue; // this move gave an invalid tile; the other way may not
       await page.waitForFunction((n) => Number(document.body.dataset.deployments) > n, count);
       const body = await res.json();

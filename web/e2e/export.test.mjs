@@ -1,9 +1,18 @@
 // The design page's "Export / make it" panel over a read-only `isogami serve`, in real
 // headless Chromium: a catalogue design downloads as a laser SVG in mm with a cut group
 // (parsed in node by an XML parser), and the command line shown under the form writes the
-// same bytes; a changed patch and format (FOLD, 2×3) shows in the downloaded file's faces,
-// cells and frames; an edited design exports the edited shape; a hinge too wide is explained
-// in the panel and nothing is downloaded.
+// same bytes; by default the file is the rectangle's completion to one DOF (the tiles of
+// GET /api/sheet's completion), and "raw rectangle" writes every tile of the rows × columns,
+// each with a command that writes the same bytes; a rectangle without a completion is
+// refused in the panel with the library's reason; a changed patch and format (FOLD, 2×3)
+// shows in the downloaded file's faces, cells and frames; an edited design exports the edited
+// shape; a hinge too wide is explained in the panel and nothing is downloaded.
+//
+// The CLI's default sheet: the page writes commands for `isogami export` whose default is the
+// completed sheet and whose `--raw` writes the rectangle. A binary from before that change
+// (default raw, `--complete` to complete, no `--raw`) is detected from its --help, and the
+// shown command is then translated (`--complete` added for the completed sheet, `--raw`
+// dropped) before it is run; `cliRuns` says which.
 
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -19,13 +28,60 @@ import { slug } from '../src/schema.js';
 let server;
 let browser;
 let designs;
+let catalog;
+/** A design whose 4×4 rectangle completes to a sheet other than the rectangle, with the API's
+ * completion; and one whose 4×4 rectangle has no completion (or null). */
+let completes = null;
+let noCompletion = null;
+/** Whether the CLI binary writes the completed sheet by default and takes --raw. */
+let newCli = false;
+
+/** The 4×4 finite sheet of a catalogue row, as GET /api/sheet answers (no deployment). */
+async function sheetOf(row, region = '4x4') {
+  const kerf = Math.abs(row.kerf - catalog.defaults.kerf) > 1e-12 ? `&kerf=${row.kerf}` : '';
+  const res = await fetch(`${server.base}/api/sheet?design=${encodeURIComponent(row.spec)}&region=${region}${kerf}`);
+  return res.status === 200 ? res.json() : null;
+}
 
 before(async () => {
   server = await startServer({ args: ['--read-only'] });
   browser = await launchBrowser();
-  designs = (await allApiRows(server.base)).filter((r) => r.params.length > 0 && r.dof === 1);
+  catalog = await getJson(`${server.base}/api/export/formats`);
+  const all = await allApiRows(server.base);
+  designs = all.filter((r) => r.params.length > 0 && r.dof === 1);
   assert.ok(designs.length > 0, 'the test database has a design with shape parameters');
+  for (const row of all.filter((r) => r.dof === 1).slice(0, 60)) {
+    if (completes && noCompletion) break;
+    const a = await sheetOf(row);
+    if (!a) continue;
+    const c = a.analysis.completion;
+    if (!completes && c && c.report.removed.length + c.report.added.length > 0) completes = { row, sheet: a };
+    if (!noCompletion && a.refused) noCompletion = { row, sheet: a };
+  }
+  assert.ok(completes, 'the test database has a design whose 4×4 rectangle completes to another sheet');
+  const { stdout } = await promisify(execFile)(env().bin, ['export', '--help']);
+  newCli = /--raw\b/.test(stdout);
 });
+
+/** The shown command as the CLI binary under test reads it (see the header). */
+function cliRuns(command) {
+  if (newCli) return command;
+  return / --raw( |$)/.test(command) ? command.replace(/ --raw( |$)/, '$1') : `${command} --complete`;
+}
+
+/** Runs the command the page shows in a scratch folder; the bytes of `name` it wrote. */
+async function runShown(command, name) {
+  const dir = await mkdtemp(join(tmpdir(), 'isogami-export-'));
+  try {
+    await promisify(execFile)('bash', ['-c', `"$ISOGAMI_BIN" ${cliRuns(command).slice('isogami '.length)}`], {
+      cwd: dir,
+      env: { ...process.env, ISOGAMI_BIN: env().bin },
+    });
+    return await readFile(join(dir, name));
+  } finally {
+    await rm(dir, { recursive: true, force: true });
+  }
+}
 
 after(async () => {
   await browser?.close();
@@ -52,7 +108,7 @@ const mm = (text) => {
 
 test('a catalogue design downloads as a laser SVG in mm, and the CLI command writes the same file', async () => {
   const page = await newPage(browser);
-  const spec = designs[0].spec;
+  const spec = completes.row.spec;
   await openDesign(page, spec);
   assert.equal(await byTestId(page, 'export-format').inputValue(), 'svg');
   assert.match(await byTestId(page, 'export-format-help').textContent(), /laser/);
@@ -80,16 +136,7 @@ test('a catalogue design downloads as a laser SVG in mm, and the CLI command wri
   // The command shown under the form writes the same bytes.
   const command = await byTestId(page, 'export-command').textContent();
   assert.ok(command.startsWith(`isogami export --design '${spec}' --format svg --patch 4x4`), command);
-  const dir = await mkdtemp(join(tmpdir(), 'isogami-export-'));
-  try {
-    await promisify(execFile)('bash', ['-c', `"$ISOGAMI_BIN" ${command.slice('isogami '.length)}`], {
-      cwd: dir,
-      env: { ...process.env, ISOGAMI_BIN: env().bin },
-    });
-    assert.ok((await readFile(join(dir, file.name))).equals(file.bytes), 'the CLI wrote the same file');
-  } finally {
-    await rm(dir, { recursive: true, force: true });
-  }
+  assert.ok((await runShown(command, file.name)).equals(file.bytes), `the CLI wrote the same file (${cliRuns(command)})`);
   // Every field of the panel has a label.
   const unlabelled = await page.$$eval('#export-panel input, #export-panel select', (els) =>
     els.filter((e) => e.labels.length === 0).map((e) => e.id || e.name),
@@ -97,6 +144,76 @@ test('a catalogue design downloads as a laser SVG in mm, and the CLI command wri
   assert.deepEqual(unlabelled, []);
   assert.ok((await screenshot(browser, page, 'design-export')) > 50);
   assert.deepEqual(problems(page), []);
+});
+
+test('the download is the completed sheet by default and the rectangle when raw is chosen; both commands write the same bytes', async () => {
+  const page = await newPage(browser);
+  const { row, sheet } = completes;
+  await openDesign(page, row.spec);
+  const view = await getJson(`${server.base}/api/design?spec=${encodeURIComponent(row.spec)}`);
+  const tiles = view.geometry.tiles.length;
+  await byTestId(page, 'export-format').selectOption('fold');
+  assert.ok(await byTestId(page, 'export-sheet-completed').isChecked(), 'the completed sheet is the default');
+  const key = (t) => `${t[0]},${t[1]}#${t[2]}`;
+  const completed = await downloadExport(page);
+  const commandCompleted = await byTestId(page, 'export-command').textContent();
+  assert.doesNotMatch(commandCompleted, /--raw|--complete/);
+  const fold = JSON.parse(completed.bytes.toString('utf8'));
+  const want = sheet.analysis.completion.sheet.tiles.map((t) => key([t.cell[0], t.cell[1], t.tile])).sort();
+  assert.deepEqual(fold['faces_isogami:tile'].map(key).sort(), want, 'the file holds the API’s completed sheet');
+  assert.notEqual(fold.faces_vertices.length, 16 * tiles);
+  assert.doesNotMatch(await byTestId(page, 'export-status').textContent(), /warning/);
+
+  await byTestId(page, 'export-sheet-raw').check();
+  const commandRaw = await byTestId(page, 'export-command').textContent();
+  assert.match(commandRaw, / --raw( |$)/);
+  const raw = await downloadExport(page);
+  assert.equal(raw.name, completed.name);
+  const rect = JSON.parse(raw.bytes.toString('utf8'));
+  // The raw rectangle's DOF, as the finite-sheet analysis counts it, in the library's warning.
+  const dof = sheet.analysis.raw_mobility.dof;
+  if (dof !== 1) assert.match(await byTestId(page, 'export-status').textContent(), new RegExp(`warning: .*\\b${dof} degrees of freedom`));
+  assert.equal(rect.faces_vertices.length, 16 * tiles);
+  const cells = new Set(rect['faces_isogami:tile'].map(([i, j]) => `${i},${j}`));
+  assert.equal(cells.size, 16);
+  for (const c of cells) assert.match(c, /^[0-3],[0-3]$/);
+
+  assert.ok((await runShown(commandCompleted, completed.name)).equals(completed.bytes), `the completed sheet's command (${cliRuns(commandCompleted)})`);
+  assert.ok((await runShown(commandRaw, raw.name)).equals(raw.bytes), `the raw rectangle's command (${cliRuns(commandRaw)})`);
+  assert.deepEqual(problems(page), []);
+});
+
+test('a rectangle without a one-DOF completion is refused in the panel with the library’s reason; raw downloads', async (t) => {
+  if (!noCompletion) {
+    t.skip('no design of the test database refuses its 4×4 completion');
+    return;
+  }
+  const page = await newPage(browser);
+  await openDesign(page, noCompletion.row.spec);
+  await byTestId(page, 'export-format').selectOption('fold');
+  let downloads = 0;
+  page.on('download', () => {
+    downloads += 1;
+  });
+  const response = page.waitForResponse((r) => r.url().includes('/api/export?'));
+  await byTestId(page, 'export-download').click();
+  const res = await response;
+  assert.equal(res.status(), 422);
+  const body = await res.json();
+  assert.equal(body.kind, 'no_one_dof_sheet');
+  // The same reason as the finite-sheet analysis of that rectangle.
+  assert.ok(body.error.includes(noCompletion.sheet.refused.replace(/^no one-DOF sheet in this region: /, '')), `${body.error} / ${noCompletion.sheet.refused}`);
+  const error = byTestId(page, 'export-error');
+  await error.waitFor({ state: 'visible' });
+  assert.equal(await error.locator('strong').textContent(), body.error);
+  assert.match(await error.textContent(), /raw/);
+  await page.waitForTimeout(300);
+  assert.equal(downloads, 0);
+  await byTestId(page, 'export-sheet-raw').check();
+  const file = await downloadExport(page);
+  assert.ok(JSON.parse(file.bytes.toString('utf8')).faces_vertices.length > 0);
+  assert.ok(await error.isHidden());
+  assert.deepEqual(problems(page, [/^422 GET \S+\/api\/export\?/]), []);
 });
 
 test('a 2×3 FOLD download has the patch’s faces, cells and frames', async () => {
@@ -108,10 +225,12 @@ test('a 2×3 FOLD download has the patch’s faces, cells and frames', async () 
   const tiles = view.geometry.tiles;
   await byTestId(page, 'export-format').selectOption('fold');
   assert.ok(await byTestId(page, 'export-group-laser').isHidden(), 'laser settings hidden for FOLD');
+  // The rectangle as it is (the completed sheet is the test above).
+  await byTestId(page, 'export-sheet-raw').check();
   await byTestId(page, 'export-rows').fill('2');
   await byTestId(page, 'export-cols').fill('3');
   await byTestId(page, 'export-state-open').check();
-  assert.match(await byTestId(page, 'export-command').textContent(), /--format fold --patch 2x3 .*--t open/);
+  assert.match(await byTestId(page, 'export-command').textContent(), /--format fold --patch 2x3 .*--t open.* --raw/);
   const file = await downloadExport(page);
   assert.equal(file.name, `${slug(spec)}-2x3.fold`);
   const fold = JSON.parse(file.bytes.toString('utf8'));
@@ -165,6 +284,8 @@ test('an edited design exports the edited shape', async () => {
   for (const design of designs.slice(0, 5)) {
     await openDesign(page, design.spec);
     await byTestId(page, 'export-format').selectOption('fold');
+    // The rectangle: an edit may change which tiles a completion keeps.
+    await byTestId(page, 'export-sheet-raw').check();
     const before = JSON.parse((await downloadExport(page)).bytes.toString('utf8'));
     assert.equal(before['isogami:design'], design.spec);
     const edited = await editShape(page);

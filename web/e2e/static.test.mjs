@@ -1,7 +1,7 @@
 // The static site written by `isogami site`, served by a plain file server under a sub-path:
 // it shows the same catalogue as the server (count, filtered count), opens a design from a
-// card with live design shown as unavailable and the export panel's command line instead of
-// downloads; and the JS query engine of the static site
+// card with live design shown as unavailable, the export panel's command line instead of
+// downloads and the finite-sheet panel saying it needs the server; and the JS query engine of the static site
 // answers like the server's API on the same database (totals, page order, facet counts).
 
 import { after, before, test } from 'node:test';
@@ -74,6 +74,10 @@ test('the static site shows the same catalogue and opens a design', async () => 
   assert.match(await command.textContent(), / --format kirigami-sim .* --out \S+-4x4\.kirigami-sim$/);
   assert.match(await byTestId(page, 'export-panel').textContent(), /Downloads need `isogami serve`/);
   assert.ok(await byTestId(page, 'export-download').isDisabled());
+  // The finite-sheet panel says it needs the server and asks nothing.
+  await byTestId(page, 'finite-unavailable').waitFor({ state: 'visible' });
+  assert.match(await byTestId(page, 'finite-unavailable').textContent(), /needs `isogami serve`/);
+  assert.equal(await byTestId(page, 'finite-canvas').count(), 0);
   assert.ok((await screenshot(browser, page, 'static-design')) > 50);
   assert.deepEqual(problems(page), []);
 });

@@ -32,8 +32,9 @@ async function asJson(res) {
   throw new ApiError(`${res.status} ${res.statusText} for ${res.url}`, 'http', '', res.status);
 }
 
-/** A file download: the body as a Blob and the file name of its Content-Disposition. Errors
- * come back as ApiError with the server's message (no file). */
+/** A file download: the body as a Blob, the file name of its Content-Disposition and the
+ * server's warning about it (or null). Errors come back as ApiError with the server's message
+ * (no file). */
 async function getFile(url, signal) {
   let res;
   try {
@@ -43,7 +44,13 @@ async function getFile(url, signal) {
     throw new ApiError(`cannot reach ${url}: ${e.message}`, 'network', 'is `isogami serve` still running?');
   }
   if (!res.ok) await asJson(res);
-  return { blob: await res.blob(), disposition: res.headers.get('content-disposition') || '' };
+  // The library's warning about the sheet written (a raw rectangle's DOF), percent-encoded.
+  const warning = res.headers.get('x-isogami-warning');
+  return {
+    blob: await res.blob(),
+    disposition: res.headers.get('content-disposition') || '',
+    warning: warning ? decodeURIComponent(warning.replace(/\+/g, ' ')) : null,
+  };
 }
 
 async function getJson(url, options) {
@@ -122,6 +129,12 @@ class ServerData {
       headers: { 'content-type': 'application/json' },
       body: JSON.stringify({ design: spec, index, value }),
     });
+  }
+
+  /** A finite region of a design: DOF, floppy tiles, completion, finite deployment
+   * (URLSearchParams of GET /api/sheet). */
+  sheet(params, signal) {
+    return getJson(`./api/sheet?${params}`, { signal });
   }
 
   save(body) {
@@ -238,6 +251,10 @@ class StaticData {
 
   async save() {
     return this.deploy();
+  }
+
+  async sheet() {
+    throw new ApiError('the finite sheet needs `isogami serve`', 'static', 'run `isogami sheet` from the command line, or `isogami serve --db FILE` and open the design there');
   }
 
   thumbnailUrl(spec) {

@@ -5,7 +5,8 @@
 // measure; the spec with a copy button; downloads; and, over `isogami serve`, live design
 // (editor.js): each change is deployed on the server (debounced, the previous request
 // aborted) and explained in place when it fails. A design not in the database is deployed
-// live; the view state is kept in the URL.
+// live; the view state is kept in the URL. Beside the periodic figures, the finite-sheet panel
+// (finite-panel.js): what a sheet cut to a region does, animated by the same t and Play.
 
 import { openData, ApiError } from './data.js';
 import { h, fmt, showNotice, clearNotice, debounce } from './dom.js';
@@ -18,6 +19,7 @@ import { download, fileStem, frameSvg, trajectoryCsv } from './export.js';
 import { facetLabel } from './schema.js';
 import { createExportPanel } from './export-panel.js';
 import { createMotionPanel } from './motion-panel.js';
+import { createFinitePanel } from './finite-panel.js';
 
 const $ = (id) => document.getElementById(id);
 const PLAY_SECONDS = 4; // t from 0 to 1 at speed 1
@@ -31,6 +33,7 @@ let editor = null;
 let playing = false;
 let inflight = null;
 let exportPanel = null;
+let finitePanel = null;
 
 async function main() {
   data = await openData();
@@ -53,10 +56,20 @@ async function main() {
   } catch (e) {
     families = [];
   }
+  try {
+    defaultKerf = (await data.exportCatalog()).defaults.kerf;
+  } catch {
+    defaultKerf = null;
+  }
   exportPanel = createExportPanel($('export-panel'), {
     data,
     current: () => (view ? { spec: view.spec, kerf: view.report.kerf, t: state.t } : null),
     initial: { rows: state.rows, cols: state.cols },
+  });
+  finitePanel = createFinitePanel($('finite-panel'), {
+    data,
+    current: () => (view ? { spec: view.spec, kerf: view.report.kerf } : null),
+    defaultKerf: () => defaultKerf,
   });
   motionPanel = createMotionPanel($('motion-section'), $('motion-variants'), { data });
   editor = createEditor($('editor'), {
@@ -73,6 +86,7 @@ async function main() {
 
 let plots;
 let motionPanel;
+let defaultKerf = null;
 
 /** The stored design, or a live deployment when it is not stored or another kerf is asked. */
 async function load() {
@@ -175,6 +189,7 @@ function showView(v, { fromEditor }) {
   document.title = `${v.spec} · isogami`;
   setStatus(fromEditor ? `re-simulated: ${frames.length} frames, ${v.report.steps} steps` : '');
   document.body.dataset.deployments = String(Number(document.body.dataset.deployments || 0) + 1);
+  finitePanel.show();
   renderFrame();
 }
 
@@ -187,6 +202,7 @@ function renderFrame() {
   $('t').value = String(state.t);
   $('t-value').textContent = state.t.toFixed(3);
   renderFrameMeasures(frame);
+  finitePanel?.render(state.t);
   exportPanel?.update();
   saveUrl();
 }

@@ -1,6 +1,7 @@
 // The design page's "Export / make it" panel: a form built from the export catalogue (the
 // formats with their descriptions, and for each settings group its fields, shown only for
-// the formats that use it), the patch rows × columns, the scale (mean edge or patch width in
+// the formats that use it), the patch rows × columns, the sheet (the rectangle's completion to
+// one degree of freedom, or the raw rectangle), the scale (mean edge or patch width in
 // mm) and the state (closed, the slider's t, open). It exports what is on screen: the
 // design page tells it the current spec, kerf and t. Download fetches GET /api/export and
 // saves the answer under the server's file name; an error is shown in the panel and nothing
@@ -35,6 +36,7 @@ export function createExportPanel(container, { data, current, initial }) {
       format: el.format.value,
       rows: Number(el.rows.value),
       cols: Number(el.cols.value),
+      sheet: container.querySelector('input[name="export-sheet"]:checked')?.value ?? 'completed',
       scale: el.scale.value,
       mm: el.mm.value.trim() === '' ? catalog.defaults.edge_mm : Number(el.mm.value),
       state: container.querySelector('input[name="export-state"]:checked')?.value ?? 'closed',
@@ -114,7 +116,7 @@ export function createExportPanel(container, { data, current, initial }) {
     el.button.disabled = true;
     el.status.textContent = 'exporting…';
     try {
-      const { blob, disposition } = await data.exportFile(exportParams(f, catalog), controller.signal);
+      const { blob, disposition, warning } = await data.exportFile(exportParams(f, catalog), controller.signal);
       const name = attachmentName(disposition) ?? exportFileName(f.spec, f.rows, f.cols, formatOf(catalog, f.format));
       const url = URL.createObjectURL(blob);
       const a = h('a', { href: url, download: name, hidden: true });
@@ -122,7 +124,7 @@ export function createExportPanel(container, { data, current, initial }) {
       a.click();
       a.remove();
       setTimeout(() => URL.revokeObjectURL(url), 10000);
-      el.status.textContent = `saved ${name} (${size(blob.size)})`;
+      el.status.textContent = `saved ${name} (${size(blob.size)})${warning ? `; warning: ${warning}` : ''}`;
     } catch (e) {
       if (e.name === 'AbortError') return;
       el.status.textContent = '';
@@ -177,6 +179,14 @@ export function createExportPanel(container, { data, current, initial }) {
         ' ',
         ...label,
       );
+    const sheetRadio = (value, label) =>
+      h(
+        'label',
+        { class: 'radio' },
+        h('input', { type: 'radio', name: 'export-sheet', value, testid: `export-sheet-${value}`, checked: value === 'completed', onchange: update }),
+        ' ',
+        label,
+      );
     el.groups = {};
     const groups = catalog.settings.map((g) => {
       const box = h('fieldset', { class: 'export-group', testid: `export-group-${g.name}` }, h('legend', {}, g.label), g.fields.map((f) => settingInput(g, f)));
@@ -199,6 +209,18 @@ export function createExportPanel(container, { data, current, initial }) {
         h('span', { 'aria-hidden': 'true' }, '×'),
         h('label', { for: 'export-cols' }, 'columns'),
         el.cols,
+      ),
+      h(
+        'fieldset',
+        { class: 'export-sheet' },
+        h('legend', {}, 'sheet'),
+        sheetRadio('completed', 'completed sheet (one DOF)'),
+        sheetRadio('raw', 'raw rectangle'),
+        h(
+          'p',
+          { class: 'help' },
+          'The completed sheet is the rectangle with the tiles that would flop at its boundary removed and the ring that closes its open loops added, so it opens with the design’s one motion; it is refused, with the reason, when there is none. The raw rectangle is every tile of the rows × columns as it is.',
+        ),
       ),
       h(
         'div',

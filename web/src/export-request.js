@@ -4,11 +4,13 @@
 // Pure functions over a form state and the export catalogue (GET /api/export/formats, or a
 // static site's data/site.json `export`); export-panel.js draws the form.
 //
-// Form state: { spec, kerf, format, rows, cols, scale: 'edge'|'width', mm, state:
-// 'closed'|'current'|'open', t, settings: {group: {key: text}} } where `settings` holds only
+// Form state: { spec, kerf, format, rows, cols, sheet: 'completed'|'raw', scale: 'edge'|'width',
+// mm, state: 'closed'|'current'|'open', t, settings: {group: {key: text}} } where `settings` holds only
 // the fields the user set (an empty field means the library's default, or the preset's
 // value). Values are kept per group: two groups may share a key (a hinge width for laser
-// sheets and for printed sheets) and only the groups of the chosen format are sent.
+// sheets and for printed sheets) and only the groups of the chosen format are sent. The sheet
+// is the rows × columns rectangle's completion to one degree of freedom (the default of the
+// server and of `isogami export`) unless `sheet` is 'raw' (`raw=true`, `--raw`).
 
 import { slug } from './schema.js';
 
@@ -44,6 +46,7 @@ export function exportPairs(form, catalog) {
     [form.scale === 'width' ? 'width_mm' : 'edge_mm', String(form.mm)],
     ['t', form.state === 'open' ? 'open' : form.state === 'current' ? tText(form.t) : '0'],
   ];
+  if (form.sheet === 'raw') pairs.push(['raw', 'true']);
   const kerf = Number(form.kerf);
   if (form.kerf !== null && form.kerf !== undefined && Math.abs(kerf - catalog.defaults.kerf) > 1e-12) {
     pairs.push(['kerf', String(kerf)]);
@@ -95,7 +98,7 @@ export function cliCommand(form, catalog) {
   const flags = new Map(catalog.settings.flatMap((g) => g.fields).map((f) => [f.name, f]));
   for (const [key, value] of exportPairs(form, catalog)) {
     const flag = `--${key.replace(/_/g, '-')}`;
-    if (flags.get(key)?.kind === 'flag') {
+    if (flags.get(key)?.kind === 'flag' || key === 'raw') {
       if (value === 'true') words.push(flag);
       continue;
     }

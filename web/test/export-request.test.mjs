@@ -57,7 +57,7 @@ function pairsOfCommand(line) {
       i += 1;
       continue;
     }
-    if (key === 'labels') pairs.push([key, 'true']);
+    if (key === 'labels' || key === 'raw') pairs.push([key, 'true']);
     else {
       pairs.push([key, words[i + 1]]);
       i += 1;
@@ -72,6 +72,8 @@ test('the CLI command carries exactly the query of the download', () => {
     form({ state: 'open', scale: 'width', mm: 300, kerf: 0.02 }),
     form({ state: 'closed', settings: { laser: { material: 'card', hinge_mm: '0.8', labels: true, cut_colour: '#ff00ff' } } }),
     form({ spec: "{\"family\": \"it's\"}", format: 'fold', settings: { laser: { hinge_mm: '9' } } }),
+    form({ sheet: 'raw', format: 'fold' }),
+    form({ sheet: 'completed', state: 'closed' }),
   ];
   for (const f of cases) {
     const pairs = exportPairs(f, catalog);
@@ -108,6 +110,20 @@ test('the query holds the state, the scale and only the settings the format uses
   assert.equal(new Map(exportPairs(form({ format: 'svg', settings: both }), shared)).get('hinge_mm'), '2');
   assert.deepEqual(fieldsOf(catalog, 'fold'), []);
   assert.deepEqual(fieldsOf(catalog, 'svg').map((f) => f.name), ['material', 'hinge_mm', 'cut_colour', 'labels']);
+});
+
+test('the completed sheet is the default; the raw rectangle is raw=true and --raw', () => {
+  const get = (f, key) => new Map(exportPairs(f, catalog)).get(key);
+  // Nothing is sent for the completed sheet: the server's and the CLI's default.
+  assert.equal(get(form(), 'raw'), undefined);
+  assert.equal(get(form({ sheet: 'completed' }), 'raw'), undefined);
+  assert.equal(get(form(), 'complete'), undefined);
+  assert.equal(get(form({ sheet: 'raw' }), 'raw'), 'true');
+  const words = shellSplit(cliCommand(form({ sheet: 'raw' }), catalog));
+  assert.ok(words.includes('--raw'));
+  // A bare flag: the next word is another flag.
+  assert.match(words[words.indexOf('--raw') + 1], /^--/);
+  assert.ok(!shellSplit(cliCommand(form(), catalog)).some((w) => w === '--raw' || w === '--complete'));
 });
 
 test('file names are the server’s, and the CLI writes a folder format to a folder', () => {

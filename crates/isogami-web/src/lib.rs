@@ -11,6 +11,7 @@
 //! | [`error`] | API errors: status, kind, one-line message, hint |
 //! | [`export`] | fabrication and interchange exports as downloads |
 //! | [`filters`] | query strings → store queries |
+//! | [`finite`] | finite sheets: a region's DOF, its completion and finite deployment |
 //! | [`inverse`] | inverse-design jobs: start, progress, stop, save |
 //! | [`live`] | deployments of posted designs, bounded in time and cancelled with the client |
 //! | [`view`] | the design view: report, geometry, linkages, notices |
@@ -23,6 +24,7 @@ pub mod assets;
 pub mod error;
 pub mod export;
 pub mod filters;
+pub mod finite;
 pub mod inverse;
 pub mod live;
 pub mod routes;

@@ -149,7 +149,7 @@ async fn every_format_downloads_the_librarys_bytes_with_its_type_and_name() {
     };
     for format in Format::ALL {
         let uri = format!(
-            "/api/export?design={}&format={format}&patch=2x3&edge_mm=12.5&t=0.5&kerf=0.02&frames=4",
+            "/api/export?design={}&format={format}&patch=2x3&edge_mm=12.5&t=0.5&kerf=0.02&frames=4&raw=true",
             enc(design)
         );
         let (reply, disposition) = download(&app, &uri).await;
@@ -463,10 +463,12 @@ async fn exports_past_the_time_limit_are_422_timeout_and_read_only_servers_expor
 #[test]
 fn an_export_stops_when_its_client_leaves() {
     let design = resolve_design(LONG).unwrap();
+    // The rectangle as it is: this design has no one-DOF completion.
     let request = PatchRequest {
         rows: 1,
         cols: 1,
         kerf: LONG_KERF,
+        complete: false,
         ..PatchRequest::default()
     };
     let start = Instant::now();
@@ -497,7 +499,7 @@ fn an_export_stops_when_its_client_leaves() {
         let long = {
             let app = app.clone();
             let uri = format!(
-                "/api/export?design={}&format=fold&patch=1x1&kerf={LONG_KERF}",
+                "/api/export?design={}&format=fold&patch=1x1&kerf={LONG_KERF}&raw=true",
                 enc(LONG)
             );
             tokio::spawn(async move { get(&app, &uri).await })

@@ -88,6 +88,21 @@ async fn bad_query_parameters_are_400_with_a_json_error() {
         format!("/api/gif?spec={spec}&kerf=0.5"),
         format!("/api/gif?spec={spec}&kerf=-0.01"),
         format!("/api/gif?spec={spec}&frames=100000"),
+        "/api/sheet".into(),
+        format!("/api/sheet?design={spec}&region=NaNxNaN"),
+        format!("/api/sheet?design={spec}&region=99999999999999999999x1"),
+        format!("/api/sheet?design={spec}&region=disc:inf"),
+        format!("/api/sheet?design={spec}&region=rect:1e999,1"),
+        format!("/api/sheet?design={spec}&region=polygon:"),
+        format!("/api/sheet?design={spec}&edge_mm=-1"),
+        format!("/api/sheet?design={spec}&t=inf"),
+        format!("/api/sheet?design={spec}&min_cover=1e999"),
+        format!("/api/sheet?design={spec}&kerf=abc"),
+        format!("/api/sheet?design={spec}&deploy=true&frames=100000"),
+        format!("/api/sheet?design={spec}&deploy=true&frames=-1"),
+        format!("/api/sheet?design={spec}&deploy=yes"),
+        format!("/api/sheet?design={spec}&design={spec}"),
+        format!("/api/export?design={spec}&format=fold&raw=2"),
     ]);
     for uri in uris {
         let reply = get(&app, &uri).await;
@@ -128,10 +143,12 @@ async fn malformed_designs_are_4xx_with_a_json_error() {
         "{\"family\": \"IH59\"}".into(),
         "a".repeat(20 * 1024),
     ];
-    for endpoint in ["/api/deploy", "/api/gif"] {
+    for endpoint in ["/api/deploy", "/api/gif", "/api/sheet"] {
         for d in &designs {
             let reply = if endpoint == "/api/gif" {
                 get(&app, &format!("{endpoint}?spec={}", enc(d))).await
+            } else if endpoint == "/api/sheet" {
+                get(&app, &format!("{endpoint}?design={}", enc(d))).await
             } else {
                 post_design(&app, endpoint, d, json!({})).await
             };

@@ -23,6 +23,8 @@ use isogami::export::laser::LaserError;
 use isogami::export::{
     export_design, ExportError, ExportFiles, Format, PatchRequest, MAX_PATCH, MAX_PATCH_FRAMES,
 };
+use isogami::finite::FiniteError;
+use isogami::Error;
 use query::ExportQuery;
 use serde_json::{json, Value};
 use std::time::Duration;
@@ -65,6 +67,7 @@ pub fn catalog() -> Value {
             "t": 0.0,
             "kerf": ContactSettings::default().kerf,
             "frames": d.frames,
+            "raw": false,
         },
         "limits": {
             "max_patch": MAX_PATCH,
@@ -83,6 +86,9 @@ pub struct Download {
     pub media_type: &'static str,
     /// `<design-slug>-<R>x<C>.<ext>` (`….<format>.zip` for a folder format).
     pub file_name: String,
+    /// The library's warning about the sheet written (a raw rectangle that is not one DOF
+    /// names its DOF), as `isogami export` prints it.
+    pub warning: Option<String>,
 }
 
 /// The download's file name for the design `spec`.
@@ -119,30 +125,33 @@ pub async fn export_bounded(query: ExportQuery, timeout: Duration) -> ApiResult<
     let spec = design.to_string();
     let name = file_name(&spec, &query);
     let format = query.format;
-    let files = run_bounded(timeout, move |deadline| {
+    let (patch, files) = run_bounded(timeout, move |deadline| {
         export_design(&design, &query.request, format, &query.options, &mut |_| {
             deadline.keep_going()
         })
     })
     .await?
-    .map_err(|e| explain_export(&e, timeout))?
-    .1;
+    .map_err(|e| explain_export(&e, timeout))?;
+    let warning = patch.finite.warning();
     Ok(match files {
         ExportFiles::One(bytes) => Download {
             bytes,
             media_type: format.media_type(),
             file_name: name,
+            warning,
         },
         ExportFiles::Folder(named) => Download {
             bytes: archive::zip_files(&named)?,
             media_type: ZIP,
             file_name: name,
+            warning,
         },
     })
 }
 
 /// An export error as an answer: the deployment's failures as for a live deployment (422,
-/// `timeout` when stopped), a sheet the library cannot lay out from the design's own geometry
+/// `timeout` when stopped), a rectangle without a one-DOF completion 422 `no_one_dof_sheet`
+/// with the library's reason and the hint to export it raw, a sheet the library cannot lay out from the design's own geometry
 /// 422 `export_failed`, every other refusal (a value of the request) 400 with the library's
 /// message.
 pub fn explain_export(e: &ExportError, timeout: Duration) -> ApiError {
@@ -153,6 +162,14 @@ pub fn explain_export(e: &ExportError, timeout: Duration) -> ApiError {
                 .into(),
             ..timed_out(timeout)
         },
+        ExportError::Library(Error::Finite(FiniteError::NoOneDofSheet { .. })) => ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "no_one_dof_sheet",
+            e.to_string(),
+            "export the raw rectangle instead (raw=true; `isogami export --raw`): it is written \
+             as it is, with its floppy boundary; `isogami sheet` shows why there is no \
+             completion",
+        ),
         ExportError::Library(inner) => explain(inner),
         ExportError::Degenerate { .. }
         | ExportError::Encode { .. }

@@ -1,7 +1,9 @@
 //! The query string of `GET /api/export` → what to export: the design text, the format, the
 //! patch request and the format options. Keys are named as `isogami export`'s flags with
 //! underscores (`edge_mm` for `--edge-mm`); every key is checked, an unknown or repeated one
-//! is refused, and the library's own validation runs before anything is deployed.
+//! is refused, and the library's own validation runs before anything is deployed. The sheet
+//! written is the R×C rectangle's completion to a one-DOF sheet unless `raw=true` asks for
+//! the rectangle as it is (`complete=true|false` is still read: `complete=false` is raw).
 
 use super::groups::{group_keys, Values, GROUPS};
 use crate::error::{ApiError, ApiResult};
@@ -19,8 +21,8 @@ pub const MAX_DESIGN: usize = 16 * 1024;
 pub const MAX_CELL_FRAMES: usize = MAX_PATCH * MAX_PATCH * 11;
 
 /// Keys of the request itself (the settings groups add theirs).
-pub const REQUEST_KEYS: [&str; 9] = [
-    "design", "format", "patch", "edge_mm", "width_mm", "t", "kerf", "frames", "complete",
+pub const REQUEST_KEYS: [&str; 10] = [
+    "design", "format", "patch", "edge_mm", "width_mm", "t", "kerf", "frames", "raw", "complete",
 ];
 
 /// A parsed export request.
@@ -103,15 +105,16 @@ pub fn parse_export(pairs: &[(String, String)]) -> ApiResult<ExportQuery> {
             ))
         })?,
     };
-    let complete = match values.get("complete") {
-        None | Some("false") | Some("0") => false,
-        Some("true") | Some("1") => true,
-        Some(text) => {
+    // The completed sheet unless the rectangle is asked for, by either key.
+    let complete = match (values.flag("raw")?, values.flag("complete")?) {
+        (Some(raw), Some(complete)) if raw == complete => {
             return Err(ApiError::bad_parameter(format!(
-                "complete {:?}: expected true or false",
-                truncate(text)
+                "raw={raw} and complete={complete} contradict each other: give one of them"
             )))
         }
+        (Some(raw), _) => !raw,
+        (None, Some(complete)) => complete,
+        (None, None) => true,
     };
     let request = PatchRequest {
         rows,
@@ -196,10 +199,33 @@ mod tests {
     use isogami::export::laser::Material;
 
     #[test]
-    fn absent_keys_are_the_library_defaults() {
+    fn absent_keys_are_the_library_defaults_with_the_completed_sheet() {
         let q = parsed("design=rotating-squares&format=fold").unwrap();
-        assert_eq!(q.request, PatchRequest::default());
+        assert_eq!(
+            q.request,
+            PatchRequest {
+                complete: true,
+                ..PatchRequest::default()
+            }
+        );
         assert_eq!(q.options, ExportOptions::default());
+    }
+
+    #[test]
+    fn raw_asks_for_the_rectangle_and_complete_is_still_read() {
+        let complete = |q: &str| {
+            parsed(&format!("design=x&format=fold{q}"))
+                .unwrap()
+                .request
+                .complete
+        };
+        assert!(complete(""));
+        assert!(!complete("&raw=true"));
+        assert!(complete("&raw=false"));
+        assert!(!complete("&complete=false"));
+        assert!(complete("&complete=1"));
+        assert!(!complete("&raw=1&complete=false"));
+        assert!(complete("&raw=0&complete=true"));
     }
 
     #[test]
@@ -225,6 +251,9 @@ mod tests {
             ("design=x&format=svg&cut_colour=red", "cut colour"),
             ("design=x&format=svg&colour=red", "unknown parameter"),
             ("design=x&format=svg&format=dxf", "twice"),
+            ("design=x&format=svg&raw=yes", "raw"),
+            ("design=x&format=svg&complete=yes", "complete"),
+            ("design=x&format=svg&raw=true&complete=true", "contradict"),
             (
                 "design=x&format=fold&patch=40x40&frames=12",
                 "cells × frames",

@@ -6,7 +6,7 @@ use crate::export::{catalog, export_bounded};
 use crate::filters::pairs;
 use crate::state::AppState;
 use axum::extract::{RawQuery, State};
-use axum::http::header;
+use axum::http::{header, HeaderValue};
 use axum::response::{IntoResponse, Response};
 use axum::Json;
 use serde_json::Value;
@@ -18,13 +18,17 @@ pub async fn formats() -> Json<Value> {
     Json(catalog())
 }
 
+/// The header that carries the library's warning about an exported sheet (percent-encoded,
+/// `+` for spaces), e.g. a raw rectangle's DOF.
+pub const WARNING_HEADER: &str = "x-isogami-warning";
+
 /// `GET /api/export?design=&format=&patch=&…`: the file, as an attachment named
-/// `<design-slug>-<R>x<C>.<ext>` (a folder format as a zip). Allowed on a read-only server:
-/// nothing is written.
+/// `<design-slug>-<R>x<C>.<ext>` (a folder format as a zip), with the library's warning about
+/// the sheet in [`WARNING_HEADER`]. Allowed on a read-only server: nothing is written.
 pub async fn export(State(state): State<AppState>, RawQuery(raw): RawQuery) -> ApiResult<Response> {
     let query = parse_export(&pairs(raw.as_deref()))?;
     let download = export_bounded(query, state.settings().sim_timeout).await?;
-    Ok((
+    let mut response = (
         [
             (header::CONTENT_TYPE, download.media_type.to_string()),
             (
@@ -35,5 +39,13 @@ pub async fn export(State(state): State<AppState>, RawQuery(raw): RawQuery) -> A
         ],
         download.bytes,
     )
-        .into_response())
+        .into_response();
+    if let Some(warning) = download.warning {
+        // Percent-encoded: a header value is ASCII.
+        let text: String = form_urlencoded::byte_serialize(warning.as_bytes()).collect();
+        if let Ok(value) = HeaderValue::from_str(&text) {
+            response.headers_mut().insert(WARNING_HEADER, value);
+        }
+    }
+    Ok(response)
 }

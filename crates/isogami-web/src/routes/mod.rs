@@ -13,7 +13,8 @@
 //! | `GET /api/motion?spec=` | the same motion in other cells and families (its class) |
 //! | `GET /api/gif?spec=[&kerf=]` | its deployment as an animated GIF |
 //! | `GET /api/export/formats` | export formats, their settings fields, defaults and limits |
-//! | `GET /api/export?design=&format=&…` | a design's export as a download |
+//! | `GET /api/export?design=&format=&…` | a design's export as a download (the completed sheet; `raw=true` the rectangle) |
+//! | `GET /api/sheet?design=&region=&…` | a finite region: DOF, floppy tiles, completion, finite deployment |
 //! | `POST /api/deploy` | a live deployment of a posted design |
 //! | `POST /api/designs` | save a posted design as a user design |
 //! | `GET /api/shape?design=` | generic or special over the shape space; constraints, pinned |
@@ -30,6 +31,7 @@ mod design;
 mod export;
 mod inverse;
 mod shape;
+mod sheet;
 
 use crate::error::ApiError;
 use crate::state::AppState;
@@ -54,6 +56,7 @@ pub fn router(state: AppState) -> Router {
         .route("/deploy", post(design::deploy_live))
         .route("/shape", get(shape::mobility))
         .route("/shape/follow", post(shape::follow_shape))
+        .route("/sheet", get(sheet::sheet))
         .route("/export", get(export::export))
         .route("/export/formats", get(export::formats))
         .route("/inverse", get(inverse::settings).post(inverse::start))
