@@ -102,8 +102,8 @@ pub struct PullLeave {
     pub after_periodic_t: Real,
     /// Of the first frame that does not.
     pub before_periodic_t: Real,
-    /// The sheet's largest DOF count at the periodic path's accepted states in between (and
-    /// the two nearest outside it).
+    /// The sheet's largest DOF count at the periodic path's accepted states from the last at
+    /// or before the one t to the first at or after the other.
     pub dof: usize,
 }
 
@@ -221,14 +221,11 @@ pub fn pull_sheet(
         Some(k) if k > 0 => {
             let (a, b) = (frames[k - 1].periodic_t, frames[k].periodic_t);
             let (lo, hi) = (a.min(b), a.max(b));
-            let inside: Vec<usize> = (0..periodic.steps.len())
-                .filter(|&s| (lo..=hi).contains(&periodic.t(s)))
-                .collect();
-            // The accepted states in between, and the nearest on either side.
-            let first = inside.first().map_or(0, |&s| s.saturating_sub(1));
-            let last = inside
-                .last()
-                .map_or(0, |&s| (s + 1).min(periodic.steps.len() - 1));
+            // The accepted states from the last at or before `lo` to the first at or after
+            // `hi` (the closed state left out: it is singular).
+            let n = periodic.steps.len();
+            let first = (0..n).rev().find(|&k| periodic.t(k) <= lo).unwrap_or(0);
+            let last = (0..n).find(|&k| periodic.t(k) >= hi).unwrap_or(n - 1);
             let mut dof = 0;
             for step in first.max(1)..=last {
                 dof = dof.max(state_check(&sheet, &mech, periodic, step, settings.mobility)?.dof);
