@@ -66,6 +66,14 @@ test('a special design follows its constraint and keeps deploying; moved freely 
   await page.waitForFunction((n) => Number(document.body.dataset.deployments) > n, count);
   assert.ok(follows.length >= 1, 'the move went through POST /api/shape/follow');
   assert.ok(follows.every((f) => f.index === 2));
+  // Six key presses can start more than one follow-and-deploy; the header's spec and the
+  // sliders' exact values are read once the page shows one state (under load the last
+  // answer can land between two reads).
+  await page.waitForFunction(() => {
+    const spec = document.querySelector('[data-testid="spec"]').textContent;
+    const title = document.querySelector('[data-testid="param-v3-value"]').getAttribute('title');
+    return Number(spec.split(':')[1].split(',')[3]) === Number(title);
+  });
   const spec = await byTestId(page, 'spec').textContent();
   const p = paramsOf(spec);
   assert.ok(p[2] > 0.2254, `v2 moved right: ${spec}`);
