@@ -294,3 +294,42 @@ fn a_shape_a_hair_away_is_the_same_finite_sheet() {
     }
     assert!(completed > 0, "at least one case completes");
 }
+
+#[test]
+fn giving_up_below_the_smallest_share_never_changes_a_verdict() {
+    // Completion stops pruning a candidate once it covers less than `min_covered`; with
+    // `min_covered` 0 it prunes to the end. The kept sheet is the same, and a refusal is a
+    // sheet that, pruned to the end, keeps less than the share (or none at all).
+    for spec in [
+        "rotating-squares",
+        "IH10::2x2:--a--aa-a-bb",
+        "IH44:0.5,0.027564102564:1x2:-aaabbaa",
+        "IH9:0.04739750492,0.35,0.225335752741:1x2:--aaabb--aa-",
+    ] {
+        let design = resolve_design(spec).unwrap();
+        let request = |min_covered| SheetRequest {
+            region: Region::Cells { rows: 4, cols: 4 },
+            min_covered,
+            ..SheetRequest::default()
+        };
+        let early = finite_sheet(&design, &request(0.5), &mut |_| true);
+        let full = finite_sheet(&design, &request(0.0), &mut |_| true);
+        match (early, full) {
+            (Ok(a), Ok(b)) => {
+                let (a, b) = (a.completion.unwrap(), b.completion.unwrap());
+                assert_eq!(a.sheet, b.sheet, "{spec}");
+                assert!(a.report.covered_fraction >= 0.5, "{spec}");
+            }
+            (Err(a), Ok(b)) => {
+                assert!(
+                    matches!(a, Error::Finite(FiniteError::NoOneDofSheet { .. })),
+                    "{spec}: {a}"
+                );
+                let share = b.completion.unwrap().report.covered_fraction;
+                assert!(share < 0.5, "{spec}: refused, yet pruning keeps {share}");
+            }
+            (Err(_), Err(_)) => {}
+            (Ok(_), Err(b)) => panic!("{spec}: accepted only when giving up early ({b})"),
+        }
+    }
+}

@@ -84,8 +84,8 @@ pub fn complete(ctx: &Context<'_>, requested: &FiniteSheet) -> Result<Completion
     }
     // The two candidates are independent: made side by side.
     let (pruned, grown) = rayon::join(
-        || prune(ctx, requested.clone()),
-        || prune(ctx, grow(ctx, requested)),
+        || prune(ctx, requested, requested.clone()),
+        || prune(ctx, requested, grow(ctx, requested)),
     );
     let chosen = match (pruned, grown) {
         (Ok(p), Ok(g)) => {
@@ -212,8 +212,13 @@ fn grow(ctx: &Context<'_>, sheet: &FiniteSheet) -> FiniteSheet {
 }
 
 /// Prunes `sheet` until its only motion is the periodic one.
+///
+/// Pruning only removes tiles, so the share of `requested` covered only falls: once it is
+/// below the context's smallest accepted share the candidate is given up without pruning on
+/// (an isostatic cell's patch would otherwise be peeled round after round down to nothing).
 fn prune(
     ctx: &Context<'_>,
+    requested: &FiniteSheet,
     mut sheet: FiniteSheet,
 ) -> Result<(FiniteSheet, SheetMobility), FiniteError> {
     loop {
@@ -221,6 +226,19 @@ fn prune(
         if sheet.len() < 2 {
             return Err(FiniteError::NoOneDofSheet {
                 reason: "pruning the floppy boundary leaves no tile held by two pins".into(),
+            });
+        }
+        let share = covered(ctx, requested, &sheet);
+        if share < ctx.min_covered {
+            return Err(FiniteError::NoOneDofSheet {
+                reason: format!(
+                    "pruning the floppy boundary leaves {} tiles covering {:.1} % of the \
+                     region's area, below the {:.0} % asked for, and they still flop",
+                    sheet.len(),
+                    // Rounded down, so that a share just below the bound never reads as it.
+                    (1000.0 * share).floor() / 10.0,
+                    100.0 * ctx.min_covered
+                ),
             });
         }
         let mobility = ctx.mobility(&sheet)?;
