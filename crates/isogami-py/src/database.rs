@@ -82,6 +82,13 @@ pub struct PyRecord {
     /// Accepted deployment states.
     #[pyo3(get)]
     steps: u64,
+    /// Degrees of freedom of the raw 6×6-cell patch as cut (None for user designs).
+    #[pyo3(get)]
+    finite_raw_dof: Option<u32>,
+    /// Fraction of the 6×6-cell patch its completion to a one-DOF sheet keeps (None when it
+    /// has none, and for user designs).
+    #[pyo3(get)]
+    finite_covered: Option<f64>,
 }
 
 impl PyRecord {
@@ -108,6 +115,8 @@ impl PyRecord {
             poisson_min: s.poisson_min,
             poisson_max: s.poisson_max,
             steps: s.steps,
+            finite_raw_dof: s.finite_raw_dof,
+            finite_covered: s.finite_covered,
             inner: s,
         }
     }
@@ -480,6 +489,8 @@ const COLUMNS: &[&str] = &[
     "poisson_min",
     "poisson_max",
     "steps",
+    "finite_raw_dof",
+    "finite_covered",
 ];
 
 /// Opens a design database for reading (see ``Database``).

@@ -216,3 +216,22 @@ def test_opening_refuses_what_is_not_a_database(tmp_path, quick_db):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["copy.db", "empty.db", "notes.db"]
     with pytest.raises(ValueError, match="closed"):
         d.designs()
+
+
+def test_finite_sheet_columns_filter_and_sort_like_the_records(db, every):
+    explored = [r for r in every if r.origin == "explored"]
+    assert explored and all(r.finite_raw_dof is not None and r.finite_raw_dof >= 1 for r in explored)
+    assert all(r.finite_covered is None or 0.5 <= r.finite_covered <= 1.0 for r in every)
+    assert all(r.to_dict()["finite_covered"] == r.finite_covered for r in every)
+    got = db.designs(range={"finite_raw_dof": (1, 1)})
+    assert [r.spec for r in got] == [r.spec for r in every if r.finite_raw_dof == 1]
+    got = db.designs(range="finite_covered:0.9:", sort="-finite_covered")
+    want = sorted(
+        (r for r in every if r.finite_covered is not None and r.finite_covered >= 0.9),
+        key=lambda r: -r.finite_covered,
+    )
+    assert [r.finite_covered for r in got] == [r.finite_covered for r in want]
+    # Missing values sort last either way.
+    ordered = db.designs(sort="finite_covered")
+    missing = [r.finite_covered is None for r in ordered]
+    assert missing == sorted(missing)

@@ -54,6 +54,8 @@ pub const DICTIONARY: &[FieldDoc] = &[
     doc("poisson_min", "number|null", "1", "Smallest Poisson-like ratio -ε_min/ε_max over the open frames; null when the sheet never opens"),
     doc("poisson_max", "number|null", "1", "Largest Poisson-like ratio over the open frames"),
     doc("steps", "integer", "", "Accepted deployment states, the closed one included"),
+    doc("finite_raw_dof", "integer|null", "", "Degrees of freedom of the raw 6×6-cell patch as cut (free boundary, at the opened state t = 0.3; 1 = it opens with the design's one motion); null for user designs"),
+    doc("finite_covered", "number|null", "1", "Fraction of the 6×6-cell patch's area kept by its completion to a one-DOF sheet (0.5 to 1); null when no such sheet exists (e.g. isostatic cells) or for user designs"),
 ];
 
 #[cfg(test)]
@@ -88,6 +90,8 @@ mod tests {
             poisson_min: None,
             poisson_max: Some(-1.0),
             steps: 100,
+            finite_raw_dof: Some(3),
+            finite_covered: None,
         };
         let json = serde_json::to_value(&summary).unwrap();
         let object = json.as_object().unwrap();

@@ -42,6 +42,13 @@ pub enum StoreError {
          version 2): translate it with `isogami db migrate --db <this file> --into <new file>`"
     )]
     OldEdgeLabels,
+    /// A database of schema version 3, made before the catalogue stored the finite 6×6
+    /// patch's figures (issue 22).
+    #[error(
+        "made before the catalogue stored finite-sheet figures (schema version 3): upgrade it \
+         with `isogami db migrate --db <this file> --into <new file>`"
+    )]
+    NoFiniteColumns,
     /// The file is damaged: SQLite's integrity check failed, a row fails its checksum, or a
     /// stored value cannot be read.
     #[error("damaged database ({0}); restore it from a copy or re-run explore into a new file")]

@@ -6,7 +6,7 @@ use crate::records::{
     DesignRecord, DesignSummary, Origin, StageCount, UnitRecords, WorkUnitRecord,
 };
 use crate::schema::PARAM_SLOTS;
-use isogami::catalog::{CatalogEntry, UnitOutcome};
+use isogami::catalog::{CatalogEntry, FiniteFigures, UnitOutcome};
 use isogami::deploy::DeploymentReport;
 use isogami::linkage::LinkageAnalysis;
 use isogami::topology::Design;
@@ -104,6 +104,8 @@ impl DesignRecord {
             poisson_min,
             poisson_max,
             steps: report.steps as u64,
+            finite_raw_dof: None,
+            finite_covered: None,
         };
         check_finite(&summary)?;
         report
@@ -130,7 +132,7 @@ impl DesignRecord {
         })
     }
 
-    /// The record of a design the exploration kept.
+    /// The record of a design the exploration kept, with its finite 6×6 patch's figures.
     pub fn from_entry(entry: &CatalogEntry) -> StoreResult<DesignRecord> {
         DesignRecord::from_parts(
             &entry.design,
@@ -138,7 +140,26 @@ impl DesignRecord {
             Origin::Explored,
             &entry.report,
             Some(&entry.linkages),
-        )
+        )?
+        .with_finite(entry.finite.as_ref())
+    }
+
+    /// The record with the figures of its design's finite 6×6 patch
+    /// ([`isogami::catalog::FiniteFigures`], e.g. from `isogami::catalog::finite_figures`), or
+    /// without any (None); refused when the covered fraction is not a number in [0, 1].
+    pub fn with_finite(mut self, figures: Option<&FiniteFigures>) -> StoreResult<DesignRecord> {
+        let s = &mut self.summary;
+        s.finite_raw_dof = figures
+            .map(|f| u32::try_from(f.raw_dof))
+            .transpose()
+            .map_err(|_| invalid(&s.spec, "finite raw DOF out of range"))?;
+        s.finite_covered = figures.and_then(|f| f.covered);
+        if let Some(c) = s.finite_covered {
+            if !(0.0..=1.0).contains(&c) {
+                return Err(invalid(&s.spec, format!("finite_covered is {c}")));
+            }
+        }
+        Ok(self)
     }
 }
 

@@ -1,5 +1,6 @@
-//! `isogami db migrate`: a database of schema version 2 carried into a new file of this
-//! version.
+//! `isogami db migrate`: a database of schema version 2 or 3 carried into a new file of this
+//! version. A version-3 file lacks only the finite-sheet columns: it is copied and they are
+//! filled (`migrate_finite.rs`). A version-2 file:
 //!
 //! Version 2 files name joints by the edge labels of isogami before issue 21, which depended
 //! on the exact shape, and summarise deployments over their stored frames only; read with
@@ -17,9 +18,12 @@
 use crate::error::{StoreError, StoreResult};
 use crate::exploration::{explore_into, ExploreEvent, ExploreOutcome, ExploreRequest};
 use crate::file::{inspect, FileState};
+use crate::migrate_finite::{fill_finite_columns, FiniteFill};
 use crate::open::{integrity, reader_connection, Check, StoreWriter};
 use crate::records::{DesignRecord, Origin};
-use crate::schema::{APPLICATION_ID, LABELS_BEFORE_ISSUE_21, SCHEMA_VERSION};
+use crate::schema::{
+    APPLICATION_ID, BEFORE_FINITE_COLUMNS, LABELS_BEFORE_ISSUE_21, SCHEMA_VERSION,
+};
 use isogami::api::{deploy, linkages, DeployRequest, FrameSelection};
 use isogami::catalog::CatalogSettings;
 use isogami::cell::CellDims;
@@ -35,8 +39,12 @@ use std::sync::atomic::AtomicBool;
 /// What a migration did.
 #[derive(Debug, Clone, Serialize)]
 pub struct MigrateOutcome {
-    /// The exploration of the new file (the old file's plan).
-    pub explored: ExploreOutcome,
+    /// The old file's schema version (2 or 3).
+    pub from_version: i64,
+    /// The exploration of the new file (the old file's plan); version 2 only.
+    pub explored: Option<ExploreOutcome>,
+    /// The finite-sheet columns added and filled; version 3 only.
+    pub finite: Option<FiniteFill>,
     /// User designs in the old file.
     pub user_designs: usize,
     /// Of these, saved into the new file.
@@ -49,10 +57,12 @@ pub struct MigrateOutcome {
     pub user_failed: Vec<(String, String)>,
 }
 
-/// Migrates the version-2 database at `from` into a new database at `into` (which must not
-/// exist yet), with `jobs` worker threads for the exploration. `progress` and `cancel` are
-/// the exploration's ([`explore_into`]); a cancelled migration leaves a resumable new file
-/// and no user design copied yet (run it again).
+/// Migrates the version-2 or version-3 database at `from` into a new database at `into`
+/// (which must not exist yet), with `jobs` worker threads for the exploration or the
+/// finite-sheet figures. `progress` and `cancel` are the exploration's ([`explore_into`]);
+/// a cancelled migration of a version-2 file leaves a resumable new file and no user design
+/// copied yet (run it again). A version-3 file is upgraded in one go
+/// ([`fill_finite_columns`]: nothing is left at `into` when it fails).
 pub fn migrate(
     from: &Path,
     into: &Path,
@@ -61,8 +71,24 @@ pub fn migrate(
     cancel: &AtomicBool,
 ) -> StoreResult<MigrateOutcome> {
     let old = OldFile::open(from)?;
+    if old.version == BEFORE_FINITE_COLUMNS {
+        let fill = fill_finite_columns(from, into, old.settings, jobs)?;
+        return Ok(MigrateOutcome {
+            from_version: old.version,
+            explored: None,
+            finite: Some(fill),
+            user_designs: 0,
+            user_saved: 0,
+            user_merged: 0,
+            user_relabelled: 0,
+            user_failed: Vec::new(),
+        });
+    }
+    let settings = old
+        .settings
+        .ok_or_else(|| StoreError::Damaged("its settings cannot be read".into()))?;
     let request = ExploreRequest {
-        settings: old.settings,
+        settings,
         families: old.families.iter().copied().collect(),
         cells: Some(old.cells.clone()),
         shard: None,
@@ -77,20 +103,23 @@ pub fn migrate(
         }
     }
     let explored = explore_into(into, &request, progress, cancel)?;
+    let cancelled = explored.cancelled;
     let mut outcome = MigrateOutcome {
+        from_version: old.version,
         user_designs: old.user_designs.len(),
         user_saved: 0,
         user_merged: 0,
         user_relabelled: 0,
         user_failed: Vec::new(),
-        explored,
+        explored: Some(explored),
+        finite: None,
     };
-    if outcome.explored.cancelled {
+    if cancelled {
         return Ok(outcome);
     }
     let mut writer = StoreWriter::open(into, None, Check::Quick)?;
     for (spec, report) in &old.user_designs {
-        match carry_user_design(&old.settings, spec, report) {
+        match carry_user_design(&settings, spec, report) {
             Ok((record, relabelled)) => {
                 outcome.user_relabelled += usize::from(relabelled);
                 match writer.save_user_design(&record) {
@@ -135,9 +164,12 @@ fn carry_user_design(
     Ok((record, relabelled))
 }
 
-/// What migration reads from a version-2 file.
+/// What migration reads from a version-2 or version-3 file.
 struct OldFile {
-    settings: CatalogSettings,
+    /// Its schema version.
+    version: i64,
+    /// The run's settings (None in a file of user designs only).
+    settings: Option<CatalogSettings>,
     families: BTreeSet<Family>,
     cells: Vec<CellDims>,
     /// (spec, report JSON) of every user design.
@@ -163,13 +195,13 @@ impl OldFile {
             .ok()
             .flatten()
             .and_then(|v| v.trim().parse().ok());
-        match version {
+        let version = match version {
             _ if app_id != APPLICATION_ID => {
                 return Err(StoreError::Damaged(
-                    "not an isogami database of schema version 2".into(),
+                    "not an isogami database of schema version 2 or 3".into(),
                 ))
             }
-            Some(LABELS_BEFORE_ISSUE_21) => {}
+            Some(v @ (LABELS_BEFORE_ISSUE_21 | BEFORE_FINITE_COLUMNS)) => v,
             Some(SCHEMA_VERSION) => {
                 return Err(StoreError::Damaged(format!(
                     "already schema version {SCHEMA_VERSION}: nothing to migrate"
@@ -178,7 +210,7 @@ impl OldFile {
             Some(found) => {
                 return Err(StoreError::SchemaVersion {
                     found,
-                    expected: LABELS_BEFORE_ISSUE_21,
+                    expected: BEFORE_FINITE_COLUMNS,
                 })
             }
             None => {
@@ -186,11 +218,14 @@ impl OldFile {
                     "the schema version cannot be read".into(),
                 ))
             }
-        }
-        let settings = meta("settings")?
-            .as_deref()
-            .and_then(CatalogSettings::from_fingerprint)
-            .ok_or_else(|| StoreError::Damaged("its settings cannot be read".into()))?;
+        };
+        let settings = match meta("settings")? {
+            None => None,
+            Some(text) => Some(
+                CatalogSettings::from_fingerprint(&text)
+                    .ok_or_else(|| StoreError::Damaged("its settings cannot be read".into()))?,
+            ),
+        };
         let (families, cells) = units(&conn)?;
         let user_designs = conn
             .prepare(
@@ -200,6 +235,7 @@ impl OldFile {
             .query_map([], |r| Ok((r.get(0)?, r.get(1)?)))?
             .collect::<Result<_, _>>()?;
         Ok(OldFile {
+            version,
             settings,
             families,
             cells,

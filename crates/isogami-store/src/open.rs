@@ -17,7 +17,10 @@ use crate::error::{StoreError, StoreResult};
 use crate::file::{beside, inspect, uri, FileState};
 use crate::lock::WriterLock;
 use crate::rows::meta_values;
-use crate::schema::{APPLICATION_ID, CREATE, LABELS_BEFORE_ISSUE_21, SCHEMA_VERSION, TABLES};
+use crate::schema::{
+    APPLICATION_ID, BEFORE_FINITE_COLUMNS, CREATE, FINITE_INDEXES, LABELS_BEFORE_ISSUE_21,
+    SCHEMA_VERSION, TABLES,
+};
 use rusqlite::{params, Connection, OpenFlags, OptionalExtension};
 use std::path::Path;
 use std::time::Duration;
@@ -158,6 +161,9 @@ fn identify(conn: &Connection) -> StoreResult<()> {
         if found == LABELS_BEFORE_ISSUE_21 {
             return Err(StoreError::OldEdgeLabels);
         }
+        if found == BEFORE_FINITE_COLUMNS {
+            return Err(StoreError::NoFiniteColumns);
+        }
         if found != SCHEMA_VERSION {
             return Err(StoreError::SchemaVersion {
                 found,
@@ -282,6 +288,7 @@ impl Store {
 fn create_schema(conn: &mut Connection) -> StoreResult<()> {
     let tx = conn.transaction_with_behavior(rusqlite::TransactionBehavior::Immediate)?;
     tx.execute_batch(CREATE)?;
+    tx.execute_batch(FINITE_INDEXES)?;
     tx.pragma_update(None, "application_id", APPLICATION_ID)?;
     put_meta(&tx, "schema_version", &SCHEMA_VERSION.to_string())?;
     tx.commit()?;

@@ -117,6 +117,16 @@ pub struct DesignSummary {
     pub poisson_max: Option<f64>,
     /// Accepted deployment states.
     pub steps: u64,
+    /// Degrees of freedom of the raw 6×6-cell patch, free boundary, at the opened state (1:
+    /// the patch as cut opens with the design's one motion). Computed by the exploration;
+    /// None for user designs and rows migrated without it.
+    #[serde(default)]
+    pub finite_raw_dof: Option<u32>,
+    /// Fraction of the 6×6-cell patch's area its completion to a one-DOF sheet keeps (at
+    /// least 0.5); None when it has no such sheet (e.g. an isostatic cell) or, like
+    /// `finite_raw_dof`, was not computed.
+    #[serde(default)]
+    pub finite_covered: Option<f64>,
 }
 
 /// One design as written: its summary and the JSON of its full results. Built from typed

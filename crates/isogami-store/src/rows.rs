@@ -16,10 +16,14 @@ use rusqlite::Row;
 pub(crate) const DESIGN_COLUMNS: &str = "spec, origin, work_unit, family, cell, cell_a, cell_b, \
     tile_count, joints, topology, param_count, p0, p1, p2, p3, p4, p5, behaviour, \
     linkage_signature, end_reason, method, dof, kerf, max_expansion, min_expansion, max_area_ratio, \
-    max_tile_rotation, poisson_min, poisson_max, steps";
+    max_tile_rotation, poisson_min, poisson_max, steps, finite_raw_dof, finite_covered";
 
 /// Number of columns in [`DESIGN_COLUMNS`].
-pub(crate) const DESIGN_COLUMN_COUNT: usize = 30;
+pub(crate) const DESIGN_COLUMN_COUNT: usize = 32;
+
+/// The columns of a schema-3 `designs` row (the first [`DESIGN_COLUMNS`], without the
+/// finite-sheet ones), which its checksum covers: read by the migration.
+pub(crate) const DESIGN_COLUMN_COUNT_V3: usize = 30;
 
 fn text(s: &str) -> Value {
     Value::Text(s.to_string())
@@ -63,6 +67,9 @@ pub(crate) fn design_values(s: &DesignSummary, work_unit: Option<&str>) -> Vec<V
         opt_real(s.poisson_min),
         opt_real(s.poisson_max),
         Value::Integer(s.steps as i64),
+        s.finite_raw_dof
+            .map_or(Value::Null, |n| Value::Integer(i64::from(n))),
+        opt_real(s.finite_covered),
     ]);
     debug_assert_eq!(v.len(), DESIGN_COLUMN_COUNT);
     v
@@ -124,6 +131,14 @@ impl<'a> Reader<'a> {
     fn int(&mut self) -> Result<i64, String> {
         match self.next() {
             (_, Value::Integer(i)) => Ok(*i),
+            (at, v) => Err(wrong(at, v, "an integer")),
+        }
+    }
+
+    fn opt_int(&mut self) -> Result<Option<i64>, String> {
+        match self.next() {
+            (_, Value::Null) => Ok(None),
+            (_, Value::Integer(i)) => Ok(Some(*i)),
             (at, v) => Err(wrong(at, v, "an integer")),
         }
     }
@@ -223,6 +238,11 @@ pub(crate) fn design_from_values(
             poisson_min: r.opt_real()?,
             poisson_max: r.opt_real()?,
             steps: small(r.int()?, "steps")?,
+            finite_raw_dof: r
+                .opt_int()?
+                .map(|n| small(n, "finite raw dof"))
+                .transpose()?,
+            finite_covered: r.opt_real()?,
         },
         work_unit,
     ))

@@ -1,4 +1,4 @@
-//! The schema, version 3: tables, indexes and the marks that identify an isogami file.
+//! The schema, version 4: tables, indexes and the marks that identify an isogami file.
 //!
 //! - `meta`: schema version, tool version and the settings of the run, each row with a
 //!   checksum; a shard database made by `explore --shard` also has the key `shard` (JSON: its
@@ -8,7 +8,8 @@
 //! - `work_units` and `stage_counts`: one row per finished work unit (checksum over the unit
 //!   and its stage rows) and its per-stage counts.
 //! - `designs`: one row per design with every column a catalogue filters, sorts, facets or
-//!   plots by, and a checksum over the row. Explored designs name their work unit; designs
+//!   plots by (since version 4 the finite 6×6 patch's raw DOF and completed covered
+//!   fraction), and a checksum over the row. Explored designs name their work unit; designs
 //!   saved by a user (live editing) have origin `user` and no work unit.
 //! - `design_data`: the full deployment report and linkage analysis as JSON, one row per
 //!   design, kept apart so that list queries scan a dense table; checksum over the spec and
@@ -34,8 +35,13 @@
 /// (issue 2) had no checksums, no user designs and one table for summaries and JSON.
 /// Version 2 had the same tables as 3, but its specs name joints by the edge labels of
 /// isogami before issue 21, which depended on the exact shape, and its reports summarise the
-/// stored frames only; `isogami db migrate` carries such a file into version 3.
-pub const SCHEMA_VERSION: i64 = 3;
+/// stored frames only; `isogami db migrate` carries such a file into the current version.
+/// Version 3 lacked the finite-sheet columns of `designs` (`finite_raw_dof`,
+/// `finite_covered`, issue 22); `isogami db migrate` copies such a file and computes them.
+pub const SCHEMA_VERSION: i64 = 4;
+
+/// The schema version without the finite-sheet columns.
+pub(crate) const BEFORE_FINITE_COLUMNS: i64 = 3;
 
 /// The schema version whose joint strings use the old, shape-dependent edge labels.
 pub(crate) const LABELS_BEFORE_ISSUE_21: i64 = 2;
@@ -135,6 +141,8 @@ CREATE TABLE designs (
     poisson_min       REAL,
     poisson_max       REAL,
     steps             INTEGER NOT NULL,
+    finite_raw_dof    INTEGER,
+    finite_covered    REAL,
     checksum          INTEGER NOT NULL,
     CHECK ((origin = 'explored') = (work_unit IS NOT NULL))
 );
@@ -164,4 +172,13 @@ CREATE INDEX designs_behaviour_nulls_last ON designs(behaviour IS NULL, behaviou
 CREATE INDEX designs_linkage_nulls_last ON designs(linkage_signature IS NULL, linkage_signature);
 CREATE INDEX designs_poisson_min_nulls_last ON designs(poisson_min IS NULL, poisson_min);
 CREATE INDEX designs_poisson_max_nulls_last ON designs(poisson_max IS NULL, poisson_max);
+";
+
+/// The finite-sheet columns' indexes (schema version 4), in [`CREATE`] and made by the
+/// migration from version 3.
+pub(crate) const FINITE_INDEXES: &str = "
+CREATE INDEX designs_finite_raw_dof ON designs(finite_raw_dof);
+CREATE INDEX designs_finite_covered ON designs(finite_covered);
+CREATE INDEX designs_finite_raw_dof_nulls_last ON designs(finite_raw_dof IS NULL, finite_raw_dof);
+CREATE INDEX designs_finite_covered_nulls_last ON designs(finite_covered IS NULL, finite_covered);
 ";

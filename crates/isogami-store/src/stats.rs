@@ -34,6 +34,21 @@ pub struct UnitSummary {
     pub designs: u64,
 }
 
+/// The finite 6×6 patches of a database's designs (`finite_raw_dof`, `finite_covered`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FiniteCounts {
+    /// Designs with the figures (explored designs).
+    pub measured: u64,
+    /// Of these, designs whose raw patch has one DOF as cut.
+    pub raw_one_dof: u64,
+    /// Designs whose patch completes to a one-DOF sheet.
+    pub completed: u64,
+    /// Of these, completed without losing any of the region's area.
+    pub fully_covered: u64,
+    /// Smallest covered fraction of a completed patch.
+    pub min_covered: Option<f64>,
+}
+
 /// Whole-database summary.
 #[derive(Debug, Clone, Serialize)]
 pub struct DbStats {
@@ -57,6 +72,8 @@ pub struct DbStats {
     pub stages: Vec<StageCount>,
     /// Per family.
     pub families: BTreeMap<String, FamilyStats>,
+    /// The designs' finite 6×6 patches.
+    pub finite: FiniteCounts,
     /// Distinct motions across cells and families (None when not computed yet).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub motions: Option<crate::MotionCounts>,
@@ -136,6 +153,22 @@ impl Store {
             [],
             |r| r.get(0),
         )?;
+        let finite = self.conn.query_row(
+            "SELECT count(finite_raw_dof), count(CASE WHEN finite_raw_dof = 1 THEN 1 END),
+                    count(finite_covered), count(CASE WHEN finite_covered >= 1.0 THEN 1 END),
+                    min(finite_covered)
+             FROM designs",
+            [],
+            |r| {
+                Ok(FiniteCounts {
+                    measured: r.get::<_, i64>(0)? as u64,
+                    raw_one_dof: r.get::<_, i64>(1)? as u64,
+                    completed: r.get::<_, i64>(2)? as u64,
+                    fully_covered: r.get::<_, i64>(3)? as u64,
+                    min_covered: r.get(4)?,
+                })
+            },
+        )?;
         let summaries = self.summaries_of(&units)?;
         let peak_memory = summaries
             .iter()
@@ -157,6 +190,7 @@ impl Store {
             by_linkage,
             stages,
             families,
+            finite,
             peak_memory,
             slowest,
             motions: self.motion_counts()?,

@@ -67,6 +67,8 @@ fn measure(s: &DesignSummary, m: Measure) -> Option<f64> {
         Measure::Steps => Some(s.steps as f64),
         Measure::TileCount => Some(f64::from(s.tile_count)),
         Measure::Kerf => Some(s.kerf),
+        Measure::FiniteRawDof => s.finite_raw_dof.map(f64::from),
+        Measure::FiniteCovered => s.finite_covered,
         Measure::Param(k) => s.params.get(usize::from(k)).copied(),
     }
 }
@@ -496,4 +498,40 @@ fn every_sort_key_orders_alike_whether_an_index_is_walked_or_rows_sorted() {
             }
         }
     }
+}
+
+#[test]
+fn finite_sheet_columns_filter_and_sort_with_missing_values_last() {
+    let s = store();
+    let all = s.summaries().unwrap();
+    let mut q = DesignQuery::default();
+    q.range(Measure::FiniteRawDof, Some(1.0), Some(1.0))
+        .sort_by(SortKey::Measure(Measure::FiniteCovered), true);
+    q.limit = 1000;
+    let page = s.page(&q).unwrap();
+    let want = all.iter().filter(|d| d.finite_raw_dof == Some(1)).count();
+    assert!(want > 10 && want < all.len(), "{want}");
+    assert_eq!(page.total as usize, want);
+    let covered: Vec<Option<f64>> = page.rows.iter().map(|r| r.finite_covered).collect();
+    let known = covered.iter().take_while(|c| c.is_some()).count();
+    assert!(known > 0 && known < covered.len(), "both kinds on the page");
+    assert!(covered[known..].iter().all(Option::is_none), "missing last");
+    assert!(
+        covered[..known].windows(2).all(|w| w[0] >= w[1]),
+        "descending"
+    );
+    // Names as the URL and Python give them.
+    assert_eq!(
+        "finite_covered".parse::<Measure>().unwrap(),
+        Measure::FiniteCovered
+    );
+    assert_eq!(
+        "finite_raw_dof".parse::<SortKey>().unwrap(),
+        SortKey::Measure(Measure::FiniteRawDof)
+    );
+    // User designs have neither figure and never pass a range on them.
+    let mut users = DesignQuery::default();
+    users.select(FacetValue::Origin(Origin::User));
+    users.range(Measure::FiniteCovered, Some(0.0), None);
+    assert_eq!(s.page(&users).unwrap().total, 0);
 }

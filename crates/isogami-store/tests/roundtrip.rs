@@ -280,3 +280,45 @@ fn shards_merge_into_the_unsharded_result() {
         Err(StoreError::SettingsMismatch(_))
     ));
 }
+
+#[test]
+fn finite_sheet_figures_read_back_and_user_designs_have_none() {
+    let path_guard = temp("finite");
+    let path = path_guard.path().join("db");
+    real_db(&path);
+    let r = Store::open_read(&path, Check::Full).unwrap();
+    let all = r.summaries().unwrap();
+    assert!(!all.is_empty());
+    for unit in outcomes() {
+        for d in &unit.designs {
+            let read = r.design(&d.summary().spec).unwrap().unwrap().summary;
+            assert_eq!(&read, d.summary());
+            assert!(read.finite_raw_dof.is_some(), "{}", read.spec);
+        }
+    }
+    let e = entry();
+    let f = e.finite.unwrap();
+    let rec = DesignRecord::from_entry(e).unwrap();
+    assert_eq!(rec.summary().finite_raw_dof, Some(f.raw_dof as u32));
+    assert_eq!(rec.summary().finite_covered, f.covered);
+    let user = DesignRecord::from_parts(&e.design, "user", Origin::User, &e.report, None).unwrap();
+    assert_eq!(
+        (user.summary().finite_raw_dof, user.summary().finite_covered),
+        (None, None)
+    );
+    // A covered fraction that is not a share is refused.
+    let bad = isogami::catalog::FiniteFigures {
+        raw_dof: 1,
+        covered: Some(f64::NAN),
+    };
+    assert!(matches!(
+        user.with_finite(Some(&bad)),
+        Err(StoreError::InvalidRecord { .. })
+    ));
+    let stats = r.stats().unwrap();
+    assert_eq!(stats.finite.measured, all.len() as u64);
+    assert_eq!(
+        stats.finite.completed,
+        all.iter().filter(|s| s.finite_covered.is_some()).count() as u64
+    );
+}

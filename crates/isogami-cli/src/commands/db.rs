@@ -123,11 +123,12 @@ pub enum DbCommand {
         #[arg(long)]
         json: bool,
     },
-    /// Carry a database made before issue 21 (schema version 2: joint strings in edge labels
-    /// that depended on the exact shape) into a new file: the explored catalogue explored
+    /// Carry an older database into a new file; the old file is only read. Schema version 3
+    /// (before the finite-sheet columns): copied, with every explored design's finite 6x6
+    /// figures computed from its spec. Schema version 2 (made before issue 21: joint strings
+    /// in edge labels that depended on the exact shape): the explored catalogue explored
     /// again with its settings and plan, and every saved user design translated to the
-    /// current labels (the same physical joints) and deployed again. The old file is only
-    /// read.
+    /// current labels (the same physical joints) and deployed again.
     Migrate {
         /// The old database.
         #[arg(long)]
@@ -387,6 +388,21 @@ pub fn stats_table(s: &DbStats) -> String {
         let seconds: f64 = f.stages.iter().map(|st| st.seconds).sum();
         let _ = writeln!(o, " {:>8} {seconds:>8.2}", f.designs);
     }
+    let f = &s.finite;
+    if f.measured > 0 {
+        let _ = writeln!(
+            o,
+            "\nfinite 6x6 patches: {} of {} designs measured; {} one DOF as cut; {} complete to \
+             a one-DOF sheet ({} keeping the whole region, smallest share {}), {} do not",
+            f.measured,
+            s.designs,
+            f.raw_one_dof,
+            f.completed,
+            f.fully_covered,
+            f.min_covered.map_or("-".into(), |c| format!("{c:.3}")),
+            f.measured - f.completed
+        );
+    }
     let _ = writeln!(o, "\nbehaviour classes:");
     for (k, v) in &s.by_behaviour {
         let _ = writeln!(o, "  {k:<32} {v}");
@@ -425,13 +441,36 @@ fn migrate(db: &Path, into: &Path, jobs: Option<usize>, json: bool) -> CliResult
         return print_json(&outcome);
     }
     let mut o = String::new();
+    if let Some(fill) = &outcome.finite {
+        let _ = writeln!(
+            o,
+            "{}: schema {} upgraded to {}: {} designs, finite 6x6 figures computed for {} \
+             explored designs ({} without a one-DOF sheet), {} user designs left without, {} \
+             failed",
+            into.display(),
+            outcome.from_version,
+            isogami_store::SCHEMA_VERSION,
+            fill.designs,
+            fill.computed,
+            fill.no_one_dof_sheet,
+            fill.user_designs,
+            fill.failed.len()
+        );
+        for (spec, reason) in &fill.failed {
+            let _ = writeln!(o, "  not computed: {spec}: {reason}");
+        }
+        return emit(&o);
+    }
+    let Some(explored) = &outcome.explored else {
+        return emit(&o);
+    };
     let _ = writeln!(
         o,
         "{}: {} work units explored again ({} failed); {} user designs: {} saved, {} already \
          there (merged), {} relabelled, {} not carried over",
         into.display(),
-        outcome.explored.committed + outcome.explored.skipped,
-        outcome.explored.failures.len(),
+        explored.committed + explored.skipped,
+        explored.failures.len(),
         outcome.user_designs,
         outcome.user_saved,
         outcome.user_merged,
@@ -441,6 +480,6 @@ fn migrate(db: &Path, into: &Path, jobs: Option<usize>, json: bool) -> CliResult
     for (spec, reason) in &outcome.user_failed {
         let _ = writeln!(o, "  not carried over: {spec}: {reason}");
     }
-    o.push_str(&stats_table(&outcome.explored.stats));
+    o.push_str(&stats_table(&explored.stats));
     emit(&o)
 }

@@ -518,6 +518,8 @@ class Record:
     poisson_min: Optional[float]
     poisson_max: Optional[float]
     steps: int
+    finite_raw_dof: Optional[int]
+    finite_covered: Optional[float]
     def design(self) -> Design: ...
     def to_dict(self) -> Dict[str, Any]: ...
 

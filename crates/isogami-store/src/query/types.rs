@@ -34,6 +34,11 @@ pub enum Measure {
     TileCount,
     /// Kerf relative to the mean edge length.
     Kerf,
+    /// Degrees of freedom of the raw 6×6-cell patch (missing for user designs).
+    FiniteRawDof,
+    /// Covered fraction of the completed 6×6-cell patch (missing when it has no one-DOF
+    /// sheet, and for user designs).
+    FiniteCovered,
     /// Shape parameter v_k (0 ≤ k < 6; designs of families with fewer parameters have none).
     Param(u8),
 }
@@ -51,6 +56,8 @@ impl Measure {
             Measure::Steps,
             Measure::TileCount,
             Measure::Kerf,
+            Measure::FiniteRawDof,
+            Measure::FiniteCovered,
         ]
         .into_iter()
         .chain((0..PARAM_SLOTS as u8).map(Measure::Param))
@@ -68,6 +75,8 @@ impl Measure {
             Measure::Steps => "steps",
             Measure::TileCount => "tile_count",
             Measure::Kerf => "kerf",
+            Measure::FiniteRawDof => "finite_raw_dof",
+            Measure::FiniteCovered => "finite_covered",
             Measure::Param(k) => {
                 const SLOTS: [&str; PARAM_SLOTS] = ["p0", "p1", "p2", "p3", "p4", "p5"];
                 SLOTS
@@ -82,7 +91,11 @@ impl Measure {
     pub(crate) fn nullable(self) -> bool {
         matches!(
             self,
-            Measure::PoissonMin | Measure::PoissonMax | Measure::Param(_)
+            Measure::PoissonMin
+                | Measure::PoissonMax
+                | Measure::FiniteRawDof
+                | Measure::FiniteCovered
+                | Measure::Param(_)
         )
     }
 }
@@ -127,7 +140,7 @@ impl From<Measure> for String {
 }
 
 /// Inclusive bounds on a measure; a missing bound is open. Designs without the measure (no
-/// Poisson-like ratio, no such shape parameter) never pass a range.
+/// Poisson-like ratio, no such shape parameter, no finite-sheet figure) never pass a range.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct RangeFilter {
     /// The measure.

@@ -2,7 +2,7 @@
 //! linkage analyses of one explored design, re-labelled with varied families, cells, joints
 //! and measures drawn from the ranges the exploration produces.
 
-use isogami::catalog::CatalogEntry;
+use isogami::catalog::{CatalogEntry, FiniteFigures};
 use isogami::cell::CellDims;
 use isogami::deploy::EndReason;
 use isogami::measure::BehaviourClass;
@@ -94,6 +94,9 @@ pub fn design(base: &CatalogEntry, i: usize, rng: &mut Rng) -> DesignRecord {
     }
     let mut linkages = base.linkages.clone();
     linkages.signature = rng.pick(&SIGNATURES).to_string();
+    let raw_dof = rng.pick(&[1, 1, 2, 3, 7, 20]);
+    let share = rng.uniform(0.5, 1.0);
+    let covered = rng.pick(&[None, Some(1.0), Some(1.0), Some(share)]);
     DesignRecord::from_parts(
         &design,
         &design.to_string(),
@@ -101,6 +104,8 @@ pub fn design(base: &CatalogEntry, i: usize, rng: &mut Rng) -> DesignRecord {
         &report,
         Some(&linkages),
     )
+    .unwrap()
+    .with_finite(Some(&FiniteFigures { raw_dof, covered }))
     .unwrap()
 }
 

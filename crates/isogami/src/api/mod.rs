@@ -44,7 +44,7 @@ mod sheet;
 mod sheet_deploy;
 mod sheet_pull;
 pub use finite::{finite_sheet, SheetAnalysis, SheetRequest};
-pub(crate) use finite::{requested_sheet, sheet_of_trajectory};
+pub(crate) use finite::{opened_step, requested_sheet, sheet_of_trajectory};
 pub use sheet::{sheet_geometry, tile_linkages, EdgeGeometry, SheetGeometry};
 pub use sheet_deploy::{
     deploy_sheet, PeriodicEnd, SheetDeployRequest, SheetDeployment, SheetFrame,

@@ -8,7 +8,7 @@
 //! largest principal expansion over the deployment reaches the threshold.
 
 use super::settings::CatalogSettings;
-use crate::api;
+use crate::api::{self, Deployment};
 use crate::deploy::{DeploymentReport, EndReason};
 use crate::error::Result;
 use crate::math::Real;
@@ -72,11 +72,32 @@ pub fn assess(
     settings: &CatalogSettings,
     progress: crate::deploy::Progress<'_>,
 ) -> Result<Assessment> {
+    Ok(match admit(design, settings, progress)? {
+        Admission::Admitted(run) => Assessment::Admitted(Box::new(run.report)),
+        Admission::Rejected(r) => Assessment::Rejected(r),
+    })
+}
+
+/// [`assess`] keeping the whole deployment of an admitted design (its mechanism and
+/// trajectory), for the stages that measure more from it.
+pub(crate) enum Admission {
+    /// Admitted, with its deployment.
+    Admitted(Box<Deployment>),
+    /// Not admitted.
+    Rejected(Rejection),
+}
+
+/// [`assess`] with the admitted design's deployment.
+pub(crate) fn admit(
+    design: &Design,
+    settings: &CatalogSettings,
+    progress: crate::deploy::Progress<'_>,
+) -> Result<Admission> {
     let dof = api::analyze(design, settings.topology.mobility)?
         .mobility
         .dof;
     if dof != 1 {
-        return Ok(Assessment::Rejected(Rejection::Mobility { dof }));
+        return Ok(Admission::Rejected(Rejection::Mobility { dof }));
     }
     // Judged on the trajectory's summaries (which the report repeats), so that the frames —
     // states inserted into short trajectories cost more than the trajectory — are made only
@@ -84,15 +105,15 @@ pub fn assess(
     let request = settings.deploy_request();
     let path = api::deploy_path(design, &request.settings, progress)?;
     if matches!(path.trajectory.end_reason, EndReason::Locked) || path.trajectory.steps.len() < 2 {
-        return Ok(Assessment::Rejected(Rejection::Locked));
+        return Ok(Admission::Rejected(Rejection::Locked));
     }
     let max_expansion = path.summary()?.max_expansion;
     if max_expansion.is_nan() || max_expansion < settings.threshold {
-        return Ok(Assessment::Rejected(Rejection::BelowThreshold {
+        return Ok(Admission::Rejected(Rejection::BelowThreshold {
             max_expansion,
             threshold: settings.threshold,
         }));
     }
-    let report = path.into_deployment(design, request.frames)?.report;
-    Ok(Assessment::Admitted(Box::new(report)))
+    let run = path.into_deployment(design, request.frames)?;
+    Ok(Admission::Admitted(Box::new(run)))
 }

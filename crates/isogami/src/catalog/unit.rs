@@ -1,6 +1,7 @@
 //! One work unit: a family on one supercell, from joint masks to catalogue entries.
 
-use super::assess::{assess, Assessment};
+use super::assess::{admit, Admission};
+use super::finite::{figures_of_trajectory, FiniteFigures};
 use super::part::{combine_parts, run_unit_part};
 use super::screen::{applies, closing_rates, screens_out};
 use super::settings::CatalogSettings;
@@ -41,6 +42,11 @@ pub struct CatalogEntry {
     pub report: DeploymentReport,
     /// Its linkages.
     pub linkages: LinkageAnalysis,
+    /// Its finite 6×6 patch: raw DOF and covered fraction of the completed sheet. None only
+    /// in entries made before the catalogue had them (parts of split units waiting in a
+    /// database, read back).
+    #[serde(default)]
+    pub finite: Option<FiniteFigures>,
 }
 
 /// Everything a work unit produced.
@@ -90,7 +96,7 @@ pub(super) fn topology_tallies(r: &TopologyReport) -> Vec<StageTally> {
     ]
 }
 
-/// Deploys `design` and characterises it; `None` when it is not admitted (see
+/// Deploys `design` and characterises it (report, linkages, finite 6×6 patch); `None` when it is not admitted (see
 /// [`assess`]: one DOF, not locked, past the threshold) or, with `settings.screen`, screened
 /// out from its first-order motion without deploying it (a cut shuts too soon along both
 /// signs). Uses the library's one deploy entry
@@ -111,16 +117,20 @@ fn characterise(candidate: &Candidate, settings: &CatalogSettings) -> Result<Opt
             return Ok(None);
         }
     }
-    let report = match assess(design, settings, &mut |_| true)? {
-        Assessment::Admitted(report) => *report,
-        Assessment::Rejected(_) => return Ok(None),
+    let run = match admit(design, settings, &mut |_| true)? {
+        Admission::Admitted(run) => *run,
+        Admission::Rejected(_) => return Ok(None),
     };
+    // The finite patch from the same trajectory: no second deployment.
+    let cell = design.cell()?;
+    let finite = figures_of_trajectory(design, &cell, &run.mechanism, &run.trajectory, settings)?;
     let linkages = api::linkages(design)?;
     Ok(Some(CatalogEntry {
         design: design.clone(),
         topology: topology.to_string(),
-        report,
+        report: run.report,
         linkages,
+        finite: Some(finite),
     }))
 }
 
