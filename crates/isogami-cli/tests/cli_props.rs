@@ -21,6 +21,8 @@ const NULLABLE: &[&str] = &[
     "smallest_nonzero",
     "gap_decades",
     "linkage_signature",
+    // The smallest covered share of no completed patch (none of the designs completes).
+    "min_covered",
 ];
 
 fn isogami(args: &[String]) -> Output {
