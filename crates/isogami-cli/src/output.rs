@@ -3,10 +3,12 @@
 //! standing in for a number), and every text it prints through [`emit`] (no formatted NaN or
 //! infinity). A violation is a one-line error (exit code 2) instead of output.
 
+mod files;
 mod finite;
 mod text;
 pub mod usage;
 
+pub use files::Outputs;
 pub use finite::check_finite;
 use serde::Serialize;
 use std::io::Write;
@@ -28,36 +30,11 @@ pub fn print_json<T: Serialize + ?Sized>(value: &T) -> CliResult {
     write_stdout(&(json_text(value)? + "\n"))
 }
 
-/// Writes a value as pretty JSON to `path` (checked by [`json_text`], written atomically).
-pub fn write_json<T: Serialize + ?Sized>(path: &Path, value: &T) -> CliResult {
-    write_atomic(path, json_text(value)?.as_bytes())
-}
-
-/// Writes `contents` to `path` atomically: a temporary file beside it, then a rename, so a
-/// failure never leaves a partial file.
+/// Writes `contents` to `path`: a regular file is replaced atomically, a symbolic link
+/// followed, a device or FIFO written through (see [`Outputs`]); a failure never leaves a
+/// partial file.
 pub fn write_atomic(path: &Path, contents: &[u8]) -> CliResult {
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .ok_or_else(|| format!("{}: not a file path", path.display()))?;
-    let tmp = dir.join(format!(
-        ".{}.tmp{}",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(contents)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    result.map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        format!("cannot write {}: {e}", path.display())
-    })
+    files::write_file(path, contents)
 }
 
 /// Parses a comma-separated parameter list.

@@ -1,6 +1,6 @@
 //! `isogami deploy`.
 
-use crate::output::{emit, print_json, write_atomic, write_json, CliResult};
+use crate::output::{emit, json_text, print_json, CliResult, Outputs};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami::api::{deploy, resolve_design, DeployRequest, FrameSelection};
 use isogami::contact::{ContactModel, ContactSettings};
@@ -93,20 +93,22 @@ pub fn run(args: Args) -> CliResult {
     bar.finish_and_clear();
     let (mech, contact, frames, report) = (&run.mechanism, &run.contact, &run.frames, &run.report);
 
+    // Every file is made first, then all are written together (or none).
+    let mut outputs = Outputs::new();
     if let Some(dir) = &args.frames {
-        write_frames(dir, mech, contact, frames)?;
+        frame_files(&mut outputs, dir, mech, contact, frames);
     }
     if let Some(path) = &args.gif {
         let svgs = deployment_frame_svgs(mech, contact, frames, 480.0);
         let bytes = gif_from_svgs(&svgs, 480, 6, &Fonts::system()).map_err(|e| e.to_string())?;
-        write_atomic(path, &bytes)?;
+        outputs.file(path, bytes);
     }
     if let Some(path) = &args.plot {
         let t: Vec<f64> = frames.iter().map(|f| f.t).collect();
         let lo: Vec<f64> = frames.iter().map(|f| f.measures.min_expansion).collect();
         let hi: Vec<f64> = frames.iter().map(|f| f.measures.max_expansion).collect();
         let svg = expansion_plot_svg(&t, &lo, &hi, &report.design).map_err(|e| e.to_string())?;
-        write_atomic(path, svg.as_bytes())?;
+        outputs.file(path, svg.into_bytes());
         let profiles: Vec<(String, Vec<(f64, f64)>)> = polar_t
             .iter()
             .map(|&target| {
@@ -121,11 +123,12 @@ pub fn run(args: Args) -> CliResult {
             })
             .collect();
         let polar = polar_plot_svg(&profiles).map_err(|e| e.to_string())?;
-        write_atomic(&sibling(path, "-polar"), polar.as_bytes())?;
+        outputs.file(&sibling(path, "-polar"), polar.into_bytes());
     }
     if let Some(path) = &args.out {
-        write_json(path, report)?;
+        outputs.file(path, json_text(report)?.into_bytes());
     }
+    outputs.write()?;
     if args.json {
         return print_json(report);
     }
@@ -181,20 +184,21 @@ pub fn run(args: Args) -> CliResult {
     emit(&o)
 }
 
-fn write_frames(
+/// One SVG per frame in the folder `dir` (made when missing).
+fn frame_files(
+    outputs: &mut Outputs,
     dir: &Path,
     mech: &Mechanism,
     contact: &ContactModel,
     frames: &[isogami::deploy::FrameRecord],
-) -> CliResult {
-    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+) {
+    outputs.folder(dir);
     for (k, svg) in deployment_frame_svgs(mech, contact, frames, 600.0)
-        .iter()
+        .into_iter()
         .enumerate()
     {
-        write_atomic(&dir.join(format!("frame-{k:04}.svg")), svg.as_bytes())?;
+        outputs.file(&dir.join(format!("frame-{k:04}.svg")), svg.into_bytes());
     }
-    Ok(())
 }
 
 /// `path` with `suffix` inserted before the extension.

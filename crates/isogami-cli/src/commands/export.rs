@@ -6,7 +6,7 @@
 //! value or a failure leaves no file behind. The formats and their names come from the
 //! library ([`Format`]).
 
-use crate::output::{write_atomic, CliResult};
+use crate::output::{emit, write_atomic, CliResult, Outputs};
 use isogami::api::resolve_design;
 use isogami::contact::ContactSettings;
 use isogami::export::{
@@ -110,15 +110,15 @@ pub fn run(args: Args) -> CliResult {
     } else {
         format!("raw rectangle, {} DOF", f.dof)
     };
-    println!(
-        "wrote {} ({} tiles, {} joints, t = {:.4}, {:.1} x {:.1} mm; {sheet})",
+    emit(&format!(
+        "wrote {} ({} tiles, {} joints, t = {:.4}, {:.1} x {:.1} mm; {sheet})\n",
         args.out.display(),
         patch.tiles.len(),
         patch.joints.len(),
         patch.t,
         patch.size_mm[0],
         patch.size_mm[1]
-    );
+    ))?;
     if let Some(w) = f.warning() {
         eprintln!("warning: {w}");
     }
@@ -143,12 +143,13 @@ fn write_files(out: &Path, files: &ExportFiles) -> CliResult {
                     out.display()
                 ));
             }
-            std::fs::create_dir_all(out)
-                .map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+            // All the folder's files, or none.
+            let mut outputs = Outputs::new();
+            outputs.folder(out);
             for (name, bytes) in named {
-                write_atomic(&out.join(name), bytes)?;
+                outputs.file(&out.join(name), bytes.clone());
             }
-            Ok(())
+            outputs.write()
         }
     }
 }
