@@ -342,6 +342,9 @@ def compare(bin_path, design, region, t, folder, completed=False):
             row["problems"].append("isogami sheet made no completion")
             return row
         theirs, their_tiles = comp["mobility"], comp["sheet"]["tiles"]
+        rep = comp["report"]
+        row["completion"] = {"covered": rep["covered_fraction"], "removed": len(rep["removed"]),
+                             "added": len(rep["added"]), "grown": rep["grown"]}
     else:
         theirs, their_tiles = report["raw_mobility"], report["raw"]["tiles"]
     row["t_sheet"] = float(report["t"])

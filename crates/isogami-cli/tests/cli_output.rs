@@ -169,7 +169,11 @@ fn outputs_write_through_devices_and_fifos_and_follow_links() {
     let null = d.join("null-link");
     std::os::unix::fs::symlink("/dev/null", &null).unwrap();
     let out = export_to(&null);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert_eq!(kind(&null), "symlink");
     assert_eq!(kind(std::path::Path::new("/dev/null")), "char device");
 
@@ -198,7 +202,10 @@ fn outputs_write_through_devices_and_fifos_and_follow_links() {
     std::os::unix::fs::symlink(&target, &link).unwrap();
     assert!(export_to(&link).status.success());
     assert_eq!(kind(&link), "symlink");
-    assert_eq!(std::fs::read(&target).unwrap(), std::fs::read(&plain).unwrap());
+    assert_eq!(
+        std::fs::read(&target).unwrap(),
+        std::fs::read(&plain).unwrap()
+    );
 
     // A link to nothing, a folder: refused in one line, nothing made.
     let dangling = d.join("dangling");
@@ -288,7 +295,12 @@ fn a_command_with_several_outputs_writes_all_or_none() {
 #[test]
 fn a_full_stdout_ends_in_one_line_and_exit_2() {
     let dir = scratch("out-full");
-    let full = || std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+    let full = || {
+        std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap()
+    };
     let out_csv = dir.path().join("a.csv");
     let commands: Vec<Vec<&str>> = vec![
         [EXPORT.as_slice(), &["--out", out_csv.to_str().unwrap()]].concat(),

@@ -278,3 +278,71 @@ fn damaged_copies_of_a_real_database_are_refused_unchanged() {
         refused_everywhere(&file, &good, "damaged");
     }
 }
+
+#[test]
+fn a_refused_merge_of_several_inputs_leaves_the_target_as_it_was() {
+    let d_guard = dir("merge-several");
+    let d = d_guard.path();
+    let p = |name: &str| d.join(name);
+    explore(&p("a.db"));
+    // The same families with another threshold: other settings.
+    let out = run(&[
+        "explore",
+        "--quick",
+        "--families",
+        "IH83,IH90",
+        "--threshold",
+        "0.2",
+        "--db",
+        p("other.db").to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    // A second input with the first's settings and units the target lacks.
+    let out = run(&[
+        "explore",
+        "--quick",
+        "--families",
+        "IH76",
+        "--db",
+        p("b.db").to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let s = |name: &str| p(name).to_str().unwrap().to_string();
+    std::fs::copy(p("a.db"), p("target.db")).unwrap();
+    for extra in [&[][..], &["--allow-incomplete"][..]] {
+        // Into an existing target: b.db would be merged first, then other.db refused.
+        let before = std::fs::read(p("target.db")).unwrap();
+        let mut args = vec!["merge".to_string(), "--into".into(), s("target.db")];
+        args.extend(extra.iter().map(|x| x.to_string()));
+        args.extend([s("b.db"), s("other.db")]);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let out = run(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(
+            err.contains("other.db") && err.contains("nothing merged"),
+            "{err}"
+        );
+        assert_eq!(
+            std::fs::read(p("target.db")).unwrap(),
+            before,
+            "{args:?} changed the target"
+        );
+        // Into a new target: the inputs disagree with each other; no file is left.
+        let mut args = vec!["merge".to_string(), "--into".into(), s("new.db")];
+        args.extend(extra.iter().map(|x| x.to_string()));
+        args.extend([s("a.db"), s("other.db")]);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let out = run(&args);
+        assert_eq!(out.status.code(), Some(2));
+        assert!(!p("new.db").exists(), "{args:?} left a target behind");
+    }
+    // Inputs that agree are all merged.
+    let out = run(&["merge", "--into", &s("new.db"), &s("a.db"), &s("b.db")]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

@@ -46,11 +46,28 @@ pub fn merge(args: MergeArgs) -> CliResult {
                 format!("{e} (nothing merged; --allow-incomplete merges what is there)")
             })?;
     }
+    let existed = args.into.exists();
     let mut store =
         StoreWriter::open(&args.into, None, Check::Full).map_err(|e| at(&args.into, e))?;
+    // One transaction: a refused or failed input leaves the target as it was (a target this
+    // merge made is removed again).
+    let inputs: Vec<&Store> = shards.iter().collect();
+    let reports = match store.merge_all(&inputs) {
+        Ok(r) => r,
+        Err((k, e)) => {
+            drop(store);
+            if !existed {
+                for suffix in ["", "-wal", "-shm", "-journal"] {
+                    let mut p = args.into.clone().into_os_string();
+                    p.push(suffix);
+                    let _ = std::fs::remove_file(p);
+                }
+            }
+            return Err(format!("{} (nothing merged)", at(&args.shards[k], e)));
+        }
+    };
     let mut o = String::new();
-    for (path, shard) in args.shards.iter().zip(&shards) {
-        let r = store.merge_from(shard).map_err(|e| at(path, e))?;
+    for (path, r) in args.shards.iter().zip(&reports) {
         let _ = write!(
             o,
             "{}: {} work units added ({} already present), {} designs",

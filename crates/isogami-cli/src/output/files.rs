@@ -65,13 +65,13 @@ impl Outputs {
             let real = match &d {
                 Destination::Replace(p) | Destination::Through(p) => p,
             };
-            if destinations.iter().any(|(_, e): &(_, Destination)| match e {
-                Destination::Replace(q) | Destination::Through(q) => q == real,
-            }) {
-                return Err(format!(
-                    "{}: named twice among the outputs",
-                    path.display()
-                ));
+            if destinations
+                .iter()
+                .any(|(_, e): &(_, Destination)| match e {
+                    Destination::Replace(q) | Destination::Through(q) => q == real,
+                })
+            {
+                return Err(format!("{}: named twice among the outputs", path.display()));
             }
             destinations.push((path.clone(), d));
         }
@@ -130,7 +130,10 @@ fn check_folder(folder: &Path) -> Result<(), String> {
         match fs::metadata(at) {
             Ok(m) if m.is_dir() => return Ok(()),
             Ok(_) if at == folder => {
-                return Err(format!("{}: is a file, expected a folder", folder.display()))
+                return Err(format!(
+                    "{}: is a file, expected a folder",
+                    folder.display()
+                ))
             }
             Ok(_) => {
                 return Err(format!(
@@ -239,10 +242,9 @@ fn kind(path: &Path, real: PathBuf, m: &Metadata) -> Result<Destination, String>
 
 /// A temporary name beside `real`, unique in this process.
 fn temp_beside(real: &Path, k: usize) -> PathBuf {
-    let name = real.file_name().map_or_else(
-        || "output".into(),
-        |n| n.to_string_lossy().into_owned(),
-    );
+    let name = real
+        .file_name()
+        .map_or_else(|| "output".into(), |n| n.to_string_lossy().into_owned());
     real.with_file_name(format!(".{name}.tmp{}-{k}", std::process::id()))
 }
 
