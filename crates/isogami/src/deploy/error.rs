@@ -43,7 +43,7 @@ pub enum DeployError {
         tiles: usize,
     },
     /// A first-order mode asked for that the design does not have.
-    #[error("invalid setting: mode {mode} does not exist: the design has {dof} degree(s) of freedom (modes 0..{dof})")]
+    #[error("invalid setting: mode {mode} does not exist: the design has {dof} degree(s) of freedom ({})", modes_named(*dof))]
     ModeOutOfRange {
         /// The mode asked for.
         mode: usize,
@@ -191,6 +191,16 @@ impl fmt::Display for ReportField {
     }
 }
 
+/// The modes a design with `dof` degrees of freedom has, in words.
+fn modes_named(dof: usize) -> String {
+    match dof {
+        0 => "no modes".into(),
+        1 => "mode 0 only".into(),
+        2 => "modes 0 and 1".into(),
+        n => format!("modes 0 to {}", n - 1),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -228,6 +238,11 @@ mod tests {
             deploy(&mech, &mode, &mut |_| true).unwrap_err(),
             DeployError::ModeOutOfRange { mode: 3, dof: 1 }
         );
+        // The modes named as they are (was "modes 0..2" for modes 0 and 1).
+        let e = DeployError::ModeOutOfRange { mode: 2, dof: 2 }.to_string();
+        assert!(e.ends_with("2 degree(s) of freedom (modes 0 and 1)"), "{e}");
+        let e = DeployError::ModeOutOfRange { mode: 5, dof: 4 }.to_string();
+        assert!(e.ends_with("(modes 0 to 3)"), "{e}");
         let stop = deploy(&mech, &DeploySettings::default(), &mut |n| n < 3);
         assert_eq!(stop.unwrap_err(), DeployError::Cancelled);
     }

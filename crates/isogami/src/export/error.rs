@@ -34,8 +34,13 @@ pub enum ExportError {
         /// The limit ([`super::MAX_PATCH`]).
         max: usize,
     },
-    /// A zero, negative or non-finite size in mm.
-    #[error("{what} {value} mm: must be a finite number above zero")]
+    /// A size in mm outside [`super::MIN_SIZE_MM`]..=[`super::MAX_SIZE_MM`] (zero, negative,
+    /// not finite, below a micrometre or above a kilometre).
+    #[error(
+        "{what} {value} mm: must be a number from {} to {} mm",
+        super::MIN_SIZE_MM,
+        super::MAX_SIZE_MM
+    )]
     BadSize {
         /// Which size (`edge length`, `patch width`, ...).
         what: &'static str,

@@ -38,5 +38,5 @@ pub use files::{export_design, export_files, ExportFiles, ExportOptions};
 pub use format::{Format, SettingsGroup};
 pub use patch::{
     patch_at, patch_at_with, Patch, PatchJoint, PatchRequest, PatchState, PatchTile, Scale, State,
-    MAX_PATCH, MAX_PATCH_FRAMES,
+    MAX_PATCH, MAX_PATCH_FRAMES, MAX_SIZE_MM, MIN_SIZE_MM,
 };

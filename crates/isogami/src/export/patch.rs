@@ -28,6 +28,14 @@ use std::collections::HashMap;
 /// holds 19 200 tiles, enough for any sheet a laser bed or a print bed takes).
 pub const MAX_PATCH: usize = 40;
 
+/// Smallest edge length or patch width in mm (a micrometre: below it the numbers written are
+/// no size any machine makes, and a subnormal scale loses its digits).
+pub const MIN_SIZE_MM: Real = 1e-3;
+
+/// Largest edge length or patch width in mm (a kilometre: a 40×40 patch of it stays far from
+/// overflow in every format).
+pub const MAX_SIZE_MM: Real = 1e6;
+
 /// Most states in [`Patch::states`].
 pub const MAX_PATCH_FRAMES: usize = 100;
 
@@ -113,7 +121,7 @@ impl PatchRequest {
             });
         }
         let (what, value) = self.scale_value();
-        if !(value.is_finite() && value > 0.0) {
+        if !(MIN_SIZE_MM..=MAX_SIZE_MM).contains(&value) {
             return Err(ExportError::BadSize { what, value });
         }
         if let State::T(t) = self.state {

@@ -255,7 +255,15 @@ fn bad_requests_are_refused_with_typed_errors() {
         with(&|r| r.cols = MAX_PATCH + 1),
         ExportError::PatchTooLarge { max: MAX_PATCH, .. }
     ));
-    for v in [0.0, -3.0, f64::NAN, f64::INFINITY] {
+    // Sizes no machine makes: zero, negative, not finite, subnormal (its digits lost), past
+    // overflow of a 40x40 patch (issue 23 item 5).
+    for v in [0.0, -3.0, f64::NAN, f64::INFINITY, 1e-320, 1e-4, 1e308, 2e6] {
+        let e = with(&|r| r.scale = Scale::EdgeMm(v));
+        assert!(
+            e.to_string()
+                .contains("must be a number from 0.001 to 1000000 mm"),
+            "{v}: {e}"
+        );
         assert!(matches!(
             with(&|r| r.scale = Scale::EdgeMm(v)),
             ExportError::BadSize { .. }
