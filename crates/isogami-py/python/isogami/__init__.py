@@ -21,6 +21,21 @@ degrees of freedom, its completion to one DOF and its deployment) and the measur
 Every library error is an ``IsogamiError`` subclass carrying the library's message.
 """
 
+from ._types import (
+    Behaviour,
+    CellLike,
+    DesignLike,
+    FacetValues,
+    FamilyLike,
+    FloatArray,
+    IntArray,
+    InverseProgress,
+    Matrix,
+    Method,
+    Progress,
+    Ranges,
+    Vector,
+)
 from ._isogami import (
     COMPARISON_DESIGNS,
     DEPLOY_SETTINGS,
@@ -93,6 +108,19 @@ from ._isogami import (
 )
 
 __all__ = [
+    "Behaviour",
+    "CellLike",
+    "DesignLike",
+    "FacetValues",
+    "FamilyLike",
+    "FloatArray",
+    "IntArray",
+    "InverseProgress",
+    "Matrix",
+    "Method",
+    "Progress",
+    "Ranges",
+    "Vector",
     "COMPARISON_DESIGNS",
     "DEPLOY_SETTINGS",
     "NAMED_DESIGNS",
@@ -162,3 +190,22 @@ __all__ = [
     "principal_direction",
     "principal_expansions",
 ]
+
+
+def _rebuild(name, args, kwargs):
+    """Unpickling: ``isogami.<name>(*args, **kwargs)``, the call that made a pickled result
+    (``name`` may be dotted: ``"Record._from_json"``)."""
+    target = globals()[name.split(".")[0]]
+    for part in name.split(".")[1:]:
+        target = getattr(target, part)
+    return target(*args, **kwargs)
+
+
+def _part(parent, attr, key):
+    """Unpickling a part of a result: ``getattr(parent, attr)`` of the rebuilt parent
+    (``parent`` a ``_rebuild`` argument tuple), called with or indexed by ``key`` unless it
+    is None."""
+    value = getattr(_rebuild(*parent), attr)
+    if key is None:
+        return value
+    return value(key) if callable(value) else value[key]
