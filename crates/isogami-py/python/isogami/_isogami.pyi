@@ -10,6 +10,76 @@ import numpy.typing as npt
 from ._types import FloatArray, IntArray, Matrix, Vector, DesignLike, CellLike, FamilyLike, Progress, Method, Behaviour, FacetValues, Ranges, InverseProgress
 
 __version__: str
+__all__ = [
+    "Analysis",
+    "COMPARISON_DESIGNS",
+    "CancelledError",
+    "Cell",
+    "CellError",
+    "Comparison",
+    "ContactError",
+    "DEPLOY_SETTINGS",
+    "Database",
+    "DeployError",
+    "DeploySettings",
+    "Deployment",
+    "Design",
+    "DesignError",
+    "ExploreError",
+    "ExportError",
+    "Family",
+    "FiniteError",
+    "FiniteSheet",
+    "InverseError",
+    "InverseResult",
+    "IsogamiError",
+    "KinematicsError",
+    "LinkageError",
+    "Linkages",
+    "MeasureError",
+    "MethodResult",
+    "MobilityError",
+    "Motion",
+    "NAMED_DESIGNS",
+    "Query",
+    "QueryError",
+    "Record",
+    "SAMPLE_OPENING_DESIGNS",
+    "SettingsError",
+    "ShapeError",
+    "SheetDeployment",
+    "SheetPull",
+    "StoreError",
+    "StoredDesign",
+    "TilingError",
+    "__version__",
+    "analyze",
+    "area_ratio",
+    "cell",
+    "compare",
+    "deformation_gradient",
+    "deploy",
+    "deploy_sheet",
+    "design",
+    "directional_expansion",
+    "expansion_profile",
+    "export",
+    "export_formats",
+    "families",
+    "family",
+    "finite_sheet",
+    "follow_shape",
+    "inverse",
+    "linkages",
+    "open_database",
+    "poisson_ratio",
+    "polar",
+    "principal_direction",
+    "principal_expansions",
+    "pull_sheet",
+    "rank_drop_shape",
+    "shape_mobility",
+]
 
 NAMED_DESIGNS: List[str]
 SAMPLE_OPENING_DESIGNS: List[str]
@@ -156,7 +226,7 @@ class Design:
     def geometry(self) -> Dict[str, Any]: ...
     def svg(self) -> str: ...
     def __hash__(self) -> int: ...
-    def __eq__(self, other: object) -> bool: ...
+    def __eq__(self, value: object, /) -> bool: ...
 
 def design(text: str) -> Design:
     """Reads a name, a spec string or design JSON, checked to build."""

@@ -17,8 +17,12 @@ DesignLike = Union["Design", "Record", "StoredDesign", str]
 CellLike = Union[str, Tuple[int, int], Sequence[int]]
 FamilyLike = Union[str, int, "np.integer[Any]", "Family"]
 Progress = Callable[[int], Optional[bool]]
-Method = Literal["rigid-modes", "ncm", "springs"]
-Behaviour = Literal["isotropic_auxetic", "anisotropic_auxetic", "orthotropic_positive_poisson"]
+# Unions of one-value Literals (equal to Literal["rigid-modes", "ncm", "springs"] for a type
+# checker), so that mypy's stubtest sees the Union it expects at runtime too.
+Method = Union[Literal["rigid-modes"], Literal["ncm"], Literal["springs"]]
+Behaviour = Union[
+    Literal["isotropic_auxetic"], Literal["anisotropic_auxetic"], Literal["orthotropic_positive_poisson"]
+]
 # One facet value, or several: a list, tuple, set, numpy array or pandas Series of them.
 FacetValues = Union[str, int, Tuple[int, int], None, Iterable[Union[str, int, Tuple[int, int], None]]]
 Ranges = Union[
