@@ -162,6 +162,11 @@ pub fn matrices(
     obj: &Bound<'_, PyAny>,
 ) -> PyResult<(Option<Vec<usize>>, Vec<isogami::math::Mat2>)> {
     let py = obj.py();
+    if obj.is_none() {
+        return Err(PyTypeError::new_err(format!(
+            "{what} must be a 2x2 matrix or a stack of them (shape (..., 2, 2)), got None"
+        )));
+    }
     let np = py.import("numpy")?;
     let bad = |detail: String| {
         PyValueError::new_err(format!(

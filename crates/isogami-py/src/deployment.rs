@@ -292,14 +292,15 @@ impl PyDeployment {
     /// in [0, 2π): an array of shape (samples, 2) of (θ, ε), for a polar plot. The frame is
     /// ``frame`` (an index, negative from the end) or the one nearest to ``t``; by default
     /// the last.
-    #[pyo3(signature = (t=None, frame=None, samples=180))]
+    #[pyo3(signature = (t=None, frame=None, samples=None), text_signature = "($self, t=None, frame=None, samples=180)")]
     fn profile<'py>(
         &self,
         py: Python<'py>,
         t: Option<f64>,
         frame: Option<isize>,
-        samples: usize,
+        samples: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let samples = crate::convert::count_or("samples", samples, 0, 180)?;
         if !(3..=100_000).contains(&samples) {
             return Err(errors::SettingsError::new_err(format!(
                 "invalid setting: samples {samples} must lie in 3..=100000"

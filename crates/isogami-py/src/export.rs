@@ -278,7 +278,7 @@ pub fn export<'py>(
     width_mm: Option<f64>,
     t: Option<&Bound<'py, PyAny>>,
     kerf: Option<f64>,
-    frames: Option<usize>,
+    frames: Option<&Bound<'py, PyAny>>,
     complete: bool,
     material: Option<&str>,
     hinge_mm: Option<f64>,
@@ -323,7 +323,7 @@ pub fn export<'py>(
         scale,
         state,
         kerf: kerf.unwrap_or(defaults.kerf),
-        frames: frames.unwrap_or(defaults.frames),
+        frames: crate::convert::count_or("frames", frames, 0, defaults.frames)?,
         complete,
     };
     let given = Given {

@@ -445,7 +445,8 @@ pub fn finite_sheet(
 /// >>> run.one_dof_throughout, run.poses.shape[1:]
 /// (True, (36, 3))
 #[pyfunction]
-#[pyo3(signature = (design, region="6x6", *, edge_mm=20.0, t=0.3, complete=true, min_cover=0.5, frames=24, settings=None, progress=None, timeout=None, **overrides))]
+#[pyo3(signature = (design, region="6x6", *, edge_mm=20.0, t=0.3, complete=true, min_cover=0.5, frames=None, settings=None, progress=None, timeout=None, **overrides),
+  text_signature = "(design, region='6x6', *, edge_mm=20.0, t=0.3, complete=True, min_cover=0.5, frames=24, settings=None, progress=None, timeout=None, **overrides)")]
 #[allow(clippy::too_many_arguments)]
 pub fn deploy_sheet(
     py: Python<'_>,
@@ -455,12 +456,13 @@ pub fn deploy_sheet(
     t: f64,
     complete: bool,
     min_cover: f64,
-    frames: usize,
+    frames: Option<&Bound<'_, PyAny>>,
     settings: Option<&Bound<'_, PyAny>>,
     progress: Option<Bound<'_, PyAny>>,
     timeout: Option<f64>,
     overrides: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PySheetDeployment> {
+    let frames = crate::convert::count_or("frames", frames, 0, 24)?;
     let request = SheetDeployRequest {
         sheet: sheet_request(region, edge_mm, t, complete, min_cover, settings, overrides)?,
         frames,

@@ -132,12 +132,13 @@ pub fn directional_expansion<'py>(
 
 /// The polar profile of U: an array of shape (samples, 2) of (θ_k, ε(θ_k)), θ_k = 2πk/samples.
 #[pyfunction]
-#[pyo3(signature = (u, samples=180))]
+#[pyo3(signature = (u, samples=None), text_signature = "(u, samples=180)")]
 pub fn expansion_profile<'py>(
     py: Python<'py>,
     u: [[f64; 2]; 2],
-    samples: usize,
+    samples: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let samples = crate::convert::count_or("samples", samples, 0, 180)?;
     if !(3..=100_000).contains(&samples) {
         return Err(errors::SettingsError::new_err(format!(
             "invalid setting: samples {samples} must lie in 3..=100000"

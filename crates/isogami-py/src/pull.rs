@@ -164,7 +164,8 @@ impl PySheetPull {
 /// >>> run.dof, run.leaves is None
 /// (1, True)
 #[pyfunction]
-#[pyo3(signature = (design, region="6x6", *, edge_mm=20.0, t=0.3, complete=true, min_cover=0.5, grips=None, frames=24, settings=None, progress=None, timeout=None, **overrides))]
+#[pyo3(signature = (design, region="6x6", *, edge_mm=20.0, t=0.3, complete=true, min_cover=0.5, grips=None, frames=None, settings=None, progress=None, timeout=None, **overrides),
+  text_signature = "(design, region='6x6', *, edge_mm=20.0, t=0.3, complete=True, min_cover=0.5, grips=None, frames=24, settings=None, progress=None, timeout=None, **overrides)")]
 #[allow(clippy::too_many_arguments)]
 pub fn pull_sheet(
     py: Python<'_>,
@@ -175,12 +176,13 @@ pub fn pull_sheet(
     complete: bool,
     min_cover: f64,
     grips: Option<(usize, usize)>,
-    frames: usize,
+    frames: Option<&Bound<'_, PyAny>>,
     settings: Option<&Bound<'_, PyAny>>,
     progress: Option<Bound<'_, PyAny>>,
     timeout: Option<f64>,
     overrides: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PySheetPull> {
+    let frames = crate::convert::count_or("frames", frames, 0, 24)?;
     let request = SheetPullRequest {
         sheet: sheet_request(region, edge_mm, t, complete, min_cover, settings, overrides)?,
         grips: grips.map(|(a, b)| [a, b]),

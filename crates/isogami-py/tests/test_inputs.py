@@ -99,3 +99,20 @@ def test_negative_and_huge_ints_are_shown_as_given():
         isogami.deploy("rotating-squares", frames=-5)
     with pytest.raises(isogami.SettingsError, match=str(2**65)):
         isogami.deploy("rotating-squares", frames=2**65)
+
+
+@pytest.mark.parametrize("bad", [-1, 2**64])
+def test_other_counts_name_the_argument(bad):
+    cases = [
+        ("frames", lambda: isogami.deploy_sheet("rotating-squares", "3x3", frames=bad)),
+        ("frames", lambda: isogami.pull_sheet("rotating-squares", "3x3", frames=bad)),
+        ("frames", lambda: isogami.export("rotating-squares", "obj", frames=bad)),
+        ("index", lambda: isogami.follow_shape("IH28", bad, 0.3)),
+        ("samples", lambda: isogami.expansion_profile([[1, 0], [0, 1]], samples=bad)),
+        ("samples", lambda: isogami.deploy("rotating-squares", frames=3).profile(samples=bad)),
+    ]
+    for name, call in cases:
+        with pytest.raises(ValueError, match=rf"^{name} must be a non-negative int.*got {bad}$"):
+            call()
+    # The defaults still apply when the argument is left out.
+    assert isogami.expansion_profile([[1, 0], [0, 1]]).shape == (180, 2)

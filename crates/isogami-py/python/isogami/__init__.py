@@ -21,21 +21,6 @@ degrees of freedom, its completion to one DOF and its deployment) and the measur
 Every library error is an ``IsogamiError`` subclass carrying the library's message.
 """
 
-from ._types import (
-    Behaviour,
-    CellLike,
-    DesignLike,
-    FacetValues,
-    FamilyLike,
-    FloatArray,
-    IntArray,
-    InverseProgress,
-    Matrix,
-    Method,
-    Progress,
-    Ranges,
-    Vector,
-)
 from ._isogami import (
     COMPARISON_DESIGNS,
     DEPLOY_SETTINGS,
@@ -108,19 +93,6 @@ from ._isogami import (
 )
 
 __all__ = [
-    "Behaviour",
-    "CellLike",
-    "DesignLike",
-    "FacetValues",
-    "FamilyLike",
-    "FloatArray",
-    "IntArray",
-    "InverseProgress",
-    "Matrix",
-    "Method",
-    "Progress",
-    "Ranges",
-    "Vector",
     "COMPARISON_DESIGNS",
     "DEPLOY_SETTINGS",
     "NAMED_DESIGNS",

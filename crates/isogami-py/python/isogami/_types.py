@@ -1,5 +1,5 @@
-"""Type aliases of isogami's public signatures, importable at runtime (``from isogami
-import Method``) for annotating code that calls isogami."""
+"""Type aliases of isogami's public signatures (``from isogami._types import Method``), a
+real module so that the stubs' aliases exist at runtime and stubtest finds them."""
 
 from typing import TYPE_CHECKING, Any, Callable, Dict, Iterable, Literal, Mapping, Optional, Sequence, Tuple, Union
 
