@@ -209,6 +209,31 @@ impl PyCell {
         cell_svg(&self.inner, None)
     }
 
+    /// Pickles as ``isogami.cell(family, params, cell)`` (see the `pickle` module).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        let r = crate::pickle::recipe(
+            py,
+            "cell",
+            vec![
+                self.inner.family.name().into_pyobject(py)?.into_any(),
+                self.inner.params.clone().into_pyobject(py)?.into_any(),
+                self.cell().into_pyobject(py)?.into_any(),
+            ],
+            &[],
+        )?;
+        crate::pickle::reduce(py, &r)
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other.cast::<Self>().is_ok_and(|o| {
+            let o = o.get();
+            crate::pickle::same(&o.inner, &self.inner)
+        })
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "isogami.Cell({} {} with {} tiles, {} unique edges)",

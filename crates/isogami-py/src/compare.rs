@@ -6,8 +6,62 @@ use crate::deployment::settings_of;
 use crate::progress::Watch;
 use isogami::api::compare_with;
 use isogami::deploy::{DesignComparison, MethodResult};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+
+/// A method result read back from its JSON (the library's type serialises only; for
+/// unpickling, every field as it serialises).
+#[derive(serde::Deserialize)]
+struct MethodResultState {
+    method: isogami::deploy::Method,
+    final_t: f64,
+    path_distance: f64,
+    max_area_ratio: f64,
+    max_area_t: f64,
+    final_area_ratio: f64,
+    max_expansion: f64,
+    min_expansion: f64,
+    max_tile_rotation: f64,
+    reached_peak_area: bool,
+    end_reason: isogami::deploy::EndReason,
+    steps: usize,
+    attempts: usize,
+    millis: f64,
+}
+
+impl From<MethodResultState> for MethodResult {
+    fn from(s: MethodResultState) -> MethodResult {
+        MethodResult {
+            method: s.method,
+            final_t: s.final_t,
+            path_distance: s.path_distance,
+            max_area_ratio: s.max_area_ratio,
+            max_area_t: s.max_area_t,
+            final_area_ratio: s.final_area_ratio,
+            max_expansion: s.max_expansion,
+            min_expansion: s.min_expansion,
+            max_tile_rotation: s.max_tile_rotation,
+            reached_peak_area: s.reached_peak_area,
+            end_reason: s.end_reason,
+            steps: s.steps,
+            attempts: s.attempts,
+            millis: s.millis,
+        }
+    }
+}
+
+/// A comparison read back from its JSON.
+#[derive(serde::Deserialize)]
+struct ComparisonState {
+    design: String,
+    dof: usize,
+    results: Vec<MethodResultState>,
+}
+
+fn bad_json(e: serde_json::Error) -> PyErr {
+    PyValueError::new_err(format!("text: not a comparison's JSON: {e}"))
+}
 
 /// One method's result in a comparison (lengths in units of L, angles in radians).
 #[pyclass(name = "MethodResult", module = "isogami", frozen)]
@@ -93,6 +147,34 @@ impl PyMethodResult {
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.inner)
     }
+    /// Pickles as its fields exactly (``MethodResult._from_json``) (see the `pickle` module).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        let r = crate::pickle::recipe(
+            py,
+            "MethodResult._from_json",
+            vec![crate::pickle::json(py, &self.inner)?],
+            &[],
+        )?;
+        crate::pickle::reduce(py, &r)
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other.cast::<Self>().is_ok_and(|o| {
+            let o = o.get();
+            crate::pickle::same(&o.inner, &self.inner)
+        })
+    }
+
+    /// A method result from its JSON (for unpickling).
+    #[staticmethod]
+    fn _from_json(text: &str) -> PyResult<PyMethodResult> {
+        let s: MethodResultState = serde_json::from_str(text).map_err(bad_json)?;
+        Ok(PyMethodResult { inner: s.into() })
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "isogami.MethodResult({}: t {:.3}, area up to {:.4}, {})",
@@ -151,6 +233,40 @@ impl PyComparison {
     fn __len__(&self) -> usize {
         self.inner.results.len()
     }
+    /// Pickles as its fields exactly (``Comparison._from_json``) (see the `pickle` module).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        let r = crate::pickle::recipe(
+            py,
+            "Comparison._from_json",
+            vec![crate::pickle::json(py, &self.inner)?],
+            &[],
+        )?;
+        crate::pickle::reduce(py, &r)
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other.cast::<Self>().is_ok_and(|o| {
+            let o = o.get();
+            crate::pickle::same(&o.inner, &self.inner)
+        })
+    }
+
+    /// A comparison from its JSON (for unpickling).
+    #[staticmethod]
+    fn _from_json(text: &str) -> PyResult<PyComparison> {
+        let s: ComparisonState = serde_json::from_str(text).map_err(bad_json)?;
+        Ok(PyComparison {
+            inner: DesignComparison {
+                design: s.design,
+                dof: s.dof,
+                results: s.results.into_iter().map(Into::into).collect(),
+            },
+        })
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "isogami.Comparison({}: {})",

@@ -122,6 +122,20 @@ impl PyRecord {
     }
 }
 
+impl PyRecord {
+    /// Its spec string.
+    pub(crate) fn spec(&self) -> &str {
+        &self.spec
+    }
+}
+
+impl PyStoredDesign {
+    /// Its spec string.
+    pub(crate) fn spec(&self) -> &str {
+        &self.inner.summary.spec
+    }
+}
+
 #[pymethods]
 impl PyRecord {
     /// The design (read from the spec).
@@ -132,6 +146,35 @@ impl PyRecord {
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.inner)
     }
+    /// Pickles as its columns exactly (``Record._from_json``) (see the `pickle` module).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        let r = crate::pickle::recipe(
+            py,
+            "Record._from_json",
+            vec![crate::pickle::json(py, &self.inner)?],
+            &[],
+        )?;
+        crate::pickle::reduce(py, &r)
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other.cast::<Self>().is_ok_and(|o| {
+            let o = o.get();
+            o.inner == self.inner
+        })
+    }
+
+    /// A record from ``to_dict()``'s JSON (for unpickling).
+    #[staticmethod]
+    fn _from_json(text: &str) -> PyResult<PyRecord> {
+        serde_json::from_str(text)
+            .map(PyRecord::new)
+            .map_err(|e| PyValueError::new_err(format!("text: not a record's JSON: {e}")))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "isogami.Record({}: {}, area ratio up to {:.4})",
@@ -169,6 +212,48 @@ impl PyStoredDesign {
             .map(|l| to_python(py, l))
             .transpose()
     }
+    /// Pickles as its record, report and linkages exactly (``StoredDesign._from_json``) (see the `pickle` module).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        let r = crate::pickle::recipe(
+            py,
+            "StoredDesign._from_json",
+            vec![
+                crate::pickle::json(py, &self.inner.summary)?,
+                crate::pickle::json(py, &self.inner.report)?,
+                crate::pickle::json(py, &self.inner.linkages)?,
+            ],
+            &[],
+        )?;
+        crate::pickle::reduce(py, &r)
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other.cast::<Self>().is_ok_and(|o| {
+            let o = o.get();
+            crate::pickle::same(&o.inner.summary, &self.inner.summary)
+                && crate::pickle::same(&o.inner.report, &self.inner.report)
+                && o.inner.linkages == self.inner.linkages
+        })
+    }
+
+    /// A stored design from the JSON of its parts (for unpickling).
+    #[staticmethod]
+    fn _from_json(summary: &str, report: &str, linkages: &str) -> PyResult<PyStoredDesign> {
+        let bad = |e: serde_json::Error| {
+            PyValueError::new_err(format!("not a stored design's JSON: {e}"))
+        };
+        Ok(PyStoredDesign {
+            inner: StoredDesign {
+                summary: serde_json::from_str(summary).map_err(bad)?,
+                report: serde_json::from_str(report).map_err(bad)?,
+                linkages: serde_json::from_str(linkages).map_err(bad)?,
+            },
+        })
+    }
+
     fn __repr__(&self) -> String {
         format!("isogami.StoredDesign({})", self.inner.summary.spec)
     }
@@ -307,13 +392,23 @@ impl PyDatabase {
         })?;
         let q = PyQuery::of(query, filters)?;
         let rows = self.rows(py, &q)?;
+        // Shape parameters also as one float column each (param_0, param_1, ...; NaN where
+        // a family has fewer), so that they can be filtered and plotted like any column.
+        let width = rows.iter().map(|r| r.params.len()).max().unwrap_or(0);
         let records = PyList::empty(py);
         for r in &rows {
             let d = to_python(py, r)?;
             d.set_item("cell", r.cell.to_string())?;
+            for k in 0..width {
+                d.set_item(
+                    format!("param_{k}"),
+                    r.params.get(k).copied().unwrap_or(f64::NAN),
+                )?;
+            }
             records.append(d)?;
         }
-        let columns: Vec<&str> = COLUMNS.to_vec();
+        let mut columns: Vec<String> = COLUMNS.iter().map(|c| c.to_string()).collect();
+        columns.extend((0..width).map(|k| format!("param_{k}")));
         let kwargs = PyDict::new(py);
         kwargs.set_item("columns", columns)?;
         pandas

@@ -28,6 +28,7 @@ use pyo3::types::PyDict;
 #[pyclass(name = "Deployment", module = "isogami", frozen)]
 pub struct PyDeployment {
     inner: Deployment,
+    recipe: crate::pickle::Recipe,
 }
 
 impl PyDeployment {
@@ -291,14 +292,15 @@ impl PyDeployment {
     /// in [0, 2π): an array of shape (samples, 2) of (θ, ε), for a polar plot. The frame is
     /// ``frame`` (an index, negative from the end) or the one nearest to ``t``; by default
     /// the last.
-    #[pyo3(signature = (t=None, frame=None, samples=180))]
+    #[pyo3(signature = (t=None, frame=None, samples=None), text_signature = "($self, t=None, frame=None, samples=180)")]
     fn profile<'py>(
         &self,
         py: Python<'py>,
         t: Option<f64>,
         frame: Option<isize>,
-        samples: usize,
+        samples: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let samples = crate::convert::count_or("samples", samples, 0, 180)?;
         if !(3..=100_000).contains(&samples) {
             return Err(errors::SettingsError::new_err(format!(
                 "invalid setting: samples {samples} must lie in 3..=100000"
@@ -362,6 +364,57 @@ impl PyDeployment {
         .unwrap_or_default()
     }
 
+    /// Pickles as the call that made it (see the `pickle` module).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        crate::pickle::reduce(py, &self.recipe)
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<Self>()
+            .is_ok_and(|o| crate::pickle::same(&o.get().inner.report, &self.inner.report))
+    }
+
+    /// One row per frame as a pandas DataFrame (needs pandas): ``t``, ``step``,
+    /// ``area_ratio``, ``min_expansion``, ``max_expansion``, ``principal_angle``,
+    /// ``lattice_rotation``, ``joint_residual`` and ``clearance``, indexed by frame number.
+    fn dataframe<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
+        let pandas = py.import("pandas").map_err(|_| {
+            pyo3::exceptions::PyImportError::new_err(
+                "Deployment.dataframe needs pandas (pip install pandas); the per-frame \
+                 arrays (t, area_ratio, ...) are attributes",
+            )
+        })?;
+        let columns = PyDict::new(py);
+        for name in ["t", "step", "area_ratio"] {
+            columns.set_item(name, slf.getattr(name)?)?;
+        }
+        let me = slf.get();
+        columns.set_item(
+            "min_expansion",
+            me.per_frame(py, |r| r.measures.min_expansion),
+        )?;
+        columns.set_item(
+            "max_expansion",
+            me.per_frame(py, |r| r.measures.max_expansion),
+        )?;
+        for name in [
+            "principal_angle",
+            "lattice_rotation",
+            "joint_residual",
+            "clearance",
+        ] {
+            columns.set_item(name, slf.getattr(name)?)?;
+        }
+        let df = pandas.getattr("DataFrame")?.call1((columns,))?;
+        df.getattr("index")?.setattr("name", "frame")?;
+        Ok(df)
+    }
+
     fn __len__(&self) -> usize {
         self.frames().len()
     }
@@ -395,14 +448,25 @@ fn frame_selection(frames: &Bound<'_, PyAny>) -> PyResult<FrameSelection> {
             "frames must be an int or 'all', got bool",
         ));
     }
-    let n: i64 = frames.extract().map_err(|_| {
+    let n = crate::convert::index_of(frames).ok_or_else(|| {
         PyTypeError::new_err(format!(
             "frames must be an int or 'all', got {}",
             crate::convert::type_name(frames)
         ))
     })?;
-    // The library checks the range and names it; a negative count is out of range too.
-    Ok(FrameSelection::Evenly(usize::try_from(n).unwrap_or(0)))
+    // The library checks the range and names it; a negative or huge count is out of range
+    // too, and shown as given.
+    match n
+        .extract::<i64>()
+        .ok()
+        .and_then(|n| usize::try_from(n).ok())
+    {
+        Some(n) => Ok(FrameSelection::Evenly(n)),
+        None => Err(errors::SettingsError::new_err(format!(
+            "invalid setting: frame count {n} must lie in 2..={}",
+            isogami::api::MAX_FRAME_COUNT
+        ))),
+    }
 }
 
 /// Settings from an optional `DeploySettings` and keyword overrides.
@@ -470,8 +534,21 @@ pub fn deploy(
     let request = DeployRequest { settings, frames };
     request.validate().map_err(|e| errors::library(e.into()))?;
     let design = design_of(design)?;
+    let frames_arg = match request.frames {
+        FrameSelection::Evenly(n) => n.into_pyobject(py)?.into_any(),
+        FrameSelection::AllSteps => "all".into_pyobject(py)?.into_any(),
+    };
+    let recipe = crate::pickle::recipe(
+        py,
+        "deploy",
+        vec![design.to_string().into_pyobject(py)?.into_any()],
+        &[
+            ("settings", crate::pickle::settings(py, settings)?),
+            ("frames", frames_arg),
+        ],
+    )?;
     let mut watch = Watch::new(progress.filter(|p| !p.is_none()), timeout)?;
     let result = py.detach(|| lib_deploy(&design, &request, &mut |n| watch.tick(n)));
     let inner = watch.finish(result)?;
-    Ok(PyDeployment { inner })
+    Ok(PyDeployment { inner, recipe })
 }

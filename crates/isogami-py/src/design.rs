@@ -3,7 +3,7 @@
 //! checked by the library to build.
 
 use crate::cell::PyCell;
-use crate::convert::{to_python, type_name};
+use crate::convert::{index_of, to_python, type_name};
 use crate::errors;
 use isogami::api::{resolve_design, sheet_geometry, Design};
 use isogami::cell::CellDims;
@@ -83,9 +83,21 @@ pub fn dims_of(obj: &Bound<'_, PyAny>) -> PyResult<CellDims> {
             .parse()
             .map_err(|e: isogami::cell::CellError| errors::library(e.into()));
     }
-    if let Ok((a, b)) = obj.extract::<(i64, i64)>() {
-        let small = |v: i64| u8::try_from(v).unwrap_or(u8::MAX);
-        return CellDims::new(small(a), small(b)).map_err(|e| errors::library(e.into()));
+    if let Ok((a, b)) = obj.extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>() {
+        if let (Some(a), Some(b)) = (index_of(&a), index_of(&b)) {
+            // Sizes as given (-1 stays -1), not wrapped into a byte.
+            let small =
+                |v: &Bound<'_, PyAny>| v.extract::<i64>().ok().and_then(|v| u8::try_from(v).ok());
+            return match (small(&a), small(&b)) {
+                (Some(a), Some(b)) => CellDims::new(a, b).map_err(|e| errors::library(e.into())),
+                _ => Err(errors::library(
+                    isogami::cell::CellError::BadCell {
+                        input: format!("{a}x{b}"),
+                    }
+                    .into(),
+                )),
+            };
+        }
     }
     Err(PyTypeError::new_err(format!(
         "cell must be a str 'AxB' or a pair (a, b) of ints, got {}",
@@ -103,14 +115,18 @@ pub fn family_of(obj: &Bound<'_, PyAny>) -> PyResult<Family> {
             .parse()
             .map_err(|e: isogami::tiling::TilingError| errors::library(e.into()));
     }
-    if obj.is_instance_of::<pyo3::types::PyInt>() && !obj.is_instance_of::<pyo3::types::PyBool>() {
-        // Numbers beyond u32 are no family either.
-        let n = obj
-            .extract::<i64>()
-            .ok()
-            .and_then(|n| u32::try_from(n).ok())
-            .unwrap_or(u32::MAX);
-        return Family::from_number(n).map_err(|e| errors::library(e.into()));
+    if let Some(i) = index_of(obj) {
+        // An int or a numpy integer; numbers beyond u32 (or negative) are no family either,
+        // and the message shows them as given.
+        return match i.extract::<i64>().ok().and_then(|n| u32::try_from(n).ok()) {
+            Some(n) => Family::from_number(n).map_err(|e| errors::library(e.into())),
+            None => Err(errors::library(
+                isogami::tiling::TilingError::UnknownFamily {
+                    input: i.to_string(),
+                }
+                .into(),
+            )),
+        };
     }
     Err(PyTypeError::new_err(format!(
         "family must be a str such as 'IH28', an int or an isogami.Family, got {}",

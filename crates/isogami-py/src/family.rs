@@ -129,6 +129,20 @@ impl PyFamily {
         to_python(py, &self.inner.info())
     }
 
+    /// Pickles as ``isogami.family(name)`` (see the `pickle` module).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        let r = crate::pickle::recipe(
+            py,
+            "family",
+            vec![self.inner.name().into_pyobject(py)?.into_any()],
+            &[],
+        )?;
+        crate::pickle::reduce(py, &r)
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "isogami.Family('{}', params={:?})",

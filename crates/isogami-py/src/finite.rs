@@ -27,6 +27,7 @@ use pyo3::types::PyDict;
 #[pyclass(name = "FiniteSheet", module = "isogami", frozen)]
 pub struct PyFiniteSheet {
     pub(crate) inner: SheetAnalysis,
+    pub(crate) recipe: crate::pickle::Recipe,
 }
 
 fn tile_rows<'py>(py: Python<'py>, sheet: &FiniteSheet) -> PyResult<Bound<'py, PyArray2<i64>>> {
@@ -176,6 +177,20 @@ impl PyFiniteSheet {
     fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.inner)
     }
+    /// Pickles as the call that made it (see the `pickle` module).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        crate::pickle::reduce(py, &self.recipe)
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<Self>()
+            .is_ok_and(|o| crate::pickle::same(&o.get().inner, &self.inner))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "FiniteSheet({} {}: {} tiles, {} DOF{})",
@@ -201,6 +216,7 @@ impl PyFiniteSheet {
 #[pyclass(name = "SheetDeployment", module = "isogami", frozen)]
 pub struct PySheetDeployment {
     inner: SheetDeployment,
+    recipe: crate::pickle::Recipe,
 }
 
 impl PySheetDeployment {
@@ -217,10 +233,11 @@ impl PySheetDeployment {
 impl PySheetDeployment {
     /// The sheet that was deployed (its ``tiles`` order the poses).
     #[getter]
-    fn sheet(&self) -> PyFiniteSheet {
-        PyFiniteSheet {
+    fn sheet(&self, py: Python<'_>) -> PyResult<PyFiniteSheet> {
+        Ok(PyFiniteSheet {
             inner: self.inner.analysis.clone(),
-        }
+            recipe: crate::pickle::part(py, &self.recipe, "sheet", py.None().into_bound(py))?,
+        })
     }
     /// Why the finite deployment ended (``"contact_limit"``, ``"max_steps"``, ...).
     #[getter]
@@ -299,6 +316,20 @@ impl PySheetDeployment {
     fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.inner)
     }
+    /// Pickles as the call that made it (see the `pickle` module).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        crate::pickle::reduce(py, &self.recipe)
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<Self>()
+            .is_ok_and(|o| crate::pickle::same(&o.get().inner, &self.inner))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "SheetDeployment({}: {} tiles, {} after {} states, hull area x{:.4})",
@@ -309,6 +340,37 @@ impl PySheetDeployment {
             self.inner.end.hull_area_ratio
         )
     }
+}
+
+/// The recipe of a finite-sheet call (see the `pickle` module): the design's spec, the
+/// region as given and the request's settings, plus `extra` keywords.
+pub(crate) fn sheet_recipe<'py>(
+    py: Python<'py>,
+    name: &str,
+    design: &Bound<'py, PyAny>,
+    region: &str,
+    request: &SheetRequest,
+    extra: Vec<(&str, Bound<'py, PyAny>)>,
+) -> PyResult<crate::pickle::Recipe> {
+    let spec = design_of(design)?.to_string();
+    let mut kwargs = vec![
+        ("region", region.into_pyobject(py)?.into_any()),
+        ("edge_mm", request.edge_mm.into_pyobject(py)?.into_any()),
+        ("t", request.t.into_pyobject(py)?.into_any()),
+        (
+            "complete",
+            pyo3::types::PyBool::new(py, request.complete)
+                .to_owned()
+                .into_any(),
+        ),
+        (
+            "min_cover",
+            request.min_covered.into_pyobject(py)?.into_any(),
+        ),
+        ("settings", crate::pickle::settings(py, request.settings)?),
+    ];
+    kwargs.extend(extra);
+    crate::pickle::recipe(py, name, vec![spec.into_pyobject(py)?.into_any()], &kwargs)
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -365,10 +427,11 @@ pub fn finite_sheet(
     overrides: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyFiniteSheet> {
     let request = sheet_request(region, edge_mm, t, complete, min_cover, settings, overrides)?;
+    let recipe = sheet_recipe(py, "finite_sheet", design, region, &request, vec![])?;
     let inner = run_detached(py, design, progress, timeout, |design, progress| {
         lib_finite_sheet(design, &request, progress)
     })?;
-    Ok(PyFiniteSheet { inner })
+    Ok(PyFiniteSheet { inner, recipe })
 }
 
 /// Deploys the finite sheet ``finite_sheet`` would make (same arguments) with contact among
@@ -382,7 +445,8 @@ pub fn finite_sheet(
 /// >>> run.one_dof_throughout, run.poses.shape[1:]
 /// (True, (36, 3))
 #[pyfunction]
-#[pyo3(signature = (design, region="6x6", *, edge_mm=20.0, t=0.3, complete=true, min_cover=0.5, frames=24, settings=None, progress=None, timeout=None, **overrides))]
+#[pyo3(signature = (design, region="6x6", *, edge_mm=20.0, t=0.3, complete=true, min_cover=0.5, frames=None, settings=None, progress=None, timeout=None, **overrides),
+  text_signature = "(design, region='6x6', *, edge_mm=20.0, t=0.3, complete=True, min_cover=0.5, frames=24, settings=None, progress=None, timeout=None, **overrides)")]
 #[allow(clippy::too_many_arguments)]
 pub fn deploy_sheet(
     py: Python<'_>,
@@ -392,21 +456,24 @@ pub fn deploy_sheet(
     t: f64,
     complete: bool,
     min_cover: f64,
-    frames: usize,
+    frames: Option<&Bound<'_, PyAny>>,
     settings: Option<&Bound<'_, PyAny>>,
     progress: Option<Bound<'_, PyAny>>,
     timeout: Option<f64>,
     overrides: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PySheetDeployment> {
+    let frames = crate::convert::count_or("frames", frames, 0, 24)?;
     let request = SheetDeployRequest {
         sheet: sheet_request(region, edge_mm, t, complete, min_cover, settings, overrides)?,
         frames,
         ..SheetDeployRequest::default()
     };
+    let extra = vec![("frames", frames.into_pyobject(py)?.into_any())];
+    let recipe = sheet_recipe(py, "deploy_sheet", design, region, &request.sheet, extra)?;
     let inner = run_detached(py, design, progress, timeout, |design, progress| {
         lib_deploy_sheet(design, &request, progress)
     })?;
-    Ok(PySheetDeployment { inner })
+    Ok(PySheetDeployment { inner, recipe })
 }
 
 /// Tile poses of every frame as an (f, n, 3) array of (x, y, θ).

@@ -4,11 +4,12 @@
 //! `isogami inverse --save` does. Same options as the CLI; the result's ``to_dict()`` is the
 //! JSON `isogami inverse --json` prints.
 
-use crate::convert::{to_python, type_name};
+use crate::convert::{count_or, index_of, to_python, type_name};
 use crate::database::PyDatabase;
 use crate::design::PyDesign;
 use crate::errors;
 use crate::progress::Watch;
+use isogami::api::Design;
 use isogami::inverse::{inverse_design, Candidate, InverseRequest, InverseResult, Target};
 use isogami_store::{Check, DesignQuery, SavedDesign, Store, StoreWriter};
 use pyo3::exceptions::PyTypeError;
@@ -22,8 +23,17 @@ use std::path::PathBuf;
 /// reports) as `isogami inverse --json` prints it.
 #[pyclass(name = "InverseResult", module = "isogami", frozen)]
 pub struct PyInverseResult {
-    result: InverseResult,
-    saved: Vec<SavedDesign>,
+    /// The target in canonical text form.
+    target: String,
+    /// The refined designs, best first.
+    designs: Vec<Design>,
+    /// Their refined objectives.
+    objectives: Vec<f64>,
+    /// Wall time, seconds.
+    seconds: f64,
+    /// `isogami inverse --json`'s text: the library's result (which serialises only) and
+    /// what was saved. Kept as text, so that a result pickles exactly.
+    json: String,
 }
 
 /// The JSON form: the library's result and, after ``save=True``, what was saved.
@@ -35,78 +45,129 @@ struct Output<'a> {
     saved: &'a [SavedDesign],
 }
 
+impl PyInverseResult {
+    fn new(result: &InverseResult, saved: &[SavedDesign]) -> PyResult<PyInverseResult> {
+        let json = serde_json::to_string(&Output { result, saved })
+            .map_err(|e| errors::IsogamiError::new_err(format!("JSON output: {e}")))?;
+        Ok(PyInverseResult {
+            target: result.target.clone(),
+            designs: result
+                .results
+                .iter()
+                .map(|r| r.after.design.clone())
+                .collect(),
+            objectives: result.results.iter().map(|r| r.after.objective).collect(),
+            seconds: result.seconds,
+            json,
+        })
+    }
+}
+
 #[pymethods]
 impl PyInverseResult {
     /// The target in canonical text form.
     #[getter]
     fn target(&self) -> String {
-        self.result.target.clone()
+        self.target.clone()
     }
 
     /// The refined designs, best first.
     #[getter]
     fn designs(&self) -> Vec<PyDesign> {
-        self.result
-            .results
+        self.designs
             .iter()
-            .map(|r| PyDesign {
-                inner: r.after.design.clone(),
-            })
+            .map(|d| PyDesign { inner: d.clone() })
             .collect()
     }
 
     /// The best refined design.
     #[getter]
     fn best(&self) -> Option<PyDesign> {
-        self.result.results.first().map(|r| PyDesign {
-            inner: r.after.design.clone(),
-        })
+        self.designs.first().map(|d| PyDesign { inner: d.clone() })
     }
 
     /// The refined objectives (smaller is better), best first.
     #[getter]
     fn objectives(&self) -> Vec<f64> {
-        self.result
-            .results
-            .iter()
-            .map(|r| r.after.objective)
-            .collect()
+        self.objectives.clone()
     }
 
     /// Wall time of the run in seconds.
     #[getter]
     fn seconds(&self) -> f64 {
-        self.result.seconds
+        self.seconds
     }
 
     /// Everything, as the dict `json.loads` makes of `isogami inverse --json`'s output.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        to_python(
-            py,
-            &Output {
-                result: &self.result,
-                saved: &self.saved,
-            },
-        )
+        py.import("json")?
+            .call_method1("loads", (self.json.as_str(),))
     }
 
     fn __len__(&self) -> usize {
-        self.result.results.len()
+        self.designs.len()
+    }
+
+    /// Pickles exactly, as its parts (``InverseResult._from_state``), not as a second run.
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        let specs: Vec<String> = self.designs.iter().map(|d| d.to_string()).collect();
+        let r = crate::pickle::recipe(
+            py,
+            "InverseResult._from_state",
+            vec![
+                self.target.clone().into_pyobject(py)?.into_any(),
+                specs.into_pyobject(py)?.into_any(),
+                self.objectives.clone().into_pyobject(py)?.into_any(),
+                self.seconds.into_pyobject(py)?.into_any(),
+                self.json.clone().into_pyobject(py)?.into_any(),
+            ],
+            &[],
+        )?;
+        crate::pickle::reduce(py, &r)
+    }
+
+    /// A result from its parts (for unpickling).
+    #[staticmethod]
+    fn _from_state(
+        target: String,
+        designs: Vec<String>,
+        objectives: Vec<f64>,
+        seconds: f64,
+        json: String,
+    ) -> PyResult<PyInverseResult> {
+        let designs = designs
+            .iter()
+            .map(|s| isogami::api::resolve_design(s).map_err(errors::library))
+            .collect::<PyResult<_>>()?;
+        Ok(PyInverseResult {
+            target,
+            designs,
+            objectives,
+            seconds,
+            json,
+        })
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other.cast::<Self>().is_ok_and(|o| {
+            let o = o.get();
+            o.json == self.json && o.designs == self.designs && o.target == self.target
+        })
     }
 
     fn __repr__(&self) -> String {
-        match self.result.results.first() {
-            Some(best) => format!(
+        match (self.designs.first(), self.objectives.first()) {
+            (Some(best), Some(objective)) => format!(
                 "isogami.InverseResult(target={:?}, designs={}, best={:?}, objective={:.6})",
-                self.result.target,
-                self.result.results.len(),
-                best.after.spec,
-                best.after.objective
+                self.target,
+                self.designs.len(),
+                best.to_string(),
+                objective
             ),
-            None => format!(
-                "isogami.InverseResult(target={:?}, designs=0)",
-                self.result.target
-            ),
+            _ => format!("isogami.InverseResult(target={:?}, designs=0)", self.target),
         }
     }
 }
@@ -178,37 +239,44 @@ impl Source<'_> {
 /// anything runs.
 #[pyfunction]
 #[pyo3(signature = (
-    target, database, *, top=3, budget=80, confirm=None, triage=None, samples=0, kerf=None,
-    refine_kerf=false, save=false, progress=None, timeout=None
-))]
+    target, database, *, top=None, budget=None, confirm=None, triage=None, samples=None,
+    kerf=None, refine_kerf=false, save=false, progress=None, timeout=None
+), text_signature = "(target, database, *, top=3, budget=80, confirm=None, triage=None, samples=0, kerf=None, refine_kerf=False, save=False, progress=None, timeout=None)")]
 #[allow(clippy::too_many_arguments)]
 pub fn inverse(
     py: Python<'_>,
     target: &Bound<'_, PyAny>,
     database: &Bound<'_, PyAny>,
-    top: usize,
-    budget: usize,
-    confirm: Option<usize>,
-    triage: Option<usize>,
-    samples: usize,
+    top: Option<&Bound<'_, PyAny>>,
+    budget: Option<&Bound<'_, PyAny>>,
+    confirm: Option<&Bound<'_, PyAny>>,
+    triage: Option<&Bound<'_, PyAny>>,
+    samples: Option<&Bound<'_, PyAny>>,
     kerf: Option<f64>,
     refine_kerf: bool,
     save: bool,
     progress: Option<Bound<'_, PyAny>>,
     timeout: Option<f64>,
 ) -> PyResult<PyInverseResult> {
+    // Counts checked here, so that -1 or 2**64 is refused naming the argument (not wrapped,
+    // not a bare OverflowError); the library checks the ranges it allows.
+    let top = count_or("top", top, 0, 3)?;
+    let budget = count_or("budget", budget, 0, 80)?;
+    let samples = count_or("samples", samples, 0, 0)?;
     let mut request = InverseRequest::new(target_of(py, target)?);
     request.top = top;
     request.budget = budget;
     for (name, given) in [("confirm", confirm), ("triage", triage)] {
-        if given == Some(0) {
+        if given.is_some_and(|g| {
+            !g.is_none() && index_of(g).is_some_and(|i| i.extract::<i64>().ok() == Some(0))
+        }) {
             return Err(errors::InverseError::new_err(format!(
                 "inverse design: {name} must be at least 1 (None for the default, 16 × top)"
             )));
         }
     }
-    request.confirm = confirm.unwrap_or(0);
-    request.triage = triage.unwrap_or(0);
+    request.confirm = count_or("confirm", confirm, 1, 0)?;
+    request.triage = count_or("triage", triage, 1, 0)?;
     request.samples = samples;
     if let Some(k) = kerf {
         request.kerf = k;
@@ -244,5 +312,5 @@ pub fn inverse(
     } else {
         Vec::new()
     };
-    Ok(PyInverseResult { result, saved })
+    PyInverseResult::new(&result, &saved)
 }

@@ -22,6 +22,7 @@ mod inverse;
 mod linkage;
 mod measure;
 mod mobility;
+mod pickle;
 mod progress;
 mod pull;
 mod query;

@@ -75,6 +75,27 @@ impl PyLinkages {
         self.inner.linkages.len()
     }
 
+    /// Pickles as ``isogami.linkages(spec)`` (see the `pickle` module).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        let r = crate::pickle::recipe(
+            py,
+            "linkages",
+            vec![self.design.to_string().into_pyobject(py)?.into_any()],
+            &[],
+        )?;
+        crate::pickle::reduce(py, &r)
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other.cast::<Self>().is_ok_and(|o| {
+            let o = o.get();
+            o.design == self.design && o.inner == self.inner
+        })
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "isogami.Linkages({}: {})",

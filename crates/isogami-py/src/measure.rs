@@ -2,7 +2,7 @@
 //! gradient, polar decomposition, principal and directional expansions, area ratio, Poisson
 //! ratio. Matrices are 2×2, given and returned as rows (nested sequences or numpy arrays).
 
-use crate::convert::{array, finite, matrix, rows};
+use crate::convert::{array, finite, matrices, matrix, rows};
 use crate::errors;
 use isogami::math::Vec2;
 use isogami::measure;
@@ -12,9 +12,6 @@ use pyo3::prelude::*;
 fn vector(what: &str, v: [f64; 2]) -> PyResult<Vec2> {
     Ok(Vec2::new(finite(what, v[0])?, finite(what, v[1])?))
 }
-
-/// A 2×2 numpy array.
-type Matrix<'py> = Bound<'py, PyArray2<f64>>;
 
 fn matrix_array<'py>(py: Python<'py>, m: [[f64; 2]; 2]) -> PyResult<Bound<'py, PyArray2<f64>>> {
     array(py, (2, 2), m.into_iter().flatten().collect())
@@ -41,44 +38,107 @@ pub fn deformation_gradient<'py>(
     matrix_array(py, rows(&f))
 }
 
+/// Per-matrix values over one matrix or a stack: a scalar for one matrix, an array of the
+/// stack's leading shape (plus `extra`) for a stack.
+fn over<'py>(
+    py: Python<'py>,
+    what: &str,
+    obj: &Bound<'py, PyAny>,
+    extra: &[usize],
+    f: impl Fn(&isogami::math::Mat2) -> PyResult<Vec<f64>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let (lead, ms) = matrices(what, obj)?;
+    let mut values = Vec::new();
+    for m in &ms {
+        values.extend(f(m)?);
+    }
+    match lead {
+        None if extra.is_empty() => Ok(values[0].into_pyobject(py)?.into_any()),
+        None => Ok(array(py, extra.to_vec(), values)?.into_any()),
+        Some(mut shape) => {
+            shape.extend_from_slice(extra);
+            Ok(array(py, shape, values)?.into_any())
+        }
+    }
+}
+
 /// The polar decomposition F = RU: returns ``(R, U)``, R a rotation and U symmetric positive
-/// definite. Raises ``MeasureError`` when det F <= 0.
+/// definite. ``F`` may be a stack of shape (..., 2, 2) (``Deployment.F``); then R and U are
+/// stacks of that shape. Raises ``MeasureError`` when det F <= 0.
 #[pyfunction]
-pub fn polar<'py>(py: Python<'py>, f: [[f64; 2]; 2]) -> PyResult<(Matrix<'py>, Matrix<'py>)> {
-    let (r, u) = measure::polar(&matrix("F", f)?).map_err(|e| errors::library(e.into()))?;
-    Ok((matrix_array(py, rows(&r))?, matrix_array(py, rows(&u))?))
+pub fn polar<'py>(
+    py: Python<'py>,
+    f: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let (lead, ms) = matrices("F", f)?;
+    let (mut r, mut u) = (Vec::new(), Vec::new());
+    for m in &ms {
+        let (a, b) = measure::polar(m).map_err(|e| errors::library(e.into()))?;
+        r.extend(rows(&a).into_iter().flatten());
+        u.extend(rows(&b).into_iter().flatten());
+    }
+    let mut shape = lead.unwrap_or_default();
+    shape.extend([2, 2]);
+    Ok((
+        array(py, shape.clone(), r)?.into_any(),
+        array(py, shape, u)?.into_any(),
+    ))
 }
 
 /// The principal expansions ``(min, max)`` of a stretch tensor U: the eigenvalues of U − I.
+/// For a stack of shape (..., 2, 2), an array of shape (..., 2).
 #[pyfunction]
-pub fn principal_expansions(u: [[f64; 2]; 2]) -> PyResult<(f64, f64)> {
-    Ok(measure::principal_expansions(&matrix("U", u)?))
+pub fn principal_expansions<'py>(
+    py: Python<'py>,
+    u: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyAny>> {
+    if matrices("U", u)?.0.is_none() {
+        let m = matrices("U", u)?.1[0];
+        return Ok(measure::principal_expansions(&m)
+            .into_pyobject(py)?
+            .into_any());
+    }
+    over(py, "U", u, &[2], |m| {
+        let (a, b) = measure::principal_expansions(m);
+        Ok(vec![a, b])
+    })
 }
 
 /// The direction of the largest expansion of U, an angle in (−π/2, π/2] (0 when U is
-/// isotropic).
+/// isotropic). For a stack of shape (..., 2, 2), an array of shape (...).
 #[pyfunction]
-pub fn principal_direction(u: [[f64; 2]; 2]) -> PyResult<f64> {
-    Ok(measure::principal_direction(&matrix("U", u)?))
+pub fn principal_direction<'py>(
+    py: Python<'py>,
+    u: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyAny>> {
+    over(py, "U", u, &[], |m| {
+        Ok(vec![measure::principal_direction(m)])
+    })
 }
 
-/// The directional expansion ε(θ) = dᵀ(U − I)d with d = (cos θ, sin θ).
+/// The directional expansion ε(θ) = dᵀ(U − I)d with d = (cos θ, sin θ). For a stack of
+/// shape (..., 2, 2), an array of shape (...).
 #[pyfunction]
-pub fn directional_expansion(u: [[f64; 2]; 2], theta: f64) -> PyResult<f64> {
-    Ok(measure::directional_expansion(
-        &matrix("U", u)?,
-        finite("theta", theta)?,
-    ))
+pub fn directional_expansion<'py>(
+    py: Python<'py>,
+    u: &Bound<'py, PyAny>,
+    theta: f64,
+) -> PyResult<Bound<'py, PyAny>> {
+    let theta = finite("theta", theta)?;
+    over(py, "U", u, &[], |m| {
+        Ok(vec![measure::directional_expansion(m, theta)])
+    })
 }
 
 /// The polar profile of U: an array of shape (samples, 2) of (θ_k, ε(θ_k)), θ_k = 2πk/samples.
 #[pyfunction]
-#[pyo3(signature = (u, samples=180))]
+#[pyo3(signature = (u, samples=None), text_signature = "(u, samples=180)")]
 pub fn expansion_profile<'py>(
     py: Python<'py>,
     u: [[f64; 2]; 2],
-    samples: usize,
+    samples: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let samples = crate::convert::count_or("samples", samples, 0, 180)?;
     if !(3..=100_000).contains(&samples) {
         return Err(errors::SettingsError::new_err(format!(
             "invalid setting: samples {samples} must lie in 3..=100000"
@@ -92,10 +152,11 @@ pub fn expansion_profile<'py>(
     )
 }
 
-/// The area ratio det F of the deployed to the closed cell.
+/// The area ratio det F of the deployed to the closed cell. For a stack of shape
+/// (..., 2, 2) (``Deployment.F``), an array of shape (...).
 #[pyfunction]
-pub fn area_ratio(f: [[f64; 2]; 2]) -> PyResult<f64> {
-    Ok(measure::area_ratio(&matrix("F", f)?))
+pub fn area_ratio<'py>(py: Python<'py>, f: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    over(py, "F", f, &[], |m| Ok(vec![measure::area_ratio(m)]))
 }
 
 /// The effective Poisson ratio −ε_min/ε_max of one frame (−1 for isotropic expansion,

@@ -13,6 +13,7 @@ use pyo3::prelude::*;
 #[pyclass(name = "Motion", module = "isogami", frozen)]
 pub struct PyMotion {
     inner: Motion,
+    recipe: crate::pickle::Recipe,
 }
 
 #[pymethods]
@@ -53,6 +54,20 @@ impl PyMotion {
         PyArray1::from_slice(py, self.inner.vector.as_slice())
     }
 
+    /// Pickles as the call that made it (see the `pickle` module).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        crate::pickle::reduce(py, &self.recipe)
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<Self>()
+            .is_ok_and(|o| o.get().inner == self.inner)
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "isogami.Motion({} tiles, area rate {:+.6})",
@@ -68,6 +83,7 @@ impl PyMotion {
 #[pyclass(name = "Analysis", module = "isogami", frozen)]
 pub struct PyAnalysis {
     inner: Analysis,
+    recipe: crate::pickle::Recipe,
 }
 
 #[pymethods]
@@ -159,29 +175,47 @@ impl PyAnalysis {
     /// The opening direction (None when rigid): for one DOF the null vector signed to open
     /// the sheet; for several, the unit combination that opens it fastest.
     #[getter]
-    fn motion(&self) -> Option<PyMotion> {
-        self.inner
+    fn motion(&self, py: Python<'_>) -> PyResult<Option<PyMotion>> {
+        let recipe = crate::pickle::part(py, &self.recipe, "motion", py.None().into_bound(py))?;
+        Ok(self
+            .inner
             .mobility
             .motion
             .clone()
-            .map(|inner| PyMotion { inner })
+            .map(|inner| PyMotion { inner, recipe }))
     }
 
     /// A basis of all first-order motions (``dof`` of them).
     #[getter]
-    fn modes(&self) -> Vec<PyMotion> {
-        self.inner
-            .mobility
-            .modes
-            .iter()
-            .cloned()
-            .map(|inner| PyMotion { inner })
-            .collect()
+    fn modes(&self, py: Python<'_>) -> PyResult<Vec<PyMotion>> {
+        let mut out = Vec::new();
+        for (i, m) in self.inner.mobility.modes.iter().enumerate() {
+            let key = i.into_pyobject(py)?.into_any();
+            out.push(PyMotion {
+                inner: m.clone(),
+                recipe: crate::pickle::part(py, &self.recipe, "modes", key)?,
+            });
+        }
+        Ok(out)
     }
 
     /// The analysis as ``isogami analyze --json`` prints it.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.inner)
+    }
+
+    /// Pickles as the call that made it (see the `pickle` module).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        crate::pickle::reduce(py, &self.recipe)
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<Self>()
+            .is_ok_and(|o| crate::pickle::same(&o.get().inner, &self.inner))
     }
 
     fn __repr__(&self) -> String {
@@ -210,8 +244,14 @@ pub fn analyze(
     let settings = MobilitySettings {
         rel_tol: tol.unwrap_or(MobilitySettings::default().rel_tol),
     };
+    let recipe = crate::pickle::recipe(
+        py,
+        "analyze",
+        vec![design.to_string().into_pyobject(py)?.into_any()],
+        &[("tol", settings.rel_tol.into_pyobject(py)?.into_any())],
+    )?;
     let inner = py
         .detach(|| lib_analyze(&design, settings))
         .map_err(errors::library)?;
-    Ok(PyAnalysis { inner })
+    Ok(PyAnalysis { inner, recipe })
 }

@@ -3,7 +3,7 @@
 //! leave the periodic motion (the library's `api::pull_sheet`), as numpy arrays.
 
 use crate::convert::{int_array, to_python};
-use crate::finite::{poses_array, run_detached, sheet_request, PyFiniteSheet};
+use crate::finite::{poses_array, run_detached, sheet_recipe, sheet_request, PyFiniteSheet};
 use isogami::api::{pull_sheet as lib_pull_sheet, PullFrame, SheetPull, SheetPullRequest};
 use numpy::{PyArray1, PyArray3};
 use pyo3::prelude::*;
@@ -18,6 +18,7 @@ use pyo3::types::PyDict;
 #[pyclass(name = "SheetPull", module = "isogami", frozen)]
 pub struct PySheetPull {
     inner: SheetPull,
+    recipe: crate::pickle::Recipe,
 }
 
 impl PySheetPull {
@@ -34,10 +35,11 @@ impl PySheetPull {
 impl PySheetPull {
     /// The sheet that was pulled (its ``tiles`` order the poses).
     #[getter]
-    fn sheet(&self) -> PyFiniteSheet {
-        PyFiniteSheet {
+    fn sheet(&self, py: Python<'_>) -> PyResult<PyFiniteSheet> {
+        Ok(PyFiniteSheet {
             inner: self.inner.analysis.clone(),
-        }
+            recipe: crate::pickle::part(py, &self.recipe, "sheet", py.None().into_bound(py))?,
+        })
     }
     /// Degrees of freedom of the pulled sheet.
     #[getter]
@@ -120,6 +122,20 @@ impl PySheetPull {
     fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.inner)
     }
+    /// Pickles as the call that made it (see the `pickle` module).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        crate::pickle::reduce(py, &self.recipe)
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<Self>()
+            .is_ok_and(|o| crate::pickle::same(&o.get().inner, &self.inner))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "SheetPull({}: {} tiles, {} DOF, {} after {} states, grips x{:.4} apart, deviation {:.3e} L)",
@@ -148,7 +164,8 @@ impl PySheetPull {
 /// >>> run.dof, run.leaves is None
 /// (1, True)
 #[pyfunction]
-#[pyo3(signature = (design, region="6x6", *, edge_mm=20.0, t=0.3, complete=true, min_cover=0.5, grips=None, frames=24, settings=None, progress=None, timeout=None, **overrides))]
+#[pyo3(signature = (design, region="6x6", *, edge_mm=20.0, t=0.3, complete=true, min_cover=0.5, grips=None, frames=None, settings=None, progress=None, timeout=None, **overrides),
+  text_signature = "(design, region='6x6', *, edge_mm=20.0, t=0.3, complete=True, min_cover=0.5, grips=None, frames=24, settings=None, progress=None, timeout=None, **overrides)")]
 #[allow(clippy::too_many_arguments)]
 pub fn pull_sheet(
     py: Python<'_>,
@@ -159,19 +176,25 @@ pub fn pull_sheet(
     complete: bool,
     min_cover: f64,
     grips: Option<(usize, usize)>,
-    frames: usize,
+    frames: Option<&Bound<'_, PyAny>>,
     settings: Option<&Bound<'_, PyAny>>,
     progress: Option<Bound<'_, PyAny>>,
     timeout: Option<f64>,
     overrides: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PySheetPull> {
+    let frames = crate::convert::count_or("frames", frames, 0, 24)?;
     let request = SheetPullRequest {
         sheet: sheet_request(region, edge_mm, t, complete, min_cover, settings, overrides)?,
         grips: grips.map(|(a, b)| [a, b]),
         frames,
     };
+    let extra = vec![
+        ("grips", grips.into_pyobject(py)?.into_any()),
+        ("frames", frames.into_pyobject(py)?.into_any()),
+    ];
+    let recipe = sheet_recipe(py, "pull_sheet", design, region, &request.sheet, extra)?;
     let inner = run_detached(py, design, progress, timeout, |design, progress| {
         lib_pull_sheet(design, &request, progress)
     })?;
-    Ok(PySheetPull { inner })
+    Ok(PySheetPull { inner, recipe })
 }

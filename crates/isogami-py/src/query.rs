@@ -54,7 +54,9 @@ pub struct PyQuery {
     pub limit: Option<u32>,
 }
 
-/// The items of a value that may be one item or a list/tuple of them.
+/// The items of a value that may be one item or a collection of them: a list, a tuple, a
+/// set, a numpy array, a pandas Series or Index (anything iterable but a str, bytes, a Family
+/// or a pair of ints, which is one cell).
 fn items<'py>(value: &Bound<'py, PyAny>) -> Vec<Bound<'py, PyAny>> {
     if let Ok(l) = value.cast::<PyList>() {
         return l.iter().collect();
@@ -63,6 +65,19 @@ fn items<'py>(value: &Bound<'py, PyAny>) -> Vec<Bound<'py, PyAny>> {
         // (2, 1) is one cell, not two values.
         if !t.iter().all(|v| v.extract::<i64>().is_ok()) || t.len() != 2 {
             return t.iter().collect();
+        }
+        return vec![value.clone()];
+    }
+    let single = value.extract::<String>().is_ok()
+        || value.is_instance_of::<pyo3::types::PyBytes>()
+        || value.cast::<crate::family::PyFamily>().is_ok()
+        || value.is_instance_of::<pyo3::types::PyDict>()
+        || crate::convert::index_of(value).is_some();
+    if !single {
+        if let Ok(it) = value.try_iter() {
+            if let Ok(v) = it.collect::<PyResult<Vec<_>>>() {
+                return v;
+            }
         }
     }
     vec![value.clone()]

@@ -274,6 +274,25 @@ impl PyDeploySettings {
         Ok(d)
     }
 
+    /// Pickles as ``DeploySettings(**to_dict())`` (unset ``mode`` left out).
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        let py = slf.py();
+        let d = Self::to_dict(slf)?;
+        let kwargs: Vec<(String, Bound<'py, PyAny>)> = d
+            .iter()
+            .filter(|(_, v)| !v.is_none())
+            .map(|(k, v)| Ok((k.extract::<String>()?, v)))
+            .collect::<PyResult<_>>()?;
+        let kwargs: Vec<(&str, Bound<'py, PyAny>)> = kwargs
+            .iter()
+            .map(|(k, v)| (k.as_str(), v.clone()))
+            .collect();
+        let r = crate::pickle::recipe(py, "DeploySettings", vec![], &kwargs)?;
+        crate::pickle::reduce(py, &r)
+    }
+
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
         other
             .cast::<PyDeploySettings>()

@@ -37,9 +37,10 @@ pub fn shape_mobility<'py>(
 pub fn follow_shape(
     py: Python<'_>,
     design: &Bound<'_, PyAny>,
-    index: usize,
+    index: &Bound<'_, PyAny>,
     value: f64,
 ) -> PyResult<PyDesign> {
+    let index = crate::convert::int_in("index", index, 0, i64::MAX)? as usize;
     let d = design_of(design)?;
     let moved = py
         .detach(|| follow(&d, index, value, &ShapeSettings::default()))

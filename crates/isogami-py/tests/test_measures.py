@@ -94,7 +94,7 @@ def test_measures_of_a_deployment_agree_with_the_functions():
         (lambda: isogami.principal_direction([[1, 0], [float("inf"), 1]]), ValueError),
         (lambda: isogami.directional_expansion(np.eye(2), float("nan")), ValueError),
         (lambda: isogami.expansion_profile(np.eye(2), samples=1), isogami.SettingsError),
-        (lambda: isogami.expansion_profile(np.eye(2), samples=-1), OverflowError),
+        (lambda: isogami.expansion_profile(np.eye(2), samples=-1), ValueError),  # not a bare OverflowError
         (lambda: isogami.area_ratio([[1, 0], [0, float("nan")]]), ValueError),
         (lambda: isogami.poisson_ratio("a", 1.0), TypeError),
     ],

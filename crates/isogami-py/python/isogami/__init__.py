@@ -162,3 +162,22 @@ __all__ = [
     "principal_direction",
     "principal_expansions",
 ]
+
+
+def _rebuild(name, args, kwargs):
+    """Unpickling: ``isogami.<name>(*args, **kwargs)``, the call that made a pickled result
+    (``name`` may be dotted: ``"Record._from_json"``)."""
+    target = globals()[name.split(".")[0]]
+    for part in name.split(".")[1:]:
+        target = getattr(target, part)
+    return target(*args, **kwargs)
+
+
+def _part(parent, attr, key):
+    """Unpickling a part of a result: ``getattr(parent, attr)`` of the rebuilt parent
+    (``parent`` a ``_rebuild`` argument tuple), called with or indexed by ``key`` unless it
+    is None."""
+    value = getattr(_rebuild(*parent), attr)
+    if key is None:
+        return value
+    return value(key) if callable(value) else value[key]

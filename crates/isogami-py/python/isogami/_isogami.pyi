@@ -2,28 +2,90 @@
 
 from os import PathLike
 from pathlib import Path
-from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Sequence, Tuple, Union
+from typing import final, overload, Any, Callable, Dict, List, Literal, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
 
+from ._types import FloatArray, IntArray, Matrix, Vector, DesignLike, CellLike, FamilyLike, Progress, Method, Behaviour, FacetValues, Ranges, InverseProgress
+
 __version__: str
+__all__ = [
+    "Analysis",
+    "COMPARISON_DESIGNS",
+    "CancelledError",
+    "Cell",
+    "CellError",
+    "Comparison",
+    "ContactError",
+    "DEPLOY_SETTINGS",
+    "Database",
+    "DeployError",
+    "DeploySettings",
+    "Deployment",
+    "Design",
+    "DesignError",
+    "ExploreError",
+    "ExportError",
+    "Family",
+    "FiniteError",
+    "FiniteSheet",
+    "InverseError",
+    "InverseResult",
+    "IsogamiError",
+    "KinematicsError",
+    "LinkageError",
+    "Linkages",
+    "MeasureError",
+    "MethodResult",
+    "MobilityError",
+    "Motion",
+    "NAMED_DESIGNS",
+    "Query",
+    "QueryError",
+    "Record",
+    "SAMPLE_OPENING_DESIGNS",
+    "SettingsError",
+    "ShapeError",
+    "SheetDeployment",
+    "SheetPull",
+    "StoreError",
+    "StoredDesign",
+    "TilingError",
+    "__version__",
+    "analyze",
+    "area_ratio",
+    "cell",
+    "compare",
+    "deformation_gradient",
+    "deploy",
+    "deploy_sheet",
+    "design",
+    "directional_expansion",
+    "expansion_profile",
+    "export",
+    "export_formats",
+    "families",
+    "family",
+    "finite_sheet",
+    "follow_shape",
+    "inverse",
+    "linkages",
+    "open_database",
+    "poisson_ratio",
+    "polar",
+    "principal_direction",
+    "principal_expansions",
+    "pull_sheet",
+    "rank_drop_shape",
+    "shape_mobility",
+]
 
 NAMED_DESIGNS: List[str]
 SAMPLE_OPENING_DESIGNS: List[str]
 COMPARISON_DESIGNS: List[str]
 DEPLOY_SETTINGS: List[str]
 
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.int64]
-Matrix = Union[Sequence[Sequence[float]], FloatArray]
-Vector = Union[Sequence[float], FloatArray]
-DesignLike = Union["Design", str]
-CellLike = Union[str, Tuple[int, int]]
-FamilyLike = Union[str, int, "Family"]
-Progress = Callable[[int], Optional[bool]]
-Method = Literal["rigid-modes", "ncm", "springs"]
-Behaviour = Literal["isotropic_auxetic", "anisotropic_auxetic", "orthotropic_positive_poisson"]
 
 # Exceptions: one class per kind of library error.
 class IsogamiError(Exception): ...
@@ -46,6 +108,7 @@ class InverseError(IsogamiError): ...
 class ShapeError(IsogamiError): ...
 class FiniteError(IsogamiError): ...
 
+@final
 class Family:
     """One of the 81 realizable isohedral tiling families IH1…IH93."""
 
@@ -82,6 +145,7 @@ def families() -> List[Family]:
 def family(name: FamilyLike) -> Family:
     """The family named (``"IH28"``, ``"28"``) or numbered; TilingError if unknown."""
 
+@final
 class Cell:
     """The closed unit cell (or a×b supercell) of a tiling."""
 
@@ -123,16 +187,17 @@ class Cell:
 def cell(family: FamilyLike, params: Optional[Sequence[float]] = None, cell: Optional[CellLike] = None) -> Cell:
     """The closed unit cell of a family at shape ``params`` in supercell ``cell``."""
 
+@final
 class Design:
     """A kirigami design: family, shape parameters, supercell, a joint per unique edge."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         family: FamilyLike,
         params: Optional[Sequence[float]] = None,
         cell: Optional[CellLike] = None,
         joints: Union[str, Sequence[str], None] = None,
-    ) -> None: ...
+    ) -> Design: ...
     @staticmethod
     def from_spec(spec: str) -> Design: ...
     @staticmethod
@@ -161,11 +226,12 @@ class Design:
     def geometry(self) -> Dict[str, Any]: ...
     def svg(self) -> str: ...
     def __hash__(self) -> int: ...
-    def __eq__(self, other: object) -> bool: ...
+    def __eq__(self, value: object, /) -> bool: ...
 
 def design(text: str) -> Design:
     """Reads a name, a spec string or design JSON, checked to build."""
 
+@final
 class Motion:
     """A first-order motion (unit vector, lengths in units of L, signed to open)."""
 
@@ -181,6 +247,7 @@ class Motion:
     @property
     def vector(self) -> FloatArray: ...
 
+@final
 class Analysis:
     """Mobility of a design in its closed state."""
 
@@ -221,11 +288,12 @@ class Analysis:
 def analyze(design: DesignLike, tol: Optional[float] = None) -> Analysis:
     """Mobility of a design (relative zero tolerance ``tol``, default 1e-9)."""
 
+@final
 class DeploySettings:
     """Every setting of a deployment; keyword-only, library defaults."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         *,
         method: Method = ...,
         kerf: float = ...,
@@ -244,7 +312,7 @@ class DeploySettings:
         max_stretch: float = ...,
         mobility_tol: float = ...,
         mode: Optional[int] = ...,
-    ) -> None: ...
+    ) -> DeploySettings: ...
     def replace(self, **changes: Any) -> DeploySettings: ...
     def validate(self) -> None: ...
     def to_dict(self) -> Dict[str, Any]: ...
@@ -283,6 +351,7 @@ class DeploySettings:
     @property
     def mode(self) -> Optional[int]: ...
 
+@final
 class Deployment:
     """A finished deployment: report and per-frame numpy arrays (n frames)."""
 
@@ -364,6 +433,8 @@ class Deployment:
         """As ``isogami deploy --json`` prints it."""
     def to_json(self) -> str: ...
     def frame_svgs(self, width: float = 480.0) -> List[str]: ...
+    def dataframe(self) -> Any:
+        """One row per frame as a pandas DataFrame (t, step, area_ratio, expansions, ...)."""
     def __len__(self) -> int: ...
 
 def deploy(
@@ -377,6 +448,7 @@ def deploy(
 ) -> Deployment:
     """Deploys a design to the contact limit (GIL released; Ctrl-C interrupts)."""
 
+@final
 class Linkages:
     """The linkage analysis of a design."""
 
@@ -399,6 +471,7 @@ class Linkages:
 def linkages(design: DesignLike) -> Linkages:
     """The linkage analysis of a design (paper §5.1)."""
 
+@final
 class MethodResult:
     """One method's result in a comparison."""
 
@@ -432,6 +505,7 @@ class MethodResult:
     def millis(self) -> float: ...
     def to_dict(self) -> Dict[str, Any]: ...
 
+@final
 class Comparison:
     """Rigid modes, NCM and springs on one design."""
 
@@ -458,26 +532,38 @@ def compare(
 
 # Measures (paper §4.3); matrices as rows.
 def deformation_gradient(u0: Vector, w0: Vector, u: Vector, w: Vector) -> FloatArray: ...
-def polar(f: Matrix) -> Tuple[FloatArray, FloatArray]: ...
-def principal_expansions(u: Matrix) -> Tuple[float, float]: ...
-def principal_direction(u: Matrix) -> float: ...
-def directional_expansion(u: Matrix, theta: float) -> float: ...
+# The measures take one 2x2 matrix (a float or a pair of floats back) or a stack of them,
+# an array of shape (..., 2, 2) such as ``Deployment.F`` (arrays of the stack's shape back).
+@overload
+def polar(f: Sequence[Sequence[float]]) -> Tuple[FloatArray, FloatArray]: ...
+@overload
+def polar(f: npt.ArrayLike) -> Tuple[FloatArray, FloatArray]: ...
+@overload
+def principal_expansions(u: Sequence[Sequence[float]]) -> Tuple[float, float]: ...
+@overload
+def principal_expansions(u: npt.ArrayLike) -> Union[Tuple[float, float], FloatArray]: ...
+@overload
+def principal_direction(u: Sequence[Sequence[float]]) -> float: ...
+@overload
+def principal_direction(u: npt.ArrayLike) -> Union[float, FloatArray]: ...
+@overload
+def directional_expansion(u: Sequence[Sequence[float]], theta: float) -> float: ...
+@overload
+def directional_expansion(u: npt.ArrayLike, theta: float) -> Union[float, FloatArray]: ...
 def expansion_profile(u: Matrix, samples: int = 180) -> FloatArray: ...
-def area_ratio(f: Matrix) -> float: ...
+@overload
+def area_ratio(f: Sequence[Sequence[float]]) -> float: ...
+@overload
+def area_ratio(f: npt.ArrayLike) -> Union[float, FloatArray]: ...
 def poisson_ratio(min_expansion: float, max_expansion: float) -> Optional[float]: ...
 
-FacetValues = Union[str, int, Tuple[int, int], None, Sequence[Union[str, int, Tuple[int, int], None]]]
-Ranges = Union[
-    Mapping[str, Tuple[Optional[float], Optional[float]]],
-    Sequence[Union[Tuple[str, Optional[float], Optional[float]], str]],
-    str,
-]
 
+@final
 class Query:
     """The browser's catalogue filters as the store's query type."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         *,
         family: FacetValues = ...,
         cell: FacetValues = ...,
@@ -490,39 +576,64 @@ class Query:
         sort: Optional[str] = ...,
         limit: Optional[int] = ...,
         offset: int = ...,
-    ) -> None: ...
+    ) -> Query: ...
     def where(self, **filters: Any) -> Query: ...
     def to_dict(self) -> Dict[str, Any]: ...
 
+@final
 class Record:
     """One design of a catalogue (the browser's columns)."""
 
-    spec: str
-    origin: Literal["explored", "user"]
-    family: str
-    cell: Tuple[int, int]
-    tile_count: int
-    joints: str
-    topology: str
-    params: List[float]
-    behaviour: Optional[Behaviour]
-    linkage_signature: Optional[str]
-    end_reason: str
-    method: Method
-    dof: int
-    kerf: float
-    max_expansion: float
-    min_expansion: float
-    max_area_ratio: float
-    max_tile_rotation: float
-    poisson_min: Optional[float]
-    poisson_max: Optional[float]
-    steps: int
-    finite_raw_dof: Optional[int]
-    finite_covered: Optional[float]
+    @property
+    def spec(self) -> str: ...
+    @property
+    def origin(self) -> Literal["explored", "user"]: ...
+    @property
+    def family(self) -> str: ...
+    @property
+    def cell(self) -> Tuple[int, int]: ...
+    @property
+    def tile_count(self) -> int: ...
+    @property
+    def joints(self) -> str: ...
+    @property
+    def topology(self) -> str: ...
+    @property
+    def params(self) -> List[float]: ...
+    @property
+    def behaviour(self) -> Optional[Behaviour]: ...
+    @property
+    def linkage_signature(self) -> Optional[str]: ...
+    @property
+    def end_reason(self) -> str: ...
+    @property
+    def method(self) -> Method: ...
+    @property
+    def dof(self) -> int: ...
+    @property
+    def kerf(self) -> float: ...
+    @property
+    def max_expansion(self) -> float: ...
+    @property
+    def min_expansion(self) -> float: ...
+    @property
+    def max_area_ratio(self) -> float: ...
+    @property
+    def max_tile_rotation(self) -> float: ...
+    @property
+    def poisson_min(self) -> Optional[float]: ...
+    @property
+    def poisson_max(self) -> Optional[float]: ...
+    @property
+    def steps(self) -> int: ...
+    @property
+    def finite_raw_dof(self) -> Optional[int]: ...
+    @property
+    def finite_covered(self) -> Optional[float]: ...
     def design(self) -> Design: ...
     def to_dict(self) -> Dict[str, Any]: ...
 
+@final
 class StoredDesign:
     """A stored design read back whole."""
 
@@ -531,15 +642,16 @@ class StoredDesign:
     def report(self) -> Dict[str, Any]: ...
     def linkages(self) -> Optional[Dict[str, Any]]: ...
 
+@final
 class Database:
     """A design database opened read-only."""
 
-    def __init__(self, path: Union[str, PathLike[str]], check: Literal["quick", "full"] = "quick") -> None: ...
+    def __new__(cls, path: Union[str, PathLike[str]], check: Literal["quick", "full"] = "quick") -> Database: ...
     @property
     def path(self) -> Path: ...
     def designs(self, query: Optional[Query] = None, **filters: Any) -> List[Record]: ...
     def dataframe(self, query: Optional[Query] = None, **filters: Any) -> Any:
-        """A pandas DataFrame of the matching designs."""
+        """A pandas DataFrame of the matching designs (shape parameters also as param_0, ...)."""
     def count(self, query: Optional[Query] = None, **filters: Any) -> int: ...
     def facet_counts(self, facet: str, query: Optional[Query] = None, **filters: Any) -> List[Tuple[Any, int]]: ...
     def scatter(
@@ -560,11 +672,70 @@ class Database:
 def open_database(path: Union[str, PathLike[str]], check: Literal["quick", "full"] = "quick") -> Database:
     """Opens a design database for reading."""
 
+@overload
+def export(
+    design: DesignLike,
+    format: Literal["svg", "dxf", "fold", "obj", "tiles-csv", "tiles-json", "stl", "3mf"],
+    *,
+    patch: Union[str, Tuple[int, int], Sequence[int], npt.NDArray[np.integer[Any]], None] = None,
+    edge_mm: Optional[float] = None,
+    width_mm: Optional[float] = None,
+    t: Union[float, Literal["open"], None] = None,
+    kerf: Optional[float] = None,
+    frames: Optional[int] = None,
+    complete: bool = True,
+    material: Optional[Literal["card", "felt", "pla"]] = None,
+    hinge_mm: Optional[float] = None,
+    kerf_mm: Optional[float] = None,
+    thickness_mm: Optional[float] = None,
+    margin_mm: Optional[float] = None,
+    stroke_mm: Optional[float] = None,
+    cut_colour: Optional[str] = None,
+    score_colour: Optional[str] = None,
+    engrave_colour: Optional[str] = None,
+    labels: bool = False,
+    gap_mm: Optional[float] = None,
+    lamella_mm: Optional[float] = None,
+    nozzle_mm: Optional[float] = None,
+    creator: Optional[str] = None,
+    progress: Optional[Progress] = None,
+    timeout: Optional[float] = None,
+) -> bytes: ...
+@overload
+def export(
+    design: DesignLike,
+    format: Literal["kirigami-sim"],
+    *,
+    patch: Union[str, Tuple[int, int], Sequence[int], npt.NDArray[np.integer[Any]], None] = None,
+    edge_mm: Optional[float] = None,
+    width_mm: Optional[float] = None,
+    t: Union[float, Literal["open"], None] = None,
+    kerf: Optional[float] = None,
+    frames: Optional[int] = None,
+    complete: bool = True,
+    material: Optional[Literal["card", "felt", "pla"]] = None,
+    hinge_mm: Optional[float] = None,
+    kerf_mm: Optional[float] = None,
+    thickness_mm: Optional[float] = None,
+    margin_mm: Optional[float] = None,
+    stroke_mm: Optional[float] = None,
+    cut_colour: Optional[str] = None,
+    score_colour: Optional[str] = None,
+    engrave_colour: Optional[str] = None,
+    labels: bool = False,
+    gap_mm: Optional[float] = None,
+    lamella_mm: Optional[float] = None,
+    nozzle_mm: Optional[float] = None,
+    creator: Optional[str] = None,
+    progress: Optional[Progress] = None,
+    timeout: Optional[float] = None,
+) -> Dict[str, bytes]: ...
+@overload
 def export(
     design: DesignLike,
     format: str,
     *,
-    patch: Union[str, Tuple[int, int], None] = None,
+    patch: Union[str, Tuple[int, int], Sequence[int], npt.NDArray[np.integer[Any]], None] = None,
     edge_mm: Optional[float] = None,
     width_mm: Optional[float] = None,
     t: Union[float, Literal["open"], None] = None,
@@ -597,8 +768,8 @@ def export(
 def export_formats() -> List[Dict[str, Optional[str]]]:
     """The export formats: name, description, extension, media_type, settings group."""
 
-InverseProgress = Callable[[Dict[str, Any]], Optional[bool]]
 
+@final
 class InverseResult:
     """An inverse-design run's result: per topology the screened and the refined design."""
 
@@ -642,6 +813,7 @@ def follow_shape(design: DesignLike, index: int, value: float) -> Design:
 def rank_drop_shape(design: DesignLike) -> Optional[Design]:
     """A shape of a rigid design's topology with exactly one DOF, or None."""
 
+@final
 class FiniteSheet:
     """A finite region of a design, its DOF with a free boundary, and its completion."""
 
@@ -679,6 +851,7 @@ class FiniteSheet:
     def added(self) -> IntArray: ...
     def report(self) -> Dict[str, Any]: ...
 
+@final
 class SheetDeployment:
     """A finite sheet deployed with contact among its own tiles, beside the periodic sheet."""
 
@@ -712,6 +885,7 @@ class SheetDeployment:
     def poses(self) -> FloatArray: ...
     def report(self) -> Dict[str, Any]: ...
 
+@final
 class SheetPull:
     """A finite sheet pulled apart by two of its tiles, as a tester would."""
 
