@@ -158,9 +158,7 @@ pub async fn deploy_live(
 ) -> ApiResult<Json<DesignView>> {
     let live = body_json(body)?;
     let (design, request) = live.resolve()?;
-    let timeout = state.settings().sim_timeout;
-    admit(&state, &design, &request, timeout).await?;
-    let run = deploy_bounded(design.clone(), request, timeout).await?;
+    let run = deploy_bounded(design.clone(), request, state.settings().sim_timeout).await?;
     Ok(Json(DesignView::live(&design, run)?))
 }
 
@@ -181,8 +179,10 @@ pub async fn save(
     let live = body_json(body)?;
     let (design, request) = live.resolve()?;
     let timeout = state.settings().sim_timeout;
-    admit(&state, &design, &request, timeout).await?;
+    // The live deployment first (its failures as for `POST /api/deploy`: rigid, timeout, …),
+    // then the admission rule on what deploys.
     let run = deploy_bounded(design.clone(), request, timeout).await?;
+    admit(&state, &design, &request, timeout).await?;
     let analysis = linkages(&design).ok();
     let spec = design.to_string();
     let record =
