@@ -101,7 +101,7 @@ impl ApiError {
             StatusCode::INTERNAL_SERVER_ERROR,
             "internal",
             message,
-            "check the server's database with `isogami db verify`",
+            "check the server's database with `isogami db stats --db FILE` (it verifies every row's checksum)",
         )
     }
 }

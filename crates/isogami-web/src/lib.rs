@@ -38,12 +38,13 @@ pub use site::{slug, write_site, SiteReport};
 pub use state::{AppState, ServerSettings};
 
 use std::net::SocketAddr;
+use std::time::Duration;
 
 /// [`serve`] on a multi-threaded tokio runtime of its own, for callers without one.
 pub fn serve_blocking(
     state: AppState,
     addr: SocketAddr,
-    on_ready: impl FnOnce(SocketAddr),
+    on_ready: impl FnOnce(SocketAddr) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
     tokio::runtime::Builder::new_multi_thread()
         .enable_all()
@@ -53,19 +54,74 @@ pub fn serve_blocking(
 
 /// Serves `state` on `addr` until Ctrl-C (which also stops a running inverse-design job).
 /// `on_ready` gets the bound address (port 0 picks a free one) once the server accepts
-/// connections.
+/// connections; its error (e.g. the announcement could not be printed) ends `serve` before
+/// anything is served.
 pub async fn serve(
     state: AppState,
     addr: SocketAddr,
-    on_ready: impl FnOnce(SocketAddr),
+    on_ready: impl FnOnce(SocketAddr) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
     let listener = tokio::net::TcpListener::bind(addr).await?;
-    on_ready(listener.local_addr()?);
+    on_ready(listener.local_addr()?)?;
     let jobs = state.clone();
-    axum::serve(listener, router(state))
-        .with_graceful_shutdown(async move {
-            let _ = tokio::signal::ctrl_c().await;
-            jobs.jobs().stop_all();
-        })
-        .await
+    serve_on(listener, state, async move {
+        let _ = tokio::signal::ctrl_c().await;
+        jobs.jobs().stop_all();
+    })
+    .await
 }
+
+/// Serves `state` on `listener` until `shutdown` completes, then lets open connections
+/// finish their requests (at most [`SHUTDOWN_GRACE`]). Each connection is closed when it
+/// sends no complete request headers within `header_timeout` (idle keep-alive connections
+/// and slow or unfinished headers alike); bodies are bounded by the router.
+pub async fn serve_on(
+    listener: tokio::net::TcpListener,
+    state: AppState,
+    shutdown: impl std::future::Future<Output = ()> + Send,
+) -> std::io::Result<()> {
+    use hyper_util::rt::{TokioIo, TokioTimer};
+    use hyper_util::service::TowerToHyperService;
+
+    let header_timeout = state.settings().header_timeout;
+    let app = router(state);
+    let (stop, stopped) = tokio::sync::watch::channel(false);
+    let mut shutdown = std::pin::pin!(shutdown);
+    loop {
+        let stream = tokio::select! {
+            accepted = listener.accept() => match accepted {
+                Ok((stream, _)) => stream,
+                // Out of file descriptors and the like: wait, do not spin.
+                Err(_) => {
+                    tokio::time::sleep(Duration::from_millis(50)).await;
+                    continue;
+                }
+            },
+            _ = &mut shutdown => break,
+        };
+        let service = TowerToHyperService::new(app.clone());
+        let mut stopped = stopped.clone();
+        tokio::spawn(async move {
+            let mut builder = hyper::server::conn::http1::Builder::new();
+            builder
+                .timer(TokioTimer::new())
+                .header_read_timeout(header_timeout);
+            let conn = builder.serve_connection(TokioIo::new(stream), service);
+            let mut conn = std::pin::pin!(conn);
+            tokio::select! {
+                _ = conn.as_mut() => {}
+                _ = stopped.changed() => {
+                    conn.as_mut().graceful_shutdown();
+                    let _ = conn.await;
+                }
+            }
+        });
+    }
+    drop(stopped);
+    let _ = stop.send(true);
+    let _ = tokio::time::timeout(SHUTDOWN_GRACE, stop.closed()).await;
+    Ok(())
+}
+
+/// Longest [`serve_on`] waits for open connections after its shutdown signal.
+pub const SHUTDOWN_GRACE: Duration = Duration::from_secs(5);

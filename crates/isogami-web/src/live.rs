@@ -107,6 +107,27 @@ where
         .map_err(|e| ApiError::internal(format!("simulation task failed: {e}")))
 }
 
+/// [`run_bounded`] whose answer never waits longer than `timeout` + [`ANSWER_GRACE`]: for
+/// jobs with stages that do not poll their deadline (an export's completion and solid
+/// model). Past that the caller gets 422 `timeout` at once while the job's thread ends at its
+/// next poll of the deadline (whose flag is set when this future is dropped); whatever the
+/// job holds (a heavy-job permit moved into it) is released only then.
+pub async fn run_answered<T, F>(timeout: Duration, job: F) -> ApiResult<T>
+where
+    T: Send + 'static,
+    F: FnOnce(&Deadline) -> T + Send + 'static,
+{
+    tokio::time::timeout(
+        timeout.saturating_add(ANSWER_GRACE),
+        run_bounded(timeout, job),
+    )
+    .await
+    .unwrap_or_else(|_| Err(timed_out(timeout)))
+}
+
+/// How long past its deadline [`run_answered`] waits for the job to stop by itself.
+pub const ANSWER_GRACE: Duration = Duration::from_millis(250);
+
 /// 422 `timeout`: a simulation stopped at the server's time limit.
 pub fn timed_out(timeout: Duration) -> ApiError {
     ApiError::new(

@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
+use tokio::sync::Semaphore;
 
 /// Limits and defaults of a server.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -23,6 +24,14 @@ pub struct ServerSettings {
     pub allow_save: bool,
     /// Caps of inverse-design jobs.
     pub inverse: InverseLimits,
+    /// Longest a connection may take to send a request's headers, idle time before the
+    /// first byte included: idle and slow connections are closed after it (default 10 s).
+    pub header_timeout: Duration,
+    /// Longest a request may take to send its body once its headers are in (default 10 s).
+    pub body_timeout: Duration,
+    /// Exports that may run at once (default 2): each holds one of these while its work
+    /// runs, past its answer if the library is in a stage that cannot stop.
+    pub heavy_jobs: usize,
 }
 
 impl Default for ServerSettings {
@@ -33,6 +42,9 @@ impl Default for ServerSettings {
             readers: 4,
             allow_save: true,
             inverse: InverseLimits::default(),
+            header_timeout: Duration::from_secs(10),
+            body_timeout: Duration::from_secs(10),
+            heavy_jobs: 2,
         }
     }
 }
@@ -53,16 +65,21 @@ struct Inner {
     save: Mutex<()>,
     /// Inverse-design jobs.
     jobs: Jobs,
+    /// Permits of the heavy jobs (exports).
+    heavy: Arc<Semaphore>,
 }
 
 impl AppState {
-    /// Opens `settings.readers` read-only connections to `db`, each checked with SQLite's
-    /// `quick_check`.
+    /// Opens `settings.readers` read-only connections to `db`. The first is opened with the
+    /// store's full check (SQLite's integrity check, every row's checksum, every stored
+    /// document parsed: what `isogami db stats` runs), so a damaged or edited file is refused
+    /// before anything is served; the others with SQLite's `quick_check`.
     pub fn open(db: &Path, settings: ServerSettings) -> StoreResult<AppState> {
         let n = settings.readers.clamp(1, 64);
         let mut readers = Vec::with_capacity(n);
-        for _ in 0..n {
-            readers.push(Mutex::new(Store::open_read(db, Check::Quick)?));
+        for k in 0..n {
+            let check = if k == 0 { Check::Full } else { Check::Quick };
+            readers.push(Mutex::new(Store::open_read(db, check)?));
         }
         Ok(AppState {
             inner: Arc::new(Inner {
@@ -72,6 +89,7 @@ impl AppState {
                 settings,
                 save: Mutex::new(()),
                 jobs: Jobs::default(),
+                heavy: Arc::new(Semaphore::new(settings.heavy_jobs.clamp(1, 64))),
             }),
         })
     }
@@ -84,6 +102,11 @@ impl AppState {
     /// The inverse-design jobs.
     pub fn jobs(&self) -> &Jobs {
         &self.inner.jobs
+    }
+
+    /// The permits of heavy jobs (see [`ServerSettings::heavy_jobs`]).
+    pub fn heavy(&self) -> &Arc<Semaphore> {
+        &self.inner.heavy
     }
 
     /// The database file.

@@ -2,7 +2,7 @@
 //! same catalogue as a static site. Both are thin calls into `isogami-web`.
 
 use super::explore;
-use crate::output::CliResult;
+use crate::output::{emit, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami_web::{serve_blocking, write_site, AppState, ServerSettings};
 use std::io::Write;
@@ -50,20 +50,36 @@ pub fn serve(args: ServeArgs) -> CliResult {
         allow_save: !args.read_only,
         ..ServerSettings::default()
     };
+    // The store's full check (every row's checksum), as `db stats` runs: a damaged or edited
+    // file is refused here, in one line, before anything is served.
     let state =
         AppState::open(&args.db, settings).map_err(|e| format!("{}: {e}", args.db.display()))?;
     let open = args.open;
-    serve_blocking(state, args.addr, |addr| {
+    let mut announce_failed = None;
+    let served = serve_blocking(state, args.addr, |addr| {
         let url = format!("http://{addr}/");
-        println!("listening on {url}");
-        let _ = std::io::stdout().flush();
+        if let Err(e) = announce(&mut std::io::stdout().lock(), &url) {
+            announce_failed = Some(format!("cannot write to stdout: {e}"));
+            return Err(e);
+        }
         if open {
             if let Err(e) = webbrowser::open(&url) {
                 eprintln!("could not open a browser ({e}); open {url} yourself");
             }
         }
-    })
-    .map_err(|e| format!("cannot serve on {}: {e}", args.addr))
+        Ok(())
+    });
+    match (served, announce_failed) {
+        (_, Some(why)) => Err(why),
+        (Err(e), None) => Err(format!("cannot serve on {}: {e}", args.addr)),
+        (Ok(()), None) => Ok(()),
+    }
+}
+
+/// Writes the served address to `out`: an error (stdout closed or full) ends `serve`.
+fn announce(out: &mut impl Write, url: &str) -> std::io::Result<()> {
+    writeln!(out, "listening on {url}")?;
+    out.flush()
 }
 
 /// Arguments of `site`.
@@ -90,12 +106,27 @@ pub fn site(args: SiteArgs) -> CliResult {
     })
     .map_err(|e| e.to_string())?;
     bar.finish_and_clear();
-    println!(
-        "wrote {} designs, {} files ({:.1} MB) to {}",
+    emit(&format!(
+        "wrote {} designs, {} files ({:.1} MB) to {}\n",
         report.designs,
         report.files,
         report.bytes as f64 / 1e6,
         args.out.display()
-    );
-    Ok(())
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_full_or_closed_stdout_is_an_error_not_a_panic() {
+        let mut buffer = Vec::new();
+        announce(&mut buffer, "http://127.0.0.1:1/").unwrap();
+        assert_eq!(buffer, b"listening on http://127.0.0.1:1/\n");
+        if let Ok(mut full) = std::fs::OpenOptions::new().write(true).open("/dev/full") {
+            let e = announce(&mut full, "http://127.0.0.1:1/").unwrap_err();
+            assert!(!e.to_string().contains('\n'));
+        }
+    }
 }

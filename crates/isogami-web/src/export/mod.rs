@@ -14,20 +14,24 @@ pub mod groups;
 pub mod query;
 
 use crate::error::{ApiError, ApiResult};
-use crate::live::{explain, run_bounded, timed_out};
+use crate::live::{explain, run_answered, timed_out};
 use crate::site::slug;
 use axum::http::StatusCode;
 use isogami::api::resolve_design;
 use isogami::contact::ContactSettings;
+use isogami::deploy::DeployError;
 use isogami::export::laser::LaserError;
 use isogami::export::{
-    export_design, ExportError, ExportFiles, Format, PatchRequest, MAX_PATCH, MAX_PATCH_FRAMES,
+    export_files, patch_at_with, ExportError, ExportFiles, Format, PatchRequest, MAX_PATCH,
+    MAX_PATCH_FRAMES,
 };
 use isogami::finite::FiniteError;
 use isogami::Error;
 use query::ExportQuery;
 use serde_json::{json, Value};
-use std::time::Duration;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+use tokio::sync::Semaphore;
 
 /// Media type of a folder format's download.
 pub const ZIP: &str = "application/zip";
@@ -73,6 +77,7 @@ pub fn catalog() -> Value {
             "max_patch": MAX_PATCH,
             "max_frames": MAX_PATCH_FRAMES,
             "max_cell_frames": query::MAX_CELL_FRAMES,
+            "max_tiles": MAX_EXPORT_TILES,
         },
     })
 }
@@ -105,9 +110,45 @@ pub fn file_name(spec: &str, query: &ExportQuery) -> String {
     }
 }
 
-/// Runs the export of `query` on the blocking pool, stopped at `timeout` or when the caller's
-/// future is dropped (the client went away).
-pub async fn export_bounded(query: ExportQuery, timeout: Duration) -> ApiResult<Download> {
+/// Most tiles in the rectangle of an export on the server. Every export analyses the
+/// rectangle's mobility, a completed one prunes it round after round and a solid (STL, 3MF)
+/// meshes it: stages that grow faster than the tile count and do not poll the time limit,
+/// so the work is bounded before it starts. The default 6×6 patch of a 50-tile cell passes;
+/// the largest patch of a 6-tile cell (40×40, 9,600 tiles) does not. `isogami export` has no
+/// such limit.
+pub const MAX_EXPORT_TILES: usize = 1800;
+
+/// The export's work, checked before anything runs: 422 `too_large` with the reason when
+/// the rectangle holds more than [`MAX_EXPORT_TILES`] tiles.
+pub fn check_work(cell_tiles: usize, query: &ExportQuery) -> ApiResult<()> {
+    let r = &query.request;
+    let tiles = r.rows * r.cols * cell_tiles;
+    if tiles > MAX_EXPORT_TILES {
+        return Err(ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "too_large",
+            format!(
+                "patch {}x{} of a {cell_tiles}-tile cell is {tiles} tiles: the server exports at \
+                 most {MAX_EXPORT_TILES}",
+                r.rows, r.cols
+            ),
+            "export a smaller patch, or run `isogami export` from the command line (no limit)",
+        ));
+    }
+    Ok(())
+}
+
+/// Runs the export of `query` on the blocking pool: its size checked first
+/// ([`check_work`]), then one of the `heavy` permits taken (waiting at most `timeout`, else
+/// 503 `busy`), then the library's stages — the patch (deployment polled at every step),
+/// a poll of the deadline, the format — answered by `timeout` (+ the grace of
+/// [`run_answered`]) or stopped when the caller's future is dropped (the client went
+/// away). The permit goes with the job and is released when its thread ends.
+pub async fn export_bounded(
+    query: ExportQuery,
+    timeout: Duration,
+    heavy: Arc<Semaphore>,
+) -> ApiResult<Download> {
     // A design that cannot be read is a bad value of the request: 400, like the others.
     let design = resolve_design(&query.design).map_err(|e| {
         let why = explain(&e);
@@ -122,15 +163,32 @@ pub async fn export_bounded(query: ExportQuery, timeout: Duration) -> ApiResult<
             ),
         }
     })?;
+    let cell_tiles = design
+        .cell()
+        .map_err(|e| explain(&Error::from(e)))?
+        .tiles
+        .len();
+    check_work(cell_tiles, &query)?;
+    let started = Instant::now();
+    let permit = tokio::time::timeout(timeout, heavy.acquire_owned())
+        .await
+        .map_err(|_| busy())?
+        .map_err(|_| ApiError::internal("the export permits were closed"))?;
+    let left = timeout.saturating_sub(started.elapsed());
     let spec = design.to_string();
     let name = file_name(&spec, &query);
     let format = query.format;
-    let (patch, files) = run_bounded(timeout, move |deadline| {
-        export_design(&design, &query.request, format, &query.options, &mut |_| {
-            deadline.keep_going()
-        })
+    let (patch, files) = run_answered(left, move |deadline| {
+        let _permit = permit;
+        let patch = patch_at_with(&design, &query.request, &mut |_| deadline.keep_going())?;
+        if !deadline.keep_going() {
+            return Err(ExportError::Library(Error::Deploy(DeployError::Cancelled)));
+        }
+        let files = export_files(format, &patch, &query.options)?;
+        Ok((patch, files))
     })
-    .await?
+    .await
+    .map_err(|e| export_timeout(e, timeout))?
     .map_err(|e| explain_export(&e, timeout))?;
     let warning = patch.finite.warning();
     Ok(match files {
@@ -147,6 +205,27 @@ pub async fn export_bounded(query: ExportQuery, timeout: Duration) -> ApiResult<
             warning,
         },
     })
+}
+
+/// 503 `busy`: every export permit stayed taken for the whole time limit.
+fn busy() -> ApiError {
+    ApiError::new(
+        StatusCode::SERVICE_UNAVAILABLE,
+        "busy",
+        "the server is running as many exports as it allows",
+        "try again in a moment, or run `isogami export` from the command line",
+    )
+}
+
+/// The export hint on a `timeout` answer.
+fn export_timeout(e: ApiError, timeout: Duration) -> ApiError {
+    if e.kind == "timeout" {
+        return explain_export(
+            &ExportError::Library(Error::Deploy(DeployError::Cancelled)),
+            timeout,
+        );
+    }
+    e
 }
 
 /// An export error as an answer: the deployment's failures as for a live deployment (422,

@@ -2,7 +2,7 @@
 
 use crate::error::{ApiError, ApiResult};
 use crate::filters::{get as param, pairs, truncate};
-use crate::live::{deploy_bounded, LiveRequest};
+use crate::live::{deploy_bounded, explain, run_bounded, timed_out, LiveRequest};
 use crate::state::AppState;
 use crate::thumbnail::thumbnail_svg;
 use crate::view::DesignView;
@@ -12,7 +12,8 @@ use axum::extract::{RawQuery, State};
 use axum::http::{header, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::Json;
-use isogami::api::{linkages, resolve_design};
+use isogami::api::{linkages, resolve_design, DeployRequest, Design};
+use isogami::catalog::{assess, Assessment, CatalogSettings};
 use isogami::render::{deployment_frame_svgs, gif_from_svgs, Fonts};
 use isogami_store::{Check, DesignRecord, Origin, StoreWriter};
 use serde_json::json;
@@ -177,7 +178,11 @@ pub async fn save(
     }
     let live = body_json(body)?;
     let (design, request) = live.resolve()?;
-    let run = deploy_bounded(design.clone(), request, state.settings().sim_timeout).await?;
+    let timeout = state.settings().sim_timeout;
+    // The live deployment first (its failures as for `POST /api/deploy`: rigid, timeout, …),
+    // then the admission rule on what deploys.
+    let run = deploy_bounded(design.clone(), request, timeout).await?;
+    admit(&state, &design, &request, timeout).await?;
     let analysis = linkages(&design).ok();
     let spec = design.to_string();
     let record =
@@ -197,6 +202,47 @@ pub async fn save(
         StatusCode::CREATED,
         Json(json!({ "spec": spec, "saved": true })),
     ))
+}
+
+/// The exploration's admission rule (`isogami::catalog::assess`) for a design about to be
+/// saved, under the settings the database was explored with (the library's defaults for a
+/// database that records none), the posted kerf in place of the catalogue's: a design the
+/// exploration would not keep (not one DOF when closed, locked at once, below the expansion
+/// threshold) is 422 `not_admitted` with the reason.
+async fn admit(
+    state: &AppState,
+    design: &Design,
+    request: &DeployRequest,
+    timeout: std::time::Duration,
+) -> ApiResult<()> {
+    let recorded = state.read(|s| Ok(s.settings()?)).await?;
+    let mut settings = recorded
+        .as_deref()
+        .and_then(CatalogSettings::from_fingerprint)
+        .unwrap_or_default();
+    settings.deploy.contact = request.settings.contact;
+    let design = design.clone();
+    let verdict = run_bounded(timeout, move |deadline| {
+        assess(&design, &settings, &mut |_| deadline.keep_going())
+    })
+    .await?
+    .map_err(|e| {
+        if e.is_cancelled() {
+            timed_out(timeout)
+        } else {
+            explain(&e)
+        }
+    })?;
+    match verdict {
+        Assessment::Admitted(_) => Ok(()),
+        Assessment::Rejected(why) => Err(ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "not_admitted",
+            format!("not saved: the exploration would not keep this design ({why})"),
+            "only working designs are saved: one degree of freedom when closed, free to open, \
+             expanding past the catalogue's threshold; POST it to /api/deploy to look at it",
+        )),
+    }
 }
 
 fn explain_store(e: &isogami_store::StoreError) -> ApiError {

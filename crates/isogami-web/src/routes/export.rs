@@ -27,7 +27,8 @@ pub const WARNING_HEADER: &str = "x-isogami-warning";
 /// the sheet in [`WARNING_HEADER`]. Allowed on a read-only server: nothing is written.
 pub async fn export(State(state): State<AppState>, RawQuery(raw): RawQuery) -> ApiResult<Response> {
     let query = parse_export(&pairs(raw.as_deref()))?;
-    let download = export_bounded(query, state.settings().sim_timeout).await?;
+    let download =
+        export_bounded(query, state.settings().sim_timeout, state.heavy().clone()).await?;
     let mut response = (
         [
             (header::CONTENT_TYPE, download.media_type.to_string()),

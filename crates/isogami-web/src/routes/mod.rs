@@ -35,13 +35,22 @@ mod sheet;
 
 use crate::error::ApiError;
 use crate::state::AppState;
-use axum::extract::DefaultBodyLimit;
+use axum::body::Body;
+use axum::extract::{DefaultBodyLimit, Request, State};
+use axum::http::{header, StatusCode};
+use axum::middleware::{self, Next};
+use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::Router;
+use std::time::Duration;
 
 /// The whole application over `state`.
 pub fn router(state: AppState) -> Router {
     let limit = state.settings().max_body;
+    let bodies = BodyLimits {
+        max: limit,
+        timeout: state.settings().body_timeout,
+    };
     let api = Router::new()
         .route("/stats", get(catalogue::stats))
         .route("/families", get(catalogue::families))
@@ -68,5 +77,74 @@ pub fn router(state: AppState) -> Router {
         .nest("/api", api)
         .fallback(assets::asset)
         .layer(DefaultBodyLimit::max(limit))
+        .layer(middleware::from_fn_with_state(bodies, bounded_body))
         .with_state(state)
+}
+
+/// What a request body may be: its size and how long it may take to arrive.
+#[derive(Debug, Clone, Copy)]
+struct BodyLimits {
+    max: usize,
+    timeout: Duration,
+}
+
+/// Reads every request's body before the handler runs: a declared `Content-Length` over the
+/// limit is 413 at once (nothing is read), a body that grows past it 413, one that has not
+/// arrived within the body timeout 408 (the connection is then closed: a slow client holds
+/// nothing for long).
+async fn bounded_body(State(limits): State<BodyLimits>, request: Request, next: Next) -> Response {
+    let too_large = || {
+        ApiError::new(
+            StatusCode::PAYLOAD_TOO_LARGE,
+            "bad_body",
+            format!("request body longer than {} bytes", limits.max),
+            "send at most 64 KiB of JSON",
+        )
+    };
+    let declared = request
+        .headers()
+        .get(header::CONTENT_LENGTH)
+        .and_then(|v| v.to_str().ok())
+        .and_then(|v| v.trim().parse::<u64>().ok());
+    if declared.is_some_and(|n| n > limits.max as u64) {
+        return close(too_large().into_response());
+    }
+    let (parts, body) = request.into_parts();
+    match tokio::time::timeout(limits.timeout, axum::body::to_bytes(body, limits.max)).await {
+        Ok(Ok(bytes)) => {
+            next.run(Request::from_parts(parts, Body::from(bytes)))
+                .await
+        }
+        Ok(Err(e)) if e.to_string().contains("length limit") => close(too_large().into_response()),
+        Ok(Err(e)) => close(
+            ApiError::new(
+                StatusCode::BAD_REQUEST,
+                "bad_body",
+                format!("request body: {e}"),
+                "send the whole body as declared",
+            )
+            .into_response(),
+        ),
+        Err(_) => close(
+            ApiError::new(
+                StatusCode::REQUEST_TIMEOUT,
+                "slow_body",
+                format!(
+                    "request body not received within {:.1} s",
+                    limits.timeout.as_secs_f64()
+                ),
+                "send the body at once",
+            )
+            .into_response(),
+        ),
+    }
+}
+
+/// `response` with `Connection: close`: the rest of the request's body is not read.
+fn close(mut response: Response) -> Response {
+    response.headers_mut().insert(
+        header::CONNECTION,
+        header::HeaderValue::from_static("close"),
+    );
+    response
 }
