@@ -182,3 +182,73 @@ fn bad_part_counts_are_refused_in_one_line() {
     ok(explore(&whole, &[]));
     assert_eq!(content(&target), content(&whole));
 }
+
+/// Issue 23: `--unit-parts` larger than a unit's work never makes empty parts (on main,
+/// `--unit-parts 4096` committed 4096 parts of every unit, most with nothing to do), the
+/// joined units still equal the whole run, and `--plan` prints one entry per unit with its
+/// part count instead of one per part.
+#[test]
+fn parts_never_outnumber_a_units_masks_and_the_plan_lists_units() {
+    let d_guard = dir("parts-cap");
+    let d = d_guard.path();
+    let (whole, split) = (d.join("whole.db"), d.join("split.db"));
+    let plan_args = |db: &Path, parts: &str| {
+        run(&[
+            "explore",
+            "--quick",
+            "--families",
+            FAMILIES,
+            "--unit-parts",
+            parts,
+            "--plan",
+            "--json",
+            "--db",
+            db.to_str().unwrap(),
+        ])
+    };
+    let units: Vec<serde_json::Value> = serde_json::from_str(&ok(plan_args(&split, "1"))).unwrap();
+    let planned: Vec<serde_json::Value> =
+        serde_json::from_str(&ok(plan_args(&split, "4096"))).unwrap();
+    assert!(!split.exists(), "--plan made a database");
+    let ids = |v: &[serde_json::Value]| -> Vec<String> {
+        let mut ids: Vec<String> = v
+            .iter()
+            .map(|p| p["unit"].as_str().unwrap().into())
+            .collect();
+        ids.sort();
+        ids
+    };
+    assert_eq!(ids(&planned), ids(&units), "one entry per unit");
+    let parts: Vec<u64> = planned
+        .iter()
+        .map(|p| p["parts"].as_u64().unwrap())
+        .collect();
+    assert!(parts.iter().all(|&p| (1..4096).contains(&p)), "{parts:?}");
+    assert!(parts.iter().any(|&p| p > 1), "{parts:?}");
+    for p in &planned {
+        assert_eq!(p["parts"], p["parts_here"], "{p}");
+    }
+    let total: u64 = parts.iter().sum();
+    // The text plan: one line per unit, the header counting the items.
+    let text = ok(run(&[
+        "explore",
+        "--quick",
+        "--families",
+        FAMILIES,
+        "--unit-parts",
+        "4096",
+        "--plan",
+        "--db",
+        split.to_str().unwrap(),
+    ]));
+    assert_eq!(text.lines().count(), 3 + units.len(), "{text}");
+    assert!(
+        text.starts_with(&format!("{} work units ({total} work items)", units.len())),
+        "{text}"
+    );
+    // The run commits exactly those parts, and joins them into the whole run's units.
+    let out = ok(explore(&split, &["--unit-parts", "4096"]));
+    assert!(out.starts_with(&format!("{total} unit parts run")), "{out}");
+    ok(explore(&whole, &[]));
+    assert_eq!(content(&split), content(&whole));
+}
