@@ -116,7 +116,15 @@ fn parts_in_one_run_or_over_shards_equal_whole_units() {
             ],
         ));
         let st = stats(s);
-        assert_eq!(st["work_units"], 0, "{st}");
+        // Only units with a single mask to expand run whole (never split into empty parts).
+        let whole_units = st["shard"]["record"]["units"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|u| !u.as_str().unwrap().contains(" part "))
+            .count();
+        assert!(whole_units < 4, "{st}");
+        assert_eq!(st["work_units"], whole_units, "{st}");
         assert!(st["waiting_parts"].as_u64().unwrap() > 0, "{st}");
         assert_eq!(st["shard"]["missing"].as_array().unwrap().len(), 0, "{st}");
         // A rerun skips every stored part.
@@ -144,7 +152,13 @@ fn parts_in_one_run_or_over_shards_equal_whole_units() {
     let stepwise = d.join("stepwise.db");
     ok(merge(&stepwise, &[&shards[1]], &["--allow-incomplete"]));
     let st = stats(&stepwise);
-    assert_eq!(st["work_units"], 0, "{st}");
+    let whole_in_1 = stats(&shards[1])["shard"]["record"]["units"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|u| !u.as_str().unwrap().contains(" part "))
+        .count();
+    assert_eq!(st["work_units"], whole_in_1, "{st}");
     assert!(st["waiting_parts"].as_u64().unwrap() > 0);
     ok(merge(&stepwise, &[&shards[0]], &["--allow-incomplete"]));
     assert_eq!(content(&stepwise), want);
@@ -173,7 +187,15 @@ fn bad_part_counts_are_refused_in_one_line() {
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("use the same --unit-parts"), "{err}");
-    assert_eq!(stats(&target)["work_units"], 0);
+    // Only single-mask units (whole under any part count) are complete; no split unit is.
+    let plan: Vec<serde_json::Value> = serde_json::from_str(&ok(explore(
+        &d.join("plan.db"),
+        &["--unit-parts", "2", "--plan", "--json"],
+    )))
+    .unwrap();
+    let whole_units = plan.iter().filter(|p| p["parts"] == 1).count();
+    assert!(whole_units < plan.len());
+    assert_eq!(stats(&target)["work_units"], whole_units);
     // Whole units then replace the waiting parts: nothing is left waiting, and the file
     // equals a whole run.
     ok(explore(&target, &[]));
