@@ -116,7 +116,15 @@ fn parts_in_one_run_or_over_shards_equal_whole_units() {
             ],
         ));
         let st = stats(s);
-        assert_eq!(st["work_units"], 0, "{st}");
+        // Only units with a single mask to expand run whole (never split into empty parts).
+        let whole_units = st["shard"]["record"]["units"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|u| !u.as_str().unwrap().contains(" part "))
+            .count();
+        assert!(whole_units < 4, "{st}");
+        assert_eq!(st["work_units"], whole_units, "{st}");
         assert!(st["waiting_parts"].as_u64().unwrap() > 0, "{st}");
         assert_eq!(st["shard"]["missing"].as_array().unwrap().len(), 0, "{st}");
         // A rerun skips every stored part.
@@ -144,7 +152,13 @@ fn parts_in_one_run_or_over_shards_equal_whole_units() {
     let stepwise = d.join("stepwise.db");
     ok(merge(&stepwise, &[&shards[1]], &["--allow-incomplete"]));
     let st = stats(&stepwise);
-    assert_eq!(st["work_units"], 0, "{st}");
+    let whole_in_1 = stats(&shards[1])["shard"]["record"]["units"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|u| !u.as_str().unwrap().contains(" part "))
+        .count();
+    assert_eq!(st["work_units"], whole_in_1, "{st}");
     assert!(st["waiting_parts"].as_u64().unwrap() > 0);
     ok(merge(&stepwise, &[&shards[0]], &["--allow-incomplete"]));
     assert_eq!(content(&stepwise), want);
@@ -173,7 +187,15 @@ fn bad_part_counts_are_refused_in_one_line() {
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("use the same --unit-parts"), "{err}");
-    assert_eq!(stats(&target)["work_units"], 0);
+    // Only single-mask units (whole under any part count) are complete; no split unit is.
+    let plan: Vec<serde_json::Value> = serde_json::from_str(&ok(explore(
+        &d.join("plan.db"),
+        &["--unit-parts", "2", "--plan", "--json"],
+    )))
+    .unwrap();
+    let whole_units = plan.iter().filter(|p| p["parts"] == 1).count();
+    assert!(whole_units < plan.len());
+    assert_eq!(stats(&target)["work_units"], whole_units);
     // Whole units then replace the waiting parts: nothing is left waiting, and the file
     // equals a whole run.
     ok(explore(&target, &[]));
@@ -181,4 +203,74 @@ fn bad_part_counts_are_refused_in_one_line() {
     let whole = d.join("whole.db");
     ok(explore(&whole, &[]));
     assert_eq!(content(&target), content(&whole));
+}
+
+/// Issue 23: `--unit-parts` larger than a unit's work never makes empty parts (on main,
+/// `--unit-parts 4096` committed 4096 parts of every unit, most with nothing to do), the
+/// joined units still equal the whole run, and `--plan` prints one entry per unit with its
+/// part count instead of one per part.
+#[test]
+fn parts_never_outnumber_a_units_masks_and_the_plan_lists_units() {
+    let d_guard = dir("parts-cap");
+    let d = d_guard.path();
+    let (whole, split) = (d.join("whole.db"), d.join("split.db"));
+    let plan_args = |db: &Path, parts: &str| {
+        run(&[
+            "explore",
+            "--quick",
+            "--families",
+            FAMILIES,
+            "--unit-parts",
+            parts,
+            "--plan",
+            "--json",
+            "--db",
+            db.to_str().unwrap(),
+        ])
+    };
+    let units: Vec<serde_json::Value> = serde_json::from_str(&ok(plan_args(&split, "1"))).unwrap();
+    let planned: Vec<serde_json::Value> =
+        serde_json::from_str(&ok(plan_args(&split, "4096"))).unwrap();
+    assert!(!split.exists(), "--plan made a database");
+    let ids = |v: &[serde_json::Value]| -> Vec<String> {
+        let mut ids: Vec<String> = v
+            .iter()
+            .map(|p| p["unit"].as_str().unwrap().into())
+            .collect();
+        ids.sort();
+        ids
+    };
+    assert_eq!(ids(&planned), ids(&units), "one entry per unit");
+    let parts: Vec<u64> = planned
+        .iter()
+        .map(|p| p["parts"].as_u64().unwrap())
+        .collect();
+    assert!(parts.iter().all(|&p| (1..4096).contains(&p)), "{parts:?}");
+    assert!(parts.iter().any(|&p| p > 1), "{parts:?}");
+    for p in &planned {
+        assert_eq!(p["parts"], p["parts_here"], "{p}");
+    }
+    let total: u64 = parts.iter().sum();
+    // The text plan: one line per unit, the header counting the items.
+    let text = ok(run(&[
+        "explore",
+        "--quick",
+        "--families",
+        FAMILIES,
+        "--unit-parts",
+        "4096",
+        "--plan",
+        "--db",
+        split.to_str().unwrap(),
+    ]));
+    assert_eq!(text.lines().count(), 3 + units.len(), "{text}");
+    assert!(
+        text.starts_with(&format!("{} work units ({total} work items)", units.len())),
+        "{text}"
+    );
+    // The run commits exactly those parts, and joins them into the whole run's units.
+    let out = ok(explore(&split, &["--unit-parts", "4096"]));
+    assert!(out.starts_with(&format!("{total} unit parts run")), "{out}");
+    ok(explore(&whole, &[]));
+    assert_eq!(content(&split), content(&whole));
 }

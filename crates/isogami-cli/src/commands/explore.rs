@@ -6,7 +6,7 @@ use crate::output::{emit, print_json, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami::catalog::CatalogSettings;
 use isogami::cell::{CellDims, UnitCell};
-use isogami::explore::{ExploreError, Shard, WorkItem, WorkUnit, MAX_PARTS, MAX_REDUCED_EDGES};
+use isogami::explore::{ExploreError, Shard, WorkUnit, MAX_PARTS, MAX_REDUCED_EDGES};
 use isogami::tiling::{Family, Tiling};
 use isogami_store::{explore_into, ExploreEvent, ExploreRequest, MAX_JOBS};
 use std::path::PathBuf;
@@ -24,7 +24,8 @@ pub struct Args {
     cells: Option<String>,
     /// Largest number of unique edges of an explored cell, 1..=24 (default 16; 12 with
     /// --quick). A cell given with --cells over it is an error, never skipped. Work grows
-    /// about 2^edges: 20 takes hours of CPU for all families, 24 days.
+    /// about 2^edges: for all families 20 takes about 10 CPU-minutes (5 minutes on 2 cores,
+    /// under 1 GB), 24 an estimated 19 CPU-hours (spread it with --shard and --unit-parts).
     #[arg(long)]
     max_edges: Option<usize>,
     /// Keep designs whose largest principal expansion reaches this.
@@ -44,21 +45,23 @@ pub struct Args {
     #[arg(long)]
     shard: Option<String>,
     /// Split every unit's masks into P parts (1..=4096), so that one big unit spreads over
-    /// --shard tasks (or over reruns). A part waits in the database until the unit's other
+    /// --shard tasks (or over reruns); a unit with fewer masks to expand than P is split into
+    /// one part per mask, never into empty parts. A part waits in the database until the unit's other
     /// parts are there (`isogami merge` brings the other shards' parts), then the unit is
     /// joined exactly as if run whole.
     #[arg(long, default_value_t = 1)]
     unit_parts: usize,
-    /// A small exploration that finishes in minutes: minimal cells with at most 12 edges,
-    /// four shape samples per topology.
+    /// A small exploration that finishes in seconds (about 2 s of CPU for all families):
+    /// minimal cells with at most 12 edges, four shape samples per topology.
     #[arg(long)]
     quick: bool,
     /// Print the final report as JSON.
     #[arg(long)]
     json: bool,
     /// Print the work units this command would run, in the order they would start (longest
-    /// expected first), with each cell's unique edges, symmetry group order and relative
-    /// expected cost (3^edges / group), and run nothing: no database is opened or made.
+    /// expected first), with each cell's unique edges, symmetry group order, parts and
+    /// relative expected cost (3^edges / group), one line per unit however many parts, and
+    /// run nothing: no database is opened or made.
     /// `isogami db units` gives the measured figures of a finished run.
     #[arg(long)]
     plan: bool,
@@ -221,45 +224,73 @@ fn empty_families(request: &ExploreRequest, units: &[WorkUnit]) -> Result<(), St
     Ok(())
 }
 
-/// One planned unit as `--plan --json` prints it.
+/// One planned unit as `--plan --json` prints it: a unit split into parts is one entry,
+/// with its part count, never one entry per part.
 #[derive(serde::Serialize)]
 struct PlannedUnit {
     unit: String,
     #[serde(flatten)]
     size: isogami::explore::UnitSize,
+    /// Parts the unit is split into (1: run whole).
+    parts: usize,
+    /// Of those, the parts this run (this shard) takes.
+    parts_here: usize,
 }
 
-/// `explore --plan`: the units in start order with their sizes; nothing runs.
+/// `explore --plan`: the units in start order (longest expected first) with their sizes and
+/// how many parts each is split into; nothing runs. One line per unit however many parts.
 fn print_plan(request: &ExploreRequest, json: bool) -> CliResult {
     let plan = request.plan().map_err(|e| plan_error(&e, request))?;
-    let planned: Vec<PlannedUnit> = WorkItem::longest_first(&plan.items())
-        .into_iter()
-        .filter_map(|item| {
-            item.size().map(|size| PlannedUnit {
-                unit: item.id(),
+    let items = plan.items();
+    let mut units: Vec<WorkUnit> = Vec::new();
+    let mut here: std::collections::HashMap<WorkUnit, usize> = std::collections::HashMap::new();
+    for item in &items {
+        let n = here.entry(item.unit).or_insert(0);
+        if *n == 0 {
+            units.push(item.unit);
+        }
+        *n += 1;
+    }
+    let mut planned: Vec<PlannedUnit> = units
+        .iter()
+        .filter_map(|u| {
+            u.size().map(|size| PlannedUnit {
+                unit: u.id(),
                 size,
+                parts: plan.parts_of(u),
+                parts_here: here.get(u).copied().unwrap_or(0),
             })
         })
         .collect();
+    // Longest first, ties in plan order (a stable sort).
+    planned.sort_by(|a, b| b.size.expected_cost.total_cmp(&a.size.expected_cost));
     if json {
         return print_json(&planned);
     }
     let total: f64 = planned.iter().map(|p| p.size.expected_cost).sum();
     let mut o = format!(
-        "{} work items in start order; expected cost relative to the whole plan \
-         (3^edges / symmetry group)\n\n{:<20} {:>5} {:>6} {:>9}\n",
+        "{} work units ({} work items) in start order, longest expected first; expected cost \
+         relative to the whole plan (3^edges / symmetry group)\n\n{:<14} {:>5} {:>6} {:>11} {:>9}\n",
         planned.len(),
-        "item",
+        items.len(),
+        "unit",
         "edges",
         "group",
+        "parts",
         "share %"
     );
     for p in &planned {
+        let parts = if p.parts_here == p.parts {
+            p.parts.to_string()
+        } else {
+            format!("{} of {}", p.parts_here, p.parts)
+        };
         o.push_str(&format!(
-            "{:<20} {:>5} {:>6} {:>9.3}\n",
+            "{:<14} {:>5} {:>6} {:>11} {:>9.3}\n",
             p.unit,
             p.size.edges,
             p.size.symmetry_group,
+            parts,
             100.0 * p.size.expected_cost / total.max(f64::MIN_POSITIVE)
         ));
     }

@@ -41,7 +41,7 @@ pub use expand::{ExpandStats, Expander, Leaf};
 pub use motion_classes::{motion_classes, topology_motion};
 pub use pipeline::{
     cells_to_explore, duplicates_across, enumerate_topologies, enumerate_topology_part,
-    DesignDetails, StageTimings, TopologyOptions, TopologyReport,
+    expanded_mask_count, DesignDetails, StageTimings, TopologyOptions, TopologyReport,
 };
 pub use plan::{ExplorePlan, Shard, UnitPart, UnitSize, WorkItem, WorkUnit, MAX_PARTS, MAX_SHARDS};
 pub use reduced::{MaskVerdict, ReducedGraph, ReducedResult, MAX_REDUCED_EDGES};

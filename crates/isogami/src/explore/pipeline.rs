@@ -227,6 +227,45 @@ pub fn enumerate_topologies(
     enumerate_topology_part(family, dims, options, UnitPart::WHOLE)
 }
 
+/// How many masks `family` on `dims` expands: the masks that pass the reduced checks, one per
+/// symmetry orbit, the list that [`enumerate_topology_part`] slices into parts. A split into
+/// more parts than this leaves parts with nothing to do. Runs only the reduced checks (no
+/// expansion); 0 when the cell cannot be built or has more than the enumerator's limit of
+/// edges. Memoised per (family, cell) for the life of the process.
+pub fn expanded_mask_count(family: Family, dims: CellDims) -> usize {
+    use std::collections::HashMap;
+    use std::sync::{Mutex, OnceLock};
+    static MEMO: OnceLock<Mutex<HashMap<(Family, CellDims), usize>>> = OnceLock::new();
+    let memo = MEMO.get_or_init(|| Mutex::new(HashMap::new()));
+    if let Some(n) = memo
+        .lock()
+        .ok()
+        .and_then(|m| m.get(&(family, dims)).copied())
+    {
+        return n;
+    }
+    let count = (|| {
+        let cell = UnitCell::new(&Tiling::default_for(family), dims).ok()?;
+        if cell.edges.len() > MAX_REDUCED_EDGES {
+            return None;
+        }
+        let graph = ReducedGraph::new(&cell)?;
+        let group = SymmetryGroup::new(&cell);
+        let survivors = graph.enumerate().survivors;
+        Some(
+            survivors
+                .par_iter()
+                .filter(|&&mask| group.mask_orbit(mask).0 == mask)
+                .count(),
+        )
+    })()
+    .unwrap_or(0);
+    if let Ok(mut m) = memo.lock() {
+        m.insert((family, dims), count);
+    }
+    count
+}
+
 /// [`enumerate_topologies`] on one part of the cell's masks: the masks expanded are one per
 /// symmetry orbit, and part I of N takes those at positions I, I + N, … of that list. The
 /// parts' orbits are disjoint (an orbit of configurations lies over one orbit of masks), so

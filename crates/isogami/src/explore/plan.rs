@@ -8,7 +8,7 @@
 //! and storing them is the caller's business (`isogami-store` runs a plan into a database).
 
 use super::dedup::SymmetryGroup;
-use super::pipeline::{cells_to_explore, TopologyOptions};
+use super::pipeline::{cells_to_explore, expanded_mask_count, TopologyOptions};
 use super::ExploreError;
 use crate::cell::{CellDims, UnitCell};
 use crate::tiling::{Family, Tiling};
@@ -216,10 +216,13 @@ pub struct ExplorePlan {
     pub all: Vec<WorkUnit>,
     /// The shard this process runs; `None` for the whole plan.
     pub shard: Option<Shard>,
-    /// Parts every unit is split into (1: whole units). The plan's items are each unit's
-    /// parts in turn, and shards take items, so N shards spread one big unit's P parts over
-    /// min(N, P) tasks.
+    /// Parts requested for every unit (1: whole units). A unit is split into at most as many
+    /// parts as it has masks to expand ([`ExplorePlan::parts_of`]), never into empty parts.
+    /// The plan's items are each unit's parts in turn, and shards take items, so N shards
+    /// spread one big unit's P parts over min(N, P) tasks.
     pub parts: usize,
+    /// Parts of each unit of `all` (same order): `min(parts, its expanded masks)`, at least 1.
+    unit_parts: Vec<usize>,
 }
 
 impl ExplorePlan {
@@ -276,32 +279,59 @@ impl ExplorePlan {
                 needed: over.iter().map(|(_, m)| *m).max().unwrap_or(edges),
             });
         }
+        let unit_parts = vec![1; all.len()];
         Ok(ExplorePlan {
             all,
             shard,
             parts: 1,
+            unit_parts,
         })
     }
 
-    /// The same plan with every unit split into `parts` parts (1..=[`MAX_PARTS`]).
+    /// The same plan with every unit split into `parts` parts (1..=[`MAX_PARTS`]), or into
+    /// fewer when the unit has fewer masks to expand than that
+    /// ([`expanded_mask_count`](super::pipeline::expanded_mask_count), which runs the unit's
+    /// reduced checks): a part never starts with nothing to do. Still a deterministic function
+    /// of the unit and `parts`, so every shard of a run plans the same items.
     pub fn split(self, parts: usize) -> Result<ExplorePlan, ExploreError> {
         UnitPart::new(0, parts).map_err(|_| ExploreError::Parts {
             text: parts.to_string(),
         })?;
-        Ok(ExplorePlan { parts, ..self })
+        let unit_parts = self
+            .all
+            .iter()
+            .map(|u| {
+                if parts == 1 {
+                    1
+                } else {
+                    parts.min(expanded_mask_count(u.family, u.dims)).max(1)
+                }
+            })
+            .collect();
+        Ok(ExplorePlan {
+            parts,
+            unit_parts,
+            ..self
+        })
+    }
+
+    /// How many parts `unit` is split into (1 for a unit not in the plan).
+    pub fn parts_of(&self, unit: &WorkUnit) -> usize {
+        self.all
+            .iter()
+            .position(|u| u == unit)
+            .map_or(1, |k| self.unit_parts[k])
     }
 
     /// Every item of the whole run: each unit's parts in turn, in unit order.
     pub fn all_items(&self) -> Vec<WorkItem> {
         self.all
             .iter()
-            .flat_map(|&unit| {
-                (0..self.parts).map(move |k| WorkItem {
+            .zip(&self.unit_parts)
+            .flat_map(|(&unit, &count)| {
+                (0..count).map(move |k| WorkItem {
                     unit,
-                    part: UnitPart {
-                        index: k,
-                        count: self.parts,
-                    },
+                    part: UnitPart { index: k, count },
                 })
             })
             .collect()
@@ -490,6 +520,53 @@ mod tests {
             dims: CellDims::new(1, 1).unwrap(),
         };
         assert_eq!(ih21.expected_cost(), 3f64.powi(15) / 6.0);
+    }
+
+    #[test]
+    fn a_unit_is_never_split_into_more_parts_than_it_has_masks() {
+        use super::super::pipeline::enumerate_topology_part;
+        let options = TopologyOptions::default();
+        let one = CellDims::new(1, 1).unwrap();
+        let families = [fam("IH90"), fam("IH28")];
+        let plan = ExplorePlan::new(&families, Some(&[one]), &options, None)
+            .unwrap()
+            .split(MAX_PARTS)
+            .unwrap();
+        let items = plan.all_items();
+        let mut total = 0;
+        for unit in &plan.all {
+            let masks = expanded_mask_count(unit.family, unit.dims);
+            let whole =
+                enumerate_topology_part(unit.family, unit.dims, &options, UnitPart::WHOLE).unwrap();
+            assert_eq!(masks as u64, whole.masks_expanded, "{unit}");
+            assert!(masks < MAX_PARTS, "{unit}: {masks} masks");
+            assert_eq!(plan.parts_of(unit), masks.max(1), "{unit}");
+            total += plan.parts_of(unit);
+            // Every part has work: at least one mask, and the parts' masks add up.
+            let mut sum = 0;
+            for item in items.iter().filter(|i| i.unit == *unit) {
+                assert_eq!(item.part.count(), plan.parts_of(unit));
+                let r =
+                    enumerate_topology_part(unit.family, unit.dims, &options, item.part).unwrap();
+                assert!(r.masks_expanded >= 1, "{} is empty", item.id());
+                sum += r.masks_expanded;
+            }
+            assert_eq!(sum, whole.masks_expanded, "{unit}");
+        }
+        assert_eq!(items.len(), total);
+        // Fewer parts than masks: the count asked for.
+        let two = ExplorePlan::new(&families, Some(&[one]), &options, None)
+            .unwrap()
+            .split(2)
+            .unwrap();
+        let mut total = 0;
+        for u in &two.all {
+            let masks = expanded_mask_count(u.family, u.dims);
+            assert_eq!(two.parts_of(u), masks.clamp(1, 2), "{u}");
+            total += two.parts_of(u);
+        }
+        assert!(two.all.iter().any(|u| two.parts_of(u) == 2));
+        assert_eq!(two.all_items().len(), total);
     }
 
     #[test]
