@@ -128,6 +128,12 @@ impl WorkItem {
     }
 }
 
+/// Cells with at most this many unique edges have their masks counted before a split, so
+/// that they are never split into parts with nothing to do. Counting runs the unit's reduced
+/// checks, cheap at this size (the default exploration's cap) but minutes per process for
+/// the 24-edge cells of a cluster run, which have thousands of masks per part anyway.
+pub const COUNTED_EDGES: usize = 16;
+
 /// One unit of work: every topology of a family on one supercell, then its shape samples.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct WorkUnit {
@@ -221,7 +227,8 @@ pub struct ExplorePlan {
     /// The plan's items are each unit's parts in turn, and shards take items, so N shards
     /// spread one big unit's P parts over min(N, P) tasks.
     pub parts: usize,
-    /// Parts of each unit of `all` (same order): `min(parts, its expanded masks)`, at least 1.
+    /// Parts of each unit of `all` (same order): `min(parts, its expanded masks)`, at least 1,
+    /// for cells of at most [`COUNTED_EDGES`] unique edges; `parts` for larger ones.
     unit_parts: Vec<usize>,
 }
 
@@ -289,7 +296,7 @@ impl ExplorePlan {
     }
 
     /// The same plan with every unit split into `parts` parts (1..=[`MAX_PARTS`]), or into
-    /// fewer when the unit has fewer masks to expand than that
+    /// fewer when a cell of at most [`COUNTED_EDGES`] edges has fewer masks to expand than that
     /// ([`expanded_mask_count`](super::pipeline::expanded_mask_count), which runs the unit's
     /// reduced checks): a part never starts with nothing to do. Still a deterministic function
     /// of the unit and `parts`, so every shard of a run plans the same items.
@@ -301,8 +308,9 @@ impl ExplorePlan {
             .all
             .iter()
             .map(|u| {
-                if parts == 1 {
-                    1
+                let small = u.size().is_some_and(|s| s.edges <= COUNTED_EDGES);
+                if parts == 1 || !small {
+                    parts
                 } else {
                     parts.min(expanded_mask_count(u.family, u.dims)).max(1)
                 }
