@@ -1,7 +1,7 @@
 //! The library's entry points: one function per job, plain data in and out. The CLI, the
-//! exploration and the coming server and Python bindings call these and hold no pipeline
-//! logic of their own, so every front end resolves, validates, analyses and deploys a design
-//! the same way.
+//! exploration, the server (`isogami-web`) and the Python bindings (`isogami-py`) call these
+//! and hold no pipeline logic of their own, so every front end resolves, validates, analyses
+//! and deploys a design the same way.
 //!
 //! | job | function | returns |
 //! |---|---|---|
