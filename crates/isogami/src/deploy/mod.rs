@@ -48,7 +48,7 @@ pub use frames::{
 pub use insert::{project_between, PROJECTION_MAX_ITER};
 pub use newton::{minimize, Objective, SolveOutcome};
 pub use opening::PROBE_KERFS;
-pub use report::{build_report, DeploymentReport, FrameReport, TilePose};
+pub use report::{build_report, frame_report, DeploymentReport, FrameReport, TilePose};
 pub use settings::{DeploySettings, Method};
 pub use summary::{
     poisson_range, step_measures, summarize_steps, StepSummary, POISSON_OPEN_FRACTION,

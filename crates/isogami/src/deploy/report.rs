@@ -121,6 +121,33 @@ fn present<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Option<[Real; 2]>>,
     Option::<[Real; 2]>::deserialize(d).map(Some)
 }
 
+/// A frame record as the report gives it (lengths in the design's units, not in L).
+pub fn frame_report(mech: &Mechanism, f: &FrameRecord) -> FrameReport {
+    let l = mech.length_scale;
+    let (u, w) = mech.lattice(&f.q);
+    FrameReport {
+        step: f.step,
+        t: f.t,
+        f: f.measures.f,
+        u: [u.x * l, u.y * l],
+        w: [w.x * l, w.y * l],
+        tiles: (0..mech.tile_count())
+            .map(|i| {
+                let (p, th) = mech.pose(&f.q, i);
+                TilePose {
+                    x: p.x * l,
+                    y: p.y * l,
+                    theta: th,
+                }
+            })
+            .collect(),
+        measures: f.measures.clone(),
+        joint_residual: f.joint_residual,
+        min_clearance: f.min_clearance,
+        inserted: f.inserted,
+    }
+}
+
 /// Builds the report from checked frame records; the summaries come from every accepted state
 /// of `traj` ([`summarize_steps`]), so they do not depend on which frames were picked. Fails
 /// only when a state cannot be measured.
@@ -133,33 +160,7 @@ pub fn build_report(
 ) -> Result<DeploymentReport, DeployError> {
     let l = mech.length_scale;
     let summary = summarize_steps(mech, traj)?;
-    let frame_reports = frames
-        .iter()
-        .map(|f| {
-            let (u, w) = mech.lattice(&f.q);
-            FrameReport {
-                step: f.step,
-                t: f.t,
-                f: f.measures.f,
-                u: [u.x * l, u.y * l],
-                w: [w.x * l, w.y * l],
-                tiles: (0..mech.tile_count())
-                    .map(|i| {
-                        let (p, th) = mech.pose(&f.q, i);
-                        TilePose {
-                            x: p.x * l,
-                            y: p.y * l,
-                            theta: th,
-                        }
-                    })
-                    .collect(),
-                measures: f.measures.clone(),
-                joint_residual: f.joint_residual,
-                min_clearance: f.min_clearance,
-                inserted: f.inserted,
-            }
-        })
-        .collect();
+    let frame_reports = frames.iter().map(|f| frame_report(mech, f)).collect();
     Ok(DeploymentReport {
         design: design.to_string(),
         method: settings.method,

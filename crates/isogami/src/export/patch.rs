@@ -17,7 +17,9 @@ use crate::api::{
 };
 use crate::cell::End;
 use crate::contact::ContactSettings;
-use crate::deploy::{select_frames, DeploySettings, FrameReport, Progress};
+use crate::deploy::{
+    frame_records_for, frame_report, plan_frames, DeploySettings, FrameReport, Progress,
+};
 use crate::finite::{FiniteSheet, Region, SheetMobility, SheetTile};
 use crate::math::Real;
 use crate::topology::Design;
@@ -342,12 +344,23 @@ pub fn patch_at_with(
         })
         .collect();
     let closed_polygons_mm = to_mm(&place.polygons(&frames[0]));
-    let states: Vec<PatchState> = select_frames(&run.trajectory, request.frames)
-        .into_iter()
-        .filter_map(|k| frames.get(k))
+    // Exactly the frames asked for: with fewer accepted states, states inserted between them
+    // the way `deploy --frame-count` inserts them (it wrote 90 of 100 frames silently).
+    let picks = plan_frames(&run.trajectory, request.frames);
+    let records = frame_records_for(
+        &run.mechanism,
+        &run.contact,
+        &run.trajectory,
+        &picks,
+        &deploy_request.settings,
+    )
+    .map_err(crate::Error::from)?;
+    let states: Vec<PatchState> = records
+        .iter()
+        .map(|r| frame_report(&run.mechanism, r))
         .map(|f| PatchState {
             t: f.t,
-            polygons_mm: to_mm(&place.polygons(f)),
+            polygons_mm: to_mm(&place.polygons(&f)),
         })
         .collect();
     let joints = patch_joints(&cell, &run.mechanism, &sheet, &tiles);

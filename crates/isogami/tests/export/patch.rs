@@ -349,3 +349,24 @@ fn the_default_patch_is_the_one_dof_completion() {
     };
     assert!(patch_at(&isostatic, &raw).unwrap().finite.dof > 1);
 }
+
+#[test]
+fn a_patch_has_exactly_the_frames_asked_for() {
+    // Rotating squares opens in fewer accepted states than the most frames a patch takes:
+    // states are inserted between them, as `deploy --frame-count` does (issue 23 item 13: 100
+    // asked, 90 written).
+    let design = resolve_design("rotating-squares").unwrap();
+    for frames in [2, 37, MAX_PATCH_FRAMES] {
+        let request = PatchRequest {
+            rows: 2,
+            cols: 2,
+            frames,
+            ..PatchRequest::default()
+        };
+        let patch = patch_at(&design, &request).unwrap();
+        assert_eq!(patch.states.len(), frames);
+        assert_eq!(patch.states[0].t, 0.0);
+        assert_eq!(patch.states[frames - 1].t, 1.0);
+        assert!(patch.states.windows(2).all(|w| w[0].t < w[1].t));
+    }
+}
