@@ -30,7 +30,7 @@ fn stl_and_3mf_carry_the_asked_settings() {
         "--lamella-mm",
         "0.5",
         "--nozzle-mm",
-        "0.35",
+        "0.25",
     ]);
     assert!(
         out.status.success(),
@@ -49,7 +49,7 @@ fn stl_and_3mf_carry_the_asked_settings() {
         "thickness_mm: 3",
         "gap_mm: 0.3",
         "lamella_mm: 0.5",
-        "nozzle_mm: 0.35",
+        "nozzle_mm: 0.25",
         "IH76",
     ] {
         assert!(model.contains(needle), "3mf lacks {needle}");

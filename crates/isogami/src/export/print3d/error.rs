@@ -35,6 +35,17 @@ pub enum PrintError {
         /// The nozzle width.
         nozzle_mm: Real,
     },
+    /// The gap is narrower than one extrusion: the slot fills with plastic and the tiles fuse.
+    #[error(
+        "gap_mm {gap_mm} is below the nozzle (extrusion) width {nozzle_mm} mm: the slot would \
+         fill and fuse the tiles; use a gap of at least {nozzle_mm} mm"
+    )]
+    GapBelowNozzle {
+        /// The gap asked.
+        gap_mm: Real,
+        /// The nozzle width.
+        nozzle_mm: Real,
+    },
     /// The lamella is as thick as the tiles or thicker.
     #[error(
         "lamella_mm {lamella_mm} must be thinner than the tiles (thickness_mm {thickness_mm})"

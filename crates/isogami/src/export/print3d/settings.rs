@@ -46,8 +46,8 @@ impl Default for PrintSettings {
 }
 
 impl PrintSettings {
-    /// Refuses sizes that are not finite or not above zero, a hinge narrower than the
-    /// nozzle and a lamella not thinner than the tiles. (A hinge too wide for its edge and a
+    /// Refuses sizes that are not finite or not above zero, a hinge or a gap narrower than
+    /// the nozzle and a lamella not thinner than the tiles. (A hinge too wide for its edge and a
     /// gap that swallows a tile depend on the patch: [`super::print_sheet`] refuses them.)
     pub fn validate(&self) -> Result<(), PrintError> {
         let sizes = [
@@ -68,6 +68,12 @@ impl PrintSettings {
         if self.hinge_mm < self.nozzle_mm {
             return Err(PrintError::HingeBelowNozzle {
                 hinge_mm: self.hinge_mm,
+                nozzle_mm: self.nozzle_mm,
+            });
+        }
+        if self.gap_mm < self.nozzle_mm {
+            return Err(PrintError::GapBelowNozzle {
+                gap_mm: self.gap_mm,
                 nozzle_mm: self.nozzle_mm,
             });
         }
@@ -106,7 +112,15 @@ mod tests {
     #[test]
     fn each_bad_value_is_named_in_one_line() {
         let base = PrintSettings::default();
-        let cases: [(PrintSettings, &str); 8] = [
+        let cases: [(PrintSettings, &str); 9] = [
+            (
+                // Narrower than the nozzle: the slot fills (issue 23 item 13).
+                PrintSettings {
+                    gap_mm: 0.2,
+                    ..base
+                },
+                "gap_mm 0.2 is below the nozzle",
+            ),
             (
                 PrintSettings {
                     thickness_mm: 0.0,
