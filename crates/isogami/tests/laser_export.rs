@@ -365,3 +365,52 @@ fn sheets_of_export_patches_read_back_sound() {
         );
     }
 }
+
+#[test]
+fn engraved_labels_are_the_tiles_ids_in_the_other_files() {
+    // A raw 2x2 patch with one tile held by no joint: the laser sheet leaves it off, and the
+    // labels of the tiles after it must still be their ids in the tile table, FOLD, OBJ and
+    // kirigami_sim files (issue 23 item 13: label k sat on tile id k + 1).
+    use isogami::api::resolve_design;
+    use isogami::export::laser::laser_sheet;
+    use isogami::export::{patch_at, PatchRequest};
+    let design = resolve_design("IH21:0.104512294489,0.65:1x1:--aaab----bbaba").unwrap();
+    let request = PatchRequest {
+        rows: 2,
+        cols: 2,
+        complete: false,
+        ..PatchRequest::default()
+    };
+    let patch = patch_at(&design, &request).unwrap();
+    let settings = LaserSettings {
+        labels: true,
+        ..LaserSettings::default()
+    };
+    let sheet = laser_sheet(&patch, settings).unwrap();
+    assert!(sheet.tiles.len() < patch.tiles.len(), "a tile is left off");
+    for (k, &id) in sheet.tile_ids.iter().enumerate() {
+        // The kept tile k is the patch's tile `id`, closed polygon for closed polygon.
+        assert_eq!(sheet.tiles[k], patch.closed_polygons_mm[id], "tile {k}");
+        assert_eq!(patch.tiles[id].id, id);
+    }
+    assert!(sheet.tile_ids.iter().enumerate().any(|(k, &id)| id != k));
+    // The SVG engraves exactly those numbers, and the DXF too.
+    let svg = laser_svg(&sheet);
+    let mut engraved: Vec<usize> = svg
+        .split("<text ")
+        .skip(1)
+        .map(|t| t.split('>').nth(1).unwrap().split('<').next().unwrap())
+        .map(|n| n.parse().unwrap())
+        .collect();
+    engraved.sort_unstable();
+    let mut ids = sheet.tile_ids.clone();
+    ids.sort_unstable();
+    assert_eq!(engraved, ids);
+    let dxf = laser_dxf(&sheet);
+    for id in &ids {
+        assert!(
+            dxf.contains(&format!("\n  1\n{id}\n")),
+            "DXF lacks label {id}"
+        );
+    }
+}

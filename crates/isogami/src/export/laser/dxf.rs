@@ -87,7 +87,7 @@ pub fn laser_dxf(sheet: &LaserSheet) -> String {
         d.pair(8, "OUTLINE");
     }
     if s.labels {
-        for (i, (c, size)) in labels(&sheet.tiles).iter().enumerate() {
+        for (&i, (c, size)) in sheet.tile_ids.iter().zip(labels(&sheet.tiles).iter()) {
             let q = *c;
             d.pair(0, "TEXT");
             d.pair(8, "ENGRAVE");

@@ -25,7 +25,8 @@ pub fn laser_sheet(patch: &Patch, settings: LaserSettings) -> Result<LaserSheet,
             point: *point,
         });
     }
-    let (tiles, joints, kept) = largest_piece(polys, &joints)?;
+    let (tiles, joints, ids) = largest_piece(polys, &joints)?;
+    let kept = ids.len();
     let dropped = polys.len() - tiles.len();
     let meta = vec![
         ("spec".to_string(), patch.design.clone()),
@@ -44,10 +45,16 @@ pub fn laser_sheet(patch: &Patch, settings: LaserSettings) -> Result<LaserSheet,
             ),
         ),
     ];
-    LaserSheet::new(tiles, &joints, settings, meta)
+    // Labels are the tiles' ids in the patch's other files, not their places among the kept.
+    let labels = ids
+        .iter()
+        .map(|&k| patch.tiles.get(k).map_or(k, |t| t.id))
+        .collect();
+    Ok(LaserSheet::new(tiles, &joints, settings, meta)?.with_tile_ids(labels))
 }
 
-type Piece = (Vec<Vec<[Real; 2]>>, Vec<JointAt>, usize);
+/// The kept tiles, their joints (renumbered) and the kept tiles' indices among the given.
+type Piece = (Vec<Vec<[Real; 2]>>, Vec<JointAt>, Vec<usize>);
 
 /// The tiles and joints of the largest connected piece of the tile/joint graph (see
 /// `export::piece`), tiles renumbered in their order.
@@ -79,8 +86,7 @@ fn largest_piece(tiles: &[Vec<[Real; 2]>], joints: &[JointAt]) -> Result<Piece, 
             point: j.point,
         })
         .collect();
-    let count = kept.len();
-    Ok((kept, joints, count))
+    Ok((kept, joints, ids))
 }
 
 #[cfg(test)]
@@ -97,8 +103,12 @@ mod tests {
         };
         // 1–2–3 held together, 0 loose.
         let joints = [j(1, 2, 2.0), j(2, 3, 3.0)];
-        let (kept, joints, count) = largest_piece(&tiles, &joints).unwrap();
-        assert_eq!(count, 3);
+        let (kept, joints, ids) = largest_piece(&tiles, &joints).unwrap();
+        assert_eq!(
+            ids,
+            [1, 2, 3],
+            "the kept tiles' own indices, for their labels"
+        );
         assert_eq!(kept[0], sq(1.0));
         assert_eq!(joints[0].tiles, [0, 1]);
         assert_eq!(joints[1].tiles, [1, 2]);

@@ -49,6 +49,9 @@ pub struct LaserSheet {
     pub layout: CutLayout,
     /// Tile polygons (mm).
     pub tiles: Vec<Vec<[Real; 2]>>,
+    /// The number engraved on each tile (with `labels`): its id in the patch's other files
+    /// (tile table, FOLD, OBJ, kirigami_sim), so a tile left off does not shift the others.
+    pub tile_ids: Vec<usize>,
     /// Settings it was laid out with.
     pub settings: LaserSettings,
     /// Metadata written into the file besides the settings and the tool version.
@@ -68,10 +71,20 @@ impl LaserSheet {
         check_kerf(&tiles, settings.kerf_mm)?;
         Ok(LaserSheet {
             layout,
+            tile_ids: (0..tiles.len()).collect(),
             tiles,
             settings,
             meta,
         })
+    }
+
+    /// The same sheet with tile `k` numbered `ids[k]` (one id per tile).
+    pub fn with_tile_ids(self, ids: Vec<usize>) -> LaserSheet {
+        debug_assert_eq!(ids.len(), self.tiles.len());
+        LaserSheet {
+            tile_ids: ids,
+            ..self
+        }
     }
 
     /// The metadata lines: the caller's, then the settings and the tool version.

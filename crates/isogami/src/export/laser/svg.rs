@@ -78,7 +78,7 @@ pub fn laser_svg(sheet: &LaserSheet) -> String {
         s.colours.engrave
     );
     if s.labels {
-        for (i, (c, size)) in labels(&sheet.tiles).iter().enumerate() {
+        for (&i, (c, size)) in sheet.tile_ids.iter().zip(labels(&sheet.tiles).iter()) {
             let q = place.y_down(c);
             // Baseline a third of the height below the centre: the digits sit centred.
             let _ = writeln!(
