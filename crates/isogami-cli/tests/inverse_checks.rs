@@ -91,7 +91,7 @@ const PLANTED_TOLERANCE: Real = 0.01;
 /// default shape) moved by δᵢ = (+0.12 for even i, −0.08 for odd i) × scaleᵢ, or by −δ, δ/2,
 /// −δ/2 when that is not a valid design; ten cases.
 fn planted_cases(all: &[Candidate]) -> Vec<Planted> {
-    let probe = Target::goal(Goal::Area);
+    let probe = Target::goal(Goal::Area {});
     let ev = Evaluator {
         target: &probe,
         settings: settings(),

@@ -34,6 +34,9 @@ fn bad_input_is_one_line_and_exit_2() {
         (vec!["--target", "areas"], "unknown goal 'areas'"),
         (vec!["--target", "lock(0.3,0.1)"], "must be at most 0.1"),
         (vec!["--target", "area", "--top", "0"], "top 0"),
+        // A kerf deploy refuses is refused here too (issue 23 item 24: was raised to 0.0001).
+        (vec!["--target", "area", "--kerf", "0"], "kerf 0 must"),
+        (vec!["--target", "area", "--kerf", "-1"], "kerf -1 must"),
         (
             vec!["--target", "@/no/such/file"],
             "--target @/no/such/file",

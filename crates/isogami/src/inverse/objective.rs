@@ -156,8 +156,8 @@ pub fn goal_value(goal: &Goal, report: &DeploymentReport) -> Result<Real, Unmet>
     let value = match goal {
         // Over every accepted step (the report's summary), so that the value does not
         // depend on how many frames were asked for.
-        Goal::Area => -(report.max_area_ratio - 1.0),
-        Goal::Uniform => -max_over(&|f| f.measures.min_expansion),
+        Goal::Area {} => -(report.max_area_ratio - 1.0),
+        Goal::Uniform {} => -max_over(&|f| f.measures.min_expansion),
         Goal::Expansion { angle_deg } => {
             let theta = angle_deg.to_radians();
             -max_over(&|f| directional_expansion(&f.measures.u_matrix(), theta))
@@ -229,9 +229,9 @@ mod tests {
         let value = |g: Goal| goal_value(&g, &r).unwrap();
         // Largest area ratio (cos φ + sin φ)² = 2 at φ = 45°.
         assert!(
-            (value(Goal::Area) + 1.0).abs() < 2e-3,
+            (value(Goal::Area {}) + 1.0).abs() < 2e-3,
             "{}",
-            value(Goal::Area)
+            value(Goal::Area {})
         );
         // Isotropic: ε(θ) is the same in every direction, √2 − 1 at best.
         let best = 2f64.sqrt() - 1.0;
@@ -239,7 +239,7 @@ mod tests {
             let v = value(Goal::Expansion { angle_deg: a });
             assert!((v + best).abs() < 2e-3, "{a}: {v}");
         }
-        assert!((value(Goal::Uniform) + best).abs() < 2e-3);
+        assert!((value(Goal::Uniform {}) + best).abs() < 2e-3);
         assert!(value(Goal::Poisson { nu: -1.0 }) < 1e-6);
         assert!((value(Goal::Poisson { nu: 0.0 }) - 1.0).abs() < 1e-6);
         // It closes again at 90°, where U = I: the contact limit is near the closed shape.
@@ -323,7 +323,7 @@ mod tests {
             assert!((norm - value).abs() < 1e-12, "{g}: {norm} vs {value}");
             assert!(value > 1e-3, "{g}: a real mismatch");
         }
-        assert_eq!(goal_residual(&Goal::Area, &r).unwrap(), None);
+        assert_eq!(goal_residual(&Goal::Area {}, &r).unwrap(), None);
         let t = Target::parse("lock(0.1,0.25) + 4*lock-f(1.1,0.05,-0.02,1.3)").unwrap();
         let s = score(&t, &r).unwrap();
         let res = s.residual.expect("all goals match");
@@ -362,7 +362,7 @@ mod tests {
             Unmet::NeverOpens
         );
         r.frames.clear();
-        assert_eq!(goal_value(&Goal::Area, &r).unwrap_err(), Unmet::NoFrames);
+        assert_eq!(goal_value(&Goal::Area {}, &r).unwrap_err(), Unmet::NoFrames);
     }
 
     #[test]
@@ -370,7 +370,7 @@ mod tests {
         let mut r = rotating_squares();
         // A peak between frames (as a coarse frame count misses it) still counts.
         r.max_area_ratio = 2.5;
-        assert!((goal_value(&Goal::Area, &r).unwrap() + 1.5).abs() < 1e-12);
+        assert!((goal_value(&Goal::Area {}, &r).unwrap() + 1.5).abs() < 1e-12);
     }
 
     #[test]

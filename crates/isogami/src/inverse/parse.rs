@@ -119,11 +119,11 @@ fn goal(text: &str) -> Result<Goal, InverseError> {
     Ok(match name.as_str() {
         "area" => {
             no_args("area", args)?;
-            Goal::Area
+            Goal::Area {}
         }
         "uniform" => {
             no_args("uniform", args)?;
-            Goal::Uniform
+            Goal::Uniform {}
         }
         "isotropic" => {
             no_args("isotropic", args)?;
@@ -308,8 +308,8 @@ impl Target {
 impl fmt::Display for Goal {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Goal::Area => f.write_str("area"),
-            Goal::Uniform => f.write_str("uniform"),
+            Goal::Area {} => f.write_str("area"),
+            Goal::Uniform {} => f.write_str("uniform"),
             Goal::Expansion { angle_deg } => write!(f, "expansion({angle_deg})"),
             Goal::Poisson { nu } => write!(f, "poisson({nu})"),
             Goal::LockF { f: m } => {
@@ -403,7 +403,7 @@ mod tests {
         .unwrap();
         assert_eq!(t.terms.len(), 8);
         assert_eq!(t.terms[0].weight, 2.0);
-        assert_eq!(t.terms[0].goal, Goal::Area);
+        assert_eq!(t.terms[0].goal, Goal::Area {});
         assert_eq!(t.terms[1].goal, Goal::Expansion { angle_deg: 30.0 });
         assert_eq!(t.terms[3].goal, Goal::Poisson { nu: -1.0 });
         assert_eq!(t.terms[4].goal, Goal::Poisson { nu: -0.25 });
@@ -502,6 +502,15 @@ mod tests {
             (
                 "{\"terms\": [{\"goal\": {\"kind\": \"fly\"}}]}",
                 "unknown variant `fly`",
+            ),
+            // Goals without fields refuse unknown keys too (issue 23 item 24).
+            (
+                "{\"terms\": [{\"goal\": {\"kind\": \"uniform\", \"weight\": 5}}]}",
+                "unknown field `weight`",
+            ),
+            (
+                "{\"terms\": [{\"goal\": {\"kind\": \"area\", \"nu\": 1}}]}",
+                "unknown field `nu`",
             ),
             ("{", "target JSON"),
         ];

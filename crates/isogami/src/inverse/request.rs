@@ -105,16 +105,21 @@ impl InverseRequest {
                 },
             });
         }
-        // NaN would vanish in the maximum with the target's minimum kerf.
-        let kerf = if self.kerf.is_nan() {
-            self.kerf
-        } else {
-            self.effective_kerf()
-        };
-        if !(kerf.is_finite() && (crate::contact::MIN_KERF..=MAX_KERF).contains(&kerf)) {
+        // The kerf given is checked as `deploy` checks it (a kerf <= 0 was raised to the
+        // smallest one silently), then raised to the target's minimum.
+        let range = crate::contact::MIN_KERF..=MAX_KERF;
+        if !(self.kerf.is_finite() && range.contains(&self.kerf)) {
             return Err(InverseError::OutOfRange {
                 what: "kerf",
                 value: self.kerf,
+                requirement: Requirement::closed(crate::contact::MIN_KERF, MAX_KERF),
+            });
+        }
+        let kerf = self.effective_kerf();
+        if !range.contains(&kerf) {
+            return Err(InverseError::OutOfRange {
+                what: "the target's min_kerf",
+                value: kerf,
                 requirement: Requirement::closed(crate::contact::MIN_KERF, MAX_KERF),
             });
         }

@@ -58,15 +58,16 @@ pub struct PathPoint {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", tag = "kind", deny_unknown_fields)]
 pub enum Goal {
-    /// Largest area ratio.
-    Area,
+    /// Largest area ratio. (Written with braces so that unknown keys beside its `kind` are
+    /// refused: serde ignores them on a unit variant.)
+    Area {},
     /// Largest expansion along a direction.
     Expansion {
         /// Direction in degrees from the closed sheet's x axis.
         angle_deg: Real,
     },
-    /// Largest smallest principal expansion.
-    Uniform,
+    /// Largest smallest principal expansion (braces: see `Area`).
+    Uniform {},
     /// A Poisson-like ratio held over the opening.
     Poisson {
         /// Wanted ν = −ε_min/ε_max (−1 isotropic, 0 one axis fixed).
@@ -201,7 +202,7 @@ impl Goal {
     /// Checks every number of the goal.
     pub fn validate(&self) -> Result<(), InverseError> {
         match self {
-            Goal::Area | Goal::Uniform => Ok(()),
+            Goal::Area {} | Goal::Uniform {} => Ok(()),
             Goal::Expansion { angle_deg } => within("angle", *angle_deg, -360.0, 360.0),
             Goal::Poisson { nu } => within("Poisson-like ratio", *nu, -1.0, 100.0),
             Goal::LockF { f } => {
