@@ -29,6 +29,7 @@ pub mod math;
 pub mod measure;
 pub mod mobility;
 pub mod render;
+pub mod settings_error;
 pub mod shape_space;
 pub mod tiling;
 pub mod topology;

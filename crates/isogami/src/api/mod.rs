@@ -31,11 +31,12 @@ use crate::deploy::{
     summarize_steps, DeploySettings, DeploymentReport, DesignComparison, FramePick, FrameRecord,
     Progress, StepSummary, Trajectory,
 };
-use crate::error::{Requirement, Result, SettingsError};
+use crate::error::Result;
 use crate::kinematics::Mechanism;
 use crate::linkage::{analyze_linkages, LinkageAnalysis};
 use crate::math::Real;
 use crate::mobility::{Mobility, MobilitySettings};
+use crate::settings_error::{Requirement, SettingsError};
 pub use crate::topology::Design;
 use serde::Serialize;
 

@@ -2,9 +2,9 @@
 
 use crate::api::{DeployRequest, FrameSelection};
 use crate::deploy::{DeploySettings, Method};
-use crate::error::{Requirement, SettingValue, SettingsError};
 use crate::explore::TopologyOptions;
 use crate::math::Real;
+use crate::settings_error::{Requirement, SettingValue, SettingsError};
 use serde::{Deserialize, Serialize};
 
 /// Everything that decides what a work unit keeps. Stored with the database so any row can

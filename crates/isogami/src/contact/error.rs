@@ -1,8 +1,8 @@
 //! What can go wrong when building or querying a contact model.
 
 use super::inset::InsetProblem;
-use crate::error::SettingsError;
 use crate::math::Real;
+use crate::settings_error::SettingsError;
 use thiserror::Error;
 
 /// A contact model that cannot be built, or a query it cannot answer.

@@ -1,7 +1,7 @@
 //! Contact settings: cut width (kerf), barrier activation distance and barrier stiffness.
 
-use crate::error::{Requirement, SettingsError};
 use crate::math::Real;
+use crate::settings_error::{Requirement, SettingsError};
 
 /// Largest accepted kerf (units of the mean edge length L).
 pub const MAX_KERF: Real = 0.2;

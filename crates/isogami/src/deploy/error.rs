@@ -2,10 +2,10 @@
 //! its final check, a report with a non-finite number, or the caller cancelling.
 
 use crate::contact::{ContactError, Overlap};
-use crate::error::SettingsError;
 use crate::math::Real;
 use crate::measure::MeasureError;
 use crate::mobility::MobilityError;
+use crate::settings_error::SettingsError;
 use std::fmt;
 use thiserror::Error;
 
@@ -206,8 +206,8 @@ mod tests {
     use super::*;
     use crate::contact::ContactModel;
     use crate::deploy::{build_report, deploy, frame_records, DeploySettings};
-    use crate::error::{Requirement, SettingValue};
     use crate::kinematics::Mechanism;
+    use crate::settings_error::{Requirement, SettingValue};
     use crate::topology::named_design;
 
     fn squares() -> Mechanism {

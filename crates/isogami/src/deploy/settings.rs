@@ -1,9 +1,9 @@
 //! Deployment settings.
 
 use crate::contact::ContactSettings;
-use crate::error::{Requirement, SettingValue, SettingsError};
 use crate::math::Real;
 use crate::mobility::MobilitySettings;
+use crate::settings_error::{Requirement, SettingValue, SettingsError};
 
 /// Which deployment algorithm to run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]

@@ -2,9 +2,9 @@
 //! the offending values as typed fields; [`Error`] is the union the entry points of
 //! [`api`](crate::api) return and the front ends print. Every message is a single line.
 
-mod settings;
-
-pub use settings::{Requirement, SettingValue, SettingsError};
+// The settings error lives on the ground floor (`crate::settings_error`), below every stage
+// that validates settings; re-exported here for the library's users.
+pub use crate::settings_error::{Requirement, SettingValue, SettingsError};
 
 use thiserror::Error;
 

@@ -1,6 +1,6 @@
 //! Why a finite sheet could not be made, analysed or completed.
 
-use crate::error::SettingsError;
+use crate::settings_error::SettingsError;
 use thiserror::Error;
 
 /// A finite-sheet failure, naming the offending values.

@@ -1,8 +1,8 @@
 //! Errors of inverse design: a target that cannot be read or is out of range, a request
 //! outside its limits, a run stopped by its caller. Every message is one line.
 
-use crate::error::Requirement;
 use crate::math::Real;
+use crate::settings_error::Requirement;
 use thiserror::Error;
 
 /// What is wrong with a target, its text or JSON form, or an inverse-design request.

@@ -14,8 +14,8 @@
 use super::error::InverseError;
 use crate::cell::CellDims;
 use crate::contact::{MAX_KERF, MIN_KERF};
-use crate::error::Requirement;
 use crate::math::Real;
+use crate::settings_error::Requirement;
 use crate::tiling::Family;
 use serde::{Deserialize, Serialize};
 

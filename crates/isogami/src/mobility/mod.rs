@@ -27,15 +27,15 @@ impl Default for MobilitySettings {
 impl MobilitySettings {
     /// Checks the tolerance: a relative tolerance lies in (0, 1) (at 1 or above every
     /// eigenvalue would count as zero, and a huge one overflows the threshold to ∞).
-    pub fn validate(&self) -> Result<(), crate::error::SettingsError> {
+    pub fn validate(&self) -> Result<(), crate::settings_error::SettingsError> {
         let t = self.rel_tol;
         if t.is_finite() && t > 0.0 && t < 1.0 {
             Ok(())
         } else {
-            Err(crate::error::SettingsError::new(
+            Err(crate::settings_error::SettingsError::new(
                 "mobility tolerance",
                 t,
-                crate::error::Requirement::Within {
+                crate::settings_error::Requirement::Within {
                     low: 0.0,
                     high: 1.0,
                     open_low: true,

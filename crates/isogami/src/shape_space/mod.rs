@@ -33,9 +33,9 @@ pub use jacobian::param_scales;
 pub use rank_drop::{rank_drop, RankDrop};
 pub use search::{neighbours, search_neighbours, Finding, SearchReport};
 
-use crate::error::{Requirement, SettingsError};
 use crate::math::Real;
 use crate::mobility::MobilitySettings;
+use crate::settings_error::{Requirement, SettingsError};
 
 /// Settings of the shape-space analyses.
 #[derive(Debug, Clone, Copy, PartialEq)]

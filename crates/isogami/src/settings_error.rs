@@ -207,3 +207,46 @@ mod tests {
         assert_eq!(short_real(Real::NEG_INFINITY), "-inf");
     }
 }
+
+#[cfg(test)]
+mod ground_floor {
+    /// The settings error sits below every stage: it imports nothing of the crate but
+    /// `math`, and no module reaches it through the error union (which imports every stage's
+    /// error), so the import arrows run one way (issue 23 item 26: a 27-file circle).
+    #[test]
+    fn the_settings_error_is_imported_from_the_ground_floor_only() {
+        let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+        let me = std::fs::read_to_string(src.join("settings_error.rs")).unwrap();
+        for line in me
+            .lines()
+            .filter(|l| l.trim_start().starts_with("use crate::"))
+        {
+            assert!(
+                line.contains("crate::math"),
+                "settings_error imports {line}"
+            );
+        }
+        let mut stack = vec![src];
+        let mut offenders = Vec::new();
+        while let Some(dir) = stack.pop() {
+            for entry in std::fs::read_dir(&dir).unwrap() {
+                let path = entry.unwrap().path();
+                if path.is_dir() {
+                    stack.push(path);
+                    continue;
+                }
+                let text = std::fs::read_to_string(&path).unwrap();
+                let through_union = text.lines().any(|l| {
+                    l.contains("crate::error::")
+                        && ["SettingsError", "Requirement", "SettingValue"]
+                            .iter()
+                            .any(|n| l.contains(n))
+                });
+                if through_union && !path.ends_with("error/mod.rs") {
+                    offenders.push(path.display().to_string());
+                }
+            }
+        }
+        assert!(offenders.is_empty(), "through crate::error: {offenders:?}");
+    }
+}
