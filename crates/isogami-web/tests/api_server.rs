@@ -251,8 +251,9 @@ async fn exports_too_large_for_the_server_are_422_before_any_work() {
     assert_eq!(reply.status, 200, "{}", reply.text());
 }
 
-/// An export of `uri` (a completed 5×5 STL: a completion that polls nothing) takes `full`
-/// in the library alone.
+/// An export of `uri` (a completed 5×5 STL: a completion that polls nothing) takes at
+/// least `shortest` in the library alone: the fastest of three runs, so that caches warmed
+/// by the first run do not make the server's run shorter than the figure the test relies on.
 fn stage_bound_export() -> (String, Duration) {
     let design = resolve_design("IH88::1x1:bbbaabbab").unwrap();
     let request = PatchRequest {
@@ -260,17 +261,23 @@ fn stage_bound_export() -> (String, Duration) {
         cols: 5,
         ..PatchRequest::default()
     };
-    let started = Instant::now();
-    let _ = export_design(
-        &design,
-        &request,
-        Format::Stl,
-        &ExportOptions::default(),
-        &mut |_| true,
-    );
+    let shortest = (0..3)
+        .map(|_| {
+            let started = Instant::now();
+            let _ = export_design(
+                &design,
+                &request,
+                Format::Stl,
+                &ExportOptions::default(),
+                &mut |_| true,
+            );
+            started.elapsed()
+        })
+        .min()
+        .unwrap();
     (
         "/api/export?design=IH88::1x1:bbbaabbab&format=stl&patch=5x5".into(),
-        started.elapsed(),
+        shortest,
     )
 }
 
@@ -297,9 +304,10 @@ async fn an_export_is_answered_by_its_deadline_and_holds_its_permit_until_it_end
         answered < timeout * 5 + Duration::from_millis(500),
         "answered after {answered:?} with a {timeout:?} limit (the export alone takes {full:?})"
     );
-    if answered < full / 2 {
-        // The first export's thread is still in its completion: it holds the only permit,
-        // so a second export waits at most the time limit and is told the server is busy.
+    if answered + timeout < full / 2 {
+        // The first export's thread is still in its completion (it runs at least `full`)
+        // for longer than the second export waits: it holds the only permit, so a second
+        // export waits at most the time limit and is told the server is busy.
         let reply = get(&app, "/api/export?design=rotating-squares&format=tiles-csv").await;
         assert_eq!(
             assert_error(
