@@ -101,6 +101,10 @@ test('a run shows its progress and leaders, ends with the CLI’s result, and op
   assert.equal(await byTestId(page, 'result').count(), results.length);
   const shown = await byTestId(page, 'result-spec').allTextContents();
   assert.deepEqual(shown, results.map((r) => r.after.spec));
+  // The verdict of the best design: 'area' asks for the most, so nothing to meet.
+  assert.equal(job.result.met, null);
+  assert.equal(await byTestId(page, 'results-verdict').textContent(), `Best design: ${results[0].verdict.summary}`);
+  assert.match(results[0].verdict.summary, /^no value to meet; area asks for the most/);
   assert.ok(await byTestId(page, 'save-all').isHidden(), 'no saving on a read-only server');
   const words = shellSplit(command);
   const { stdout } = await promisify(execFile)(env().bin, words.slice(1), { cwd: dirname(env().db), maxBuffer: 64 << 20 });

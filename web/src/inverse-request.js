@@ -12,6 +12,7 @@ import { shellWord } from './export-request.js';
 /** Example targets for the chips: a label and the target text (the README's syntax). */
 export const EXAMPLES = [
   { label: 'largest area', target: 'area' },
+  { label: 'opens to 1.6× its area', target: 'area(1.6)' },
   { label: 'isotropic', target: 'isotropic' },
   { label: 'isotropic, uniform, ≤ 4 tiles', target: 'isotropic + 0.5*uniform; tiles<=4' },
   { label: 'most uniform opening', target: 'uniform' },

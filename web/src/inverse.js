@@ -244,6 +244,10 @@ function showResults(job) {
     `${result.target}: ${result.candidates} candidates, ${result.admitted} pass the constraints, ` +
     `${result.confirmed} re-deployed (${result.confirmed_valid} valid), ${result.triaged} triaged; ` +
     `${result.evaluations} deployments in ${result.seconds.toFixed(1)} s.`;
+  // Whether the best design meets the target (goals naming a value, within tolerance).
+  const verdict = result.results[0]?.verdict;
+  $('results-verdict').textContent = verdict ? `Best design: ${verdict.summary}` : '';
+  $('results-verdict').dataset.met = String(result.met);
   const head = ['#', 'design', 'objective before → after', 'spec (refined)', 'kerf', 'area ratio',
     'principal expansions', 'Poisson range', 'end state', 'evaluations'];
   $('results').replaceChildren(

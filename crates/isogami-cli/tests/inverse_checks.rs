@@ -91,7 +91,7 @@ const PLANTED_TOLERANCE: Real = 0.01;
 /// default shape) moved by δᵢ = (+0.12 for even i, −0.08 for odd i) × scaleᵢ, or by −δ, δ/2,
 /// −δ/2 when that is not a valid design; ten cases.
 fn planted_cases(all: &[Candidate]) -> Vec<Planted> {
-    let probe = Target::goal(Goal::Area {});
+    let probe = Target::goal(Goal::Area { ratio: None });
     let ev = Evaluator {
         target: &probe,
         settings: settings(),
@@ -158,14 +158,8 @@ fn planted_cases(all: &[Candidate]) -> Vec<Planted> {
         points.dedup_by(|a, b| a.t == b.t);
         let target = Target {
             terms: vec![
-                isogami::inverse::Term {
-                    goal: Goal::LockF { f },
-                    weight: 1.0,
-                },
-                isogami::inverse::Term {
-                    goal: Goal::Path { points },
-                    weight: 1.0,
-                },
+                isogami::inverse::Term::of(Goal::LockF { f }),
+                isogami::inverse::Term::of(Goal::Path { points }),
             ],
             constraints: Default::default(),
         };

@@ -122,3 +122,60 @@ fn a_run_prints_before_and_after_and_saves_once() {
         assert_eq!(s["note"], "already in the database");
     }
 }
+
+/// Issue 23 items 22–23: an unreachable target ends with a verdict and its distance; a
+/// target no stored design can pass names the constraint that removed them.
+#[test]
+fn runs_end_with_a_verdict_and_empty_searches_name_their_constraint() {
+    let (_dir, db) = small_db("inverse-verdict");
+    let db = db.to_str().unwrap();
+    let run = |target: &str, json: bool| {
+        let mut args = vec![
+            "inverse", "--db", db, "--target", target, "--top", "1", "--budget", "4",
+        ];
+        if json {
+            args.push("--json");
+        }
+        isogami(&args)
+    };
+    let out = run("lock(6.07,6.07)", false);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    let last = text.trim_end().lines().last().unwrap();
+    assert!(
+        last.starts_with("verdict: target NOT met: lock(6.07,6.07) is ")
+            && last.ends_with(" away (tolerance 0.01)"),
+        "{text}"
+    );
+    let out = run("lock(6.07,6.07)", true);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["met"], false);
+    let goal = &v["results"][0]["verdict"]["goals"][0];
+    assert_eq!(goal["met"], false);
+    assert!(goal["value"].as_f64().unwrap() > 5.0, "{goal}");
+    // A value the designs reach at some shape: met within the tolerance asked for.
+    let out = run("area(1.3)~0.05", true);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let reached = v["results"][0]["after"]["measures"]["max_area_ratio"]
+        .as_f64()
+        .unwrap();
+    assert_eq!(v["met"], (reached - 1.3).abs() <= 0.05, "{reached}");
+    // Asking for the most has no verdict.
+    let v: serde_json::Value = serde_json::from_slice(&run("area", true).stdout).unwrap();
+    assert!(v["met"].is_null());
+
+    for (target, want) in [
+        ("isotropic; tiles>=40", "tiles>=40 removes "),
+        ("area; families=IH1", "families=IH1 removes "),
+        (
+            "area; rotation>=179",
+            "turn their tiles by less than rotation>=179",
+        ),
+    ] {
+        let out = run(target, false);
+        assert_eq!(out.status.code(), Some(2), "{target}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(want), "{target}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    }
+}

@@ -1,7 +1,7 @@
 //! `isogami.inverse`: from a target behaviour to designs that have it, through the library's
 //! one entry point (`isogami::inverse::inverse_design`) on a database's candidates
-//! (`Store::candidates`), saving through the store (`StoreWriter::save_inverse_results`) as
-//! `isogami inverse --save` does. Same options as the CLI; the result's ``to_dict()`` is the
+//! (`Store::inverse_candidates`), saving through the store
+//! (`StoreWriter::save_inverse_results`) as `isogami inverse --save` does. Same options as the CLI; the result's ``to_dict()`` is the
 //! JSON `isogami inverse --json` prints.
 
 use crate::convert::{count_or, index_of, to_python, type_name};
@@ -11,7 +11,7 @@ use crate::errors;
 use crate::progress::Watch;
 use isogami::api::Design;
 use isogami::inverse::{inverse_design, Candidate, InverseRequest, InverseResult, Target};
-use isogami_store::{Check, DesignQuery, SavedDesign, Store, StoreWriter};
+use isogami_store::{Check, SavedDesign, Store, StoreWriter};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use serde::Serialize;
@@ -63,6 +63,14 @@ impl PyInverseResult {
     }
 }
 
+impl PyInverseResult {
+    /// The JSON form, read back.
+    fn parsed(&self) -> PyResult<serde_json::Value> {
+        serde_json::from_str(&self.json)
+            .map_err(|e| errors::IsogamiError::new_err(format!("JSON output: {e}")))
+    }
+}
+
 #[pymethods]
 impl PyInverseResult {
     /// The target in canonical text form.
@@ -96,6 +104,26 @@ impl PyInverseResult {
     #[getter]
     fn seconds(&self) -> f64 {
         self.seconds
+    }
+
+    /// Whether the best design meets the target: every goal that names a value
+    /// (``area(1.6)``, ``lock(0.1,0.3)``, ``isotropic``…) within its tolerance; ``None`` when
+    /// every goal asks for the most (``area``, ``uniform``). Per goal: ``to_dict()``'s
+    /// ``results[i]["verdict"]``.
+    #[getter]
+    fn met(&self) -> PyResult<Option<bool>> {
+        Ok(self.parsed()?["met"].as_bool())
+    }
+
+    /// The best design's verdict in one line ("target NOT met: lock(6.07,6.07) is 7.08 away
+    /// (tolerance 0.01)"); empty when there is no design.
+    #[getter]
+    fn verdict(&self) -> PyResult<String> {
+        let v = self.parsed()?;
+        Ok(v["results"][0]["verdict"]["summary"]
+            .as_str()
+            .unwrap_or_default()
+            .to_string())
     }
 
     /// Everything, as the dict `json.loads` makes of `isogami inverse --json`'s output.
@@ -203,15 +231,19 @@ impl Source<'_> {
         }
     }
 
-    /// The designs passing the target's family, cell and tile constraints.
+    /// The designs passing the target's family, cell and tile constraints (every design when
+    /// none does, so that the library can say which constraint removed them).
     fn candidates(&self, py: Python<'_>, target: &Target) -> PyResult<Vec<Candidate>> {
-        let query = DesignQuery::for_constraints(&target.constraints);
+        let constraints = &target.constraints;
         match self {
-            Source::Open(db) => db.with_store(py, move |store| store.candidates(&query)),
+            Source::Open(db) => {
+                db.with_store(py, move |store| store.inverse_candidates(constraints))
+            }
             Source::Path(path) => {
                 let shown = path.display().to_string();
                 py.detach(|| {
-                    Store::open_read(path, Check::Quick).and_then(|s| s.candidates(&query))
+                    Store::open_read(path, Check::Quick)
+                        .and_then(|s| s.inverse_candidates(constraints))
                 })
                 .map_err(|e| errors::store(e, &shown))
             }

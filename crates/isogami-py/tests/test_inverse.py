@@ -134,7 +134,8 @@ def test_progress_reports_every_stage_and_can_stop(quick_db):
         ("area", {"confirm": 0}, isogami.InverseError, "confirm must be at least 1"),
         ("area", {"kerf": float("nan")}, isogami.InverseError, "kerf"),
         ("area", {"budget": 10**7}, isogami.InverseError, "budget"),
-        ("area; families=IH1", {}, isogami.InverseError, "no candidate designs"),
+        ("area; families=IH1", {}, isogami.InverseError, "families=IH1 removes"),
+        ("isotropic; tiles>=40", {}, isogami.InverseError, "tiles>=40 removes"),
         (42, {}, TypeError, "target must be a str"),
         ("area", {"progress": 3}, TypeError, "progress must be callable"),
     ],
@@ -143,6 +144,17 @@ def test_bad_requests_are_one_line_errors(quick_db, target, kwargs, error, messa
     with pytest.raises(error, match=message.replace("(", r"\(").replace(")", r"\)")) as caught:
         isogami.inverse(target, quick_db, **{**SMALL, **kwargs})
     assert "\n" not in str(caught.value)
+
+
+def test_the_verdict_says_whether_the_target_is_met(quick_db):
+    missed = isogami.inverse("lock(6.07,6.07)", quick_db, **SMALL)
+    assert missed.met is False
+    assert missed.verdict.startswith("target NOT met: lock(6.07,6.07) is ")
+    goal = missed.to_dict()["results"][0]["verdict"]["goals"][0]
+    assert goal["met"] is False and goal["value"] > 5 and goal["tolerance"] == 0.01
+    assert missed.verdict == missed.to_dict()["results"][0]["verdict"]["summary"]
+    most = isogami.inverse("area", quick_db, **SMALL)
+    assert most.met is None and most.verdict.startswith("no value to meet")
 
 
 def test_bad_databases_are_refused(tmp_path):

@@ -1,7 +1,9 @@
 //! Candidates for inverse design: every design matching the target's family, cell and tile
 //! constraints, with its stored deployment report, as the library's plain
 //! [`Candidate`](isogami::inverse::Candidate) values. The library does the screening; this
-//! module only selects and reads.
+//! module only selects and reads. When the constraints select nothing, every design is
+//! read instead, so that the library can say which constraint removed them and what the
+//! database holds ([`Store::inverse_candidates`]).
 
 use crate::error::{StoreError, StoreResult};
 use crate::open::Store;
@@ -62,5 +64,17 @@ impl Store {
             });
         }
         Ok(out)
+    }
+
+    /// The candidates for a target with `constraints`: the designs they admit by family,
+    /// cell and tile count; when they admit none, every design of the database (inverse
+    /// design then refuses the run naming the constraint that removed them and how many).
+    pub fn inverse_candidates(&self, constraints: &Constraints) -> StoreResult<Vec<Candidate>> {
+        let admitted = self.candidates(&DesignQuery::for_constraints(constraints))?;
+        if admitted.is_empty() {
+            self.candidates(&DesignQuery::default())
+        } else {
+            Ok(admitted)
+        }
     }
 }

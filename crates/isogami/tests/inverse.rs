@@ -196,17 +196,110 @@ fn requests_and_candidates_are_checked() {
         .unwrap_err()
         .to_string()
         .contains("no candidate designs given"));
+    // No candidate passes: the error names the constraint, how many it removes and what
+    // the candidates offer instead (issue 23 item 23: "no candidate designs pass the
+    // constraints" named nothing).
+    let families: Vec<String> = pool.iter().map(|c| c.design.family.to_string()).collect();
     let request = InverseRequest::new(Target::parse("area; families=IH7").unwrap());
-    assert!(inverse_design(&pool, &request, &mut |_| true)
+    let e = inverse_design(&pool, &request, &mut |_| true)
         .unwrap_err()
-        .to_string()
-        .contains("pass the constraints"));
-    // A hinge bridge as long as an edge fits no design: nothing valid.
+        .to_string();
+    assert!(
+        e.contains(&format!(
+            "none of the {} candidate designs passes the constraints: families=IH7 removes {}",
+            pool.len(),
+            pool.len()
+        )),
+        "{e}"
+    );
+    assert!(families.iter().all(|f| e.contains(f.as_str())), "{e}");
+    let tiles: Vec<usize> = pool
+        .iter()
+        .map(|c| {
+            let d = &c.design;
+            d.family.info().aspect_count * usize::from(d.dims.a()) * usize::from(d.dims.b())
+        })
+        .collect();
+    let (fewest, most) = (tiles.iter().min().unwrap(), tiles.iter().max().unwrap());
+    let request = InverseRequest::new(Target::parse("isotropic; tiles>=40").unwrap());
+    let e = inverse_design(&pool, &request, &mut |_| true)
+        .unwrap_err()
+        .to_string();
+    let offer = if fewest == most {
+        format!("their cells have {most} tiles")
+    } else {
+        format!("their cells have {fewest} to {most} tiles")
+    };
+    assert!(
+        e.contains(&format!("tiles>=40 removes {} ({offer})", pool.len())),
+        "{e}"
+    );
+    assert!(
+        !e.contains("families"),
+        "only the constraint that removes some: {e}"
+    );
+    // A hinge bridge as long as an edge fits no design: nothing valid, and the reason is
+    // named with the count of designs it refused.
     let request = InverseRequest::new(Target::parse("area; hinge>=1").unwrap());
-    assert!(matches!(
-        inverse_design(&pool, &request, &mut |_| true),
-        Err(Error::Inverse(InverseError::NothingValid { .. }))
-    ));
+    match inverse_design(&pool, &request, &mut |_| true) {
+        Err(Error::Inverse(e @ InverseError::NothingValid { screened, .. })) => {
+            let text = e.to_string();
+            assert!(
+                text.contains(&format!(
+                    "{screened} leave no room for a hinge>=1 (e.g. hinge clearance:"
+                )),
+                "{text}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+    let request = InverseRequest::new(Target::parse("area; rotation>=179").unwrap());
+    let e = inverse_design(&pool, &request, &mut |_| true)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("turn their tiles by less than rotation>=179 (at most "),
+        "{e}"
+    );
+}
+
+#[test]
+fn the_verdict_says_whether_a_value_was_reached_and_how_far_off() {
+    let pool = vec![candidate("rotating-squares", true)];
+    let run = |text: &str| {
+        let mut request = InverseRequest::new(Target::parse(text).unwrap());
+        request.budget = 0;
+        inverse_design(&pool, &request, &mut |_| true).unwrap()
+    };
+    // Rotating squares open to twice their area: area(2) is met, area(1.6) is not (0.4 off:
+    // its shape has no parameter to move), and the verdict says so with the distance.
+    let met = run("area(2)");
+    assert_eq!(met.met, Some(true));
+    let v = &met.results[0].verdict;
+    assert!(v.goals[0].value < 2e-3 && v.goals[0].tolerance == Some(0.01));
+    assert!(
+        v.summary().starts_with("target met: area(2) is "),
+        "{}",
+        v.summary()
+    );
+    let missed = run("area(1.6)");
+    assert_eq!(missed.met, Some(false));
+    let v = &missed.results[0].verdict;
+    let reached = missed.results[0].after.measures.max_area_ratio;
+    assert!((v.goals[0].value - (reached - 1.6)).abs() < 1e-12);
+    assert!(
+        v.summary().starts_with("target NOT met: area(1.6) is 0.39"),
+        "{}",
+        v.summary()
+    );
+    // A loose enough tolerance meets it.
+    assert_eq!(run("area(1.6)~0.5").met, Some(true));
+    // The issue's unreachable lock: not met, with its distance.
+    let lock = run("lock(6.07,6.07)");
+    assert_eq!(lock.met, Some(false));
+    assert!(lock.results[0].verdict.goals[0].value > 5.0);
+    // Goals asking for the most have no verdict.
+    assert_eq!(run("area").met, None);
 }
 
 #[test]

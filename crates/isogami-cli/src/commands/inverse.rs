@@ -5,7 +5,7 @@
 use crate::output::{emit, print_json, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami::inverse::{inverse_design, InverseRequest, InverseResult, Scored, Target};
-use isogami_store::{Check, DesignQuery, SavedDesign, Store, StoreError, StoreWriter};
+use isogami_store::{Check, SavedDesign, Store, StoreError, StoreWriter};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -13,9 +13,11 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// The target: compact text such as "2*area + isotropic; families=IH28; tiles<=4", JSON
-    /// (starting with '{'), or @FILE holding either. Goals: area, expansion(deg), uniform,
-    /// isotropic, zero-poisson, poisson(nu), ratio(r), lock(min,max[,deg]),
-    /// lock-f(a,b,c,d), path(t:min:max,...). Constraints: families=, cells=, tiles<=/>=/=,
+    /// (starting with '{'), or @FILE holding either. Goals: area, area(r), expansion(deg),
+    /// expansion(deg,e), uniform, isotropic, zero-poisson, poisson(nu), ratio(r),
+    /// lock(min,max[,deg]), lock-f(a,b,c,d), path(t:min:max,...); a goal naming a value is
+    /// met within its tolerance (default 0.01, 0.05 for poisson; `~TOL` after the goal sets
+    /// it) and the run ends with that verdict. Constraints: families=, cells=, tiles<=/>=/=,
     /// rotation>=DEG, kerf>=K, hinge>=H.
     #[arg(long, allow_hyphen_values = true)]
     target: String,
@@ -151,6 +153,10 @@ fn table(result: &InverseResult, saved: &[SavedDesign]) -> String {
         );
         row(&mut t, "before", &r.before);
         row(&mut t, "after ", &r.after);
+        outln!(t, "          {}", r.verdict.summary());
+    }
+    if let Some(best) = result.results.first() {
+        outln!(t, "verdict: {}", best.verdict.summary());
     }
     for s in saved {
         outln!(t, "{}: {}", s.spec, s.note);
@@ -171,8 +177,9 @@ pub fn run(args: Args) -> CliResult {
     let request = request_of(&args)?;
     let candidates = {
         let store = Store::open_read(&args.db, Check::Quick).map_err(|e| at(&args.db, e))?;
-        let query = DesignQuery::for_constraints(&request.target.constraints);
-        store.candidates(&query).map_err(|e| at(&args.db, e))?
+        store
+            .inverse_candidates(&request.target.constraints)
+            .map_err(|e| at(&args.db, e))?
     };
     let bar = ProgressBar::new(0);
     bar.set_style(

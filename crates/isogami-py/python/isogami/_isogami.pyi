@@ -783,6 +783,12 @@ class InverseResult:
     def objectives(self) -> List[float]: ...
     @property
     def seconds(self) -> float: ...
+    @property
+    def met(self) -> Optional[bool]:
+        """Every goal naming a value within its tolerance (None: all ask for the most)."""
+    @property
+    def verdict(self) -> str:
+        """The best design's verdict in one line."""
     def to_dict(self) -> Dict[str, Any]:
         """As ``isogami inverse --json`` prints it."""
     def __len__(self) -> int: ...

@@ -10,7 +10,7 @@ use crate::state::AppState;
 use axum::http::StatusCode;
 use isogami::inverse::InverseResult;
 use isogami::inverse::{inverse_design, InverseError, InverseProgress, InverseRequest};
-use isogami_store::{DesignQuery, SavedDesign};
+use isogami_store::SavedDesign;
 use serde_json::Value;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
@@ -62,7 +62,9 @@ fn stopped(message: String, hint: &str) -> JobError {
 fn explain(e: &isogami::Error) -> JobError {
     let hint = match e {
         isogami::Error::Inverse(
-            InverseError::NoCandidates { .. } | InverseError::NothingValid { .. },
+            InverseError::NoCandidates
+            | InverseError::NoneAdmitted { .. }
+            | InverseError::NothingValid { .. },
         ) => "loosen the target's constraints, or explore more families into the database",
         _ => "try another target or smaller numbers",
     };
@@ -263,8 +265,8 @@ impl Job {
             }
         }
         let _guard = EndGuard(self);
-        let query = DesignQuery::for_constraints(&request.target.constraints);
-        let candidates = match state.read_now(|s| Ok(s.candidates(&query)?)) {
+        let constraints = &request.target.constraints;
+        let candidates = match state.read_now(|s| Ok(s.inverse_candidates(constraints)?)) {
             Ok(c) => c,
             Err(e) => return self.end(JobState::Failed, Some(e.into())),
         };

@@ -66,6 +66,12 @@ pub enum InverseError {
         /// Its t.
         t: Real,
     },
+    /// A tolerance on a goal that asks for the most of something (nothing to be within).
+    #[error("target: {goal} asks for the most and takes no tolerance; name a value (area(r), expansion(deg,e)) to be met within one")]
+    ToleranceWithoutValue {
+        /// The goal, in canonical text.
+        goal: String,
+    },
     /// A constraint key that is not known.
     #[error("target: unknown constraint '{key}' (known: {known})")]
     UnknownConstraint {
@@ -100,17 +106,28 @@ pub enum InverseError {
         /// The settings error's message.
         message: String,
     },
-    /// No candidate design was given, or none passes the constraints.
-    #[error("inverse design: no candidate designs {why}")]
-    NoCandidates {
-        /// Why (given / pass the constraints).
-        why: &'static str,
+    /// No candidate design was given.
+    #[error("inverse design: no candidate designs given (is the database empty?)")]
+    NoCandidates,
+    /// No candidate passes the family, cell and tile constraints.
+    #[error(
+        "inverse design: none of the {total} candidate designs passes the constraints: {removed}"
+    )]
+    NoneAdmitted {
+        /// Candidates given.
+        total: usize,
+        /// Each constraint that removes some, with how many and what the candidates offer
+        /// (e.g. "tiles>=40 removes 120 (their cells have 1 to 16 tiles)").
+        removed: String,
     },
     /// None of the candidates is a valid design that meets the target's requirements.
-    #[error("inverse design: none of the {screened} screened designs is valid for this target")]
+    #[error("inverse design: none of the {screened} screened designs is valid for this target: {reasons}")]
     NothingValid {
         /// How many were deployed.
         screened: usize,
+        /// What made them invalid, most common first, with counts (e.g. "40 turn their
+        /// tiles by less than rotation>=30 (at most 22.1°)").
+        reasons: String,
     },
     /// The caller's progress callback stopped the run.
     #[error("inverse design stopped by the caller")]

@@ -17,8 +17,10 @@
 //!   starting shapes with the rest, so a topology whose screened design starts further from
 //!   the target but can reach it is not lost to screening order, and a start that runs into
 //!   a poorer basin does not hide its sibling.
+//! - [`verdict`]: whether a design meets the target (every goal that names a value within
+//!   its tolerance) and how far it misses.
 //! - [`inverse_design`]: the one entry point; every returned design is re-deployed and
-//!   checked at the end.
+//!   checked at the end, and carries its verdict.
 //!
 //! Plain data in and out; candidates come from the caller (the design database supplies
 //! them through `isogami-store`). Evaluations run in parallel on rayon's pool; the caller's
@@ -39,6 +41,7 @@
 
 pub mod error;
 pub mod evaluate;
+mod explain;
 mod monitor;
 pub mod objective;
 pub mod parse;
@@ -46,6 +49,7 @@ pub mod refine;
 pub mod request;
 pub mod screen;
 pub mod target;
+pub mod verdict;
 
 pub use error::InverseError;
 pub use evaluate::{Evaluation, Evaluator, Invalidity, Outcome};
@@ -56,6 +60,7 @@ pub use request::{
 };
 pub use screen::Candidate;
 pub use target::{Constraints, Goal, PathPoint, Target, Term};
+pub use verdict::{GoalVerdict, Verdict};
 
 use crate::contact::ContactSettings;
 use evaluate::Stopped;
@@ -81,7 +86,7 @@ pub fn inverse_design(
 ) -> crate::Result<InverseResult> {
     request.validate()?;
     if candidates.is_empty() {
-        return Err(InverseError::NoCandidates { why: "given" }.into());
+        return Err(InverseError::NoCandidates.into());
     }
     let start = Instant::now();
     let mut settings = request.settings;
@@ -117,13 +122,15 @@ fn run(
 ) -> Run {
     let (screened, counts) = screen::screen(candidates, request, ev, monitor)?;
     if counts.admitted == 0 {
-        return Ok(Err(InverseError::NoCandidates {
-            why: "pass the constraints",
-        }));
+        return Ok(Err(explain::none_admitted(
+            candidates,
+            &request.target.constraints,
+        )));
     }
     if screened.is_empty() {
         return Ok(Err(InverseError::NothingValid {
-            screened: counts.confirmed,
+            screened: counts.confirmed + counts.sampled,
+            reasons: counts.invalid_reasons,
         }));
     }
     // Triage: every screened design gets a short refinement; the best `top` topologies go on
@@ -238,6 +245,7 @@ fn run(
         counts.confirmed + counts.sampled + triage_evaluations + more_evaluations + results.len();
     Ok(Ok(InverseResult {
         target: request.target.to_string(),
+        met: results.first().and_then(|r| r.verdict.met),
         kerf: request.effective_kerf(),
         candidates: candidates.len(),
         admitted: counts.admitted,
@@ -288,6 +296,7 @@ fn finish(
     } else {
         before.clone()
     };
+    let verdict = Verdict::of(ev.target, &after.terms);
     Ok(RefinedDesign {
         rank: 0,
         topology: s.topology.clone(),
@@ -299,5 +308,6 @@ fn finish(
         after,
         evaluations: r.evaluations,
         invalid_evaluations: r.invalid,
+        verdict,
     })
 }

@@ -52,7 +52,8 @@ pub struct Score {
     pub objective: Real,
     /// Each goal's value, in the target's order (unweighted).
     pub terms: Vec<Real>,
-    /// When every goal is a match (lock, lock-f, path): the stacked residuals √weight · rᵢ
+    /// When every goal names a value (lock, lock-f, path, area(r), expansion(θ, e); not
+    /// poisson, held over the motion): the stacked residuals √weight · rᵢ
     /// with ‖rᵢ‖ the goal's value, for least-squares refinement. None otherwise.
     #[serde(skip)]
     pub residual: Option<Vec<Real>>,
@@ -100,10 +101,34 @@ fn sym_entries(m: &Mat2) -> [Real; 3] {
     [m[(0, 0)], std::f64::consts::SQRT_2 * off, m[(1, 1)]]
 }
 
+/// The largest ε(θ) over the frames, θ in degrees.
+fn largest_expansion_along(frames: &[FrameReport], angle_deg: Real) -> Real {
+    let theta = angle_deg.to_radians();
+    frames
+        .iter()
+        .map(|f| directional_expansion(&f.measures.u_matrix(), theta))
+        .fold(Real::NEG_INFINITY, Real::max)
+}
+
 /// The residual vector of a matching goal (its Euclidean norm is [`goal_value`]); `None` for
 /// goals that are not matches (extreme expansion, Poisson-like ratio held over the motion).
 pub fn goal_residual(goal: &Goal, report: &DeploymentReport) -> Result<Option<Vec<Real>>, Unmet> {
     let r = match goal {
+        Goal::Area { ratio: Some(r) } => {
+            if report.frames.is_empty() {
+                return Err(Unmet::NoFrames);
+            }
+            vec![report.max_area_ratio - r]
+        }
+        Goal::Expansion {
+            angle_deg,
+            value: Some(e),
+        } => {
+            if report.frames.is_empty() {
+                return Err(Unmet::NoFrames);
+            }
+            vec![largest_expansion_along(&report.frames, *angle_deg) - e]
+        }
         Goal::LockF { f } => {
             let want = stretch(f).ok_or(Unmet::NotFinite)?;
             sym_entries(&(end_state(report)?.measures.u_matrix() - want)).to_vec()
@@ -156,19 +181,23 @@ pub fn goal_value(goal: &Goal, report: &DeploymentReport) -> Result<Real, Unmet>
     let value = match goal {
         // Over every accepted step (the report's summary), so that the value does not
         // depend on how many frames were asked for.
-        Goal::Area {} => -(report.max_area_ratio - 1.0),
+        Goal::Area { ratio: None } => -(report.max_area_ratio - 1.0),
         Goal::Uniform {} => -max_over(&|f| f.measures.min_expansion),
-        Goal::Expansion { angle_deg } => {
-            let theta = angle_deg.to_radians();
-            -max_over(&|f| directional_expansion(&f.measures.u_matrix(), theta))
-        }
+        Goal::Expansion {
+            angle_deg,
+            value: None,
+        } => -largest_expansion_along(frames, *angle_deg),
         Goal::Poisson { nu } => {
             let (lo, hi) = report.poisson_range().ok_or(Unmet::NeverOpens)?;
             (lo - nu).abs().max((hi - nu).abs())
         }
         // Matching goals: the Euclidean norm of the residual (Frobenius for U, since the
-        // off-diagonal entry carries √2; RMS over the path's points).
-        Goal::LockF { .. } | Goal::Lock { .. } | Goal::Path { .. } => {
+        // off-diagonal entry carries √2; RMS over the path's points; |A − r|, |ε − e|).
+        Goal::LockF { .. }
+        | Goal::Lock { .. }
+        | Goal::Path { .. }
+        | Goal::Area { ratio: Some(_) }
+        | Goal::Expansion { value: Some(_), .. } => {
             let r = goal_residual(goal, report)?.ok_or(Unmet::NotFinite)?;
             r.iter().map(|v| v * v).sum::<Real>().sqrt()
         }
@@ -229,16 +258,30 @@ mod tests {
         let value = |g: Goal| goal_value(&g, &r).unwrap();
         // Largest area ratio (cos φ + sin φ)² = 2 at φ = 45°.
         assert!(
-            (value(Goal::Area {}) + 1.0).abs() < 2e-3,
+            (value(Goal::Area { ratio: None }) + 1.0).abs() < 2e-3,
             "{}",
-            value(Goal::Area {})
+            value(Goal::Area { ratio: None })
         );
         // Isotropic: ε(θ) is the same in every direction, √2 − 1 at best.
         let best = 2f64.sqrt() - 1.0;
         for a in [0.0, 30.0, 90.0] {
-            let v = value(Goal::Expansion { angle_deg: a });
+            let v = value(Goal::Expansion {
+                angle_deg: a,
+                value: None,
+            });
             assert!((v + best).abs() < 2e-3, "{a}: {v}");
+            // The same with a value: the distance of the largest ε(θ) from it.
+            let at = value(Goal::Expansion {
+                angle_deg: a,
+                value: Some(0.25),
+            });
+            assert!((at - (-v - 0.25)).abs() < 1e-12, "{a}: {at} vs {v}");
         }
+        // Opens to twice its area: area(2) is met, area(1.6) is 0.4 away (either side).
+        let reached = r.max_area_ratio;
+        assert!(value(Goal::Area { ratio: Some(2.0) }) < 2e-3);
+        assert!((value(Goal::Area { ratio: Some(1.6) }) - (reached - 1.6)).abs() < 1e-12);
+        assert!((value(Goal::Area { ratio: Some(2.5) }) - (2.5 - reached)).abs() < 1e-12);
         assert!((value(Goal::Uniform {}) + best).abs() < 2e-3);
         assert!(value(Goal::Poisson { nu: -1.0 }) < 1e-6);
         assert!((value(Goal::Poisson { nu: 0.0 }) - 1.0).abs() < 1e-6);
@@ -323,7 +366,12 @@ mod tests {
             assert!((norm - value).abs() < 1e-12, "{g}: {norm} vs {value}");
             assert!(value > 1e-3, "{g}: a real mismatch");
         }
-        assert_eq!(goal_residual(&Goal::Area {}, &r).unwrap(), None);
+        assert_eq!(
+            goal_residual(&Goal::Area { ratio: None }, &r).unwrap(),
+            None
+        );
+        let area = goal_residual(&Goal::Area { ratio: Some(1.6) }, &r).unwrap();
+        assert_eq!(area, Some(vec![r.max_area_ratio - 1.6]));
         let t = Target::parse("lock(0.1,0.25) + 4*lock-f(1.1,0.05,-0.02,1.3)").unwrap();
         let s = score(&t, &r).unwrap();
         let res = s.residual.expect("all goals match");
@@ -362,7 +410,10 @@ mod tests {
             Unmet::NeverOpens
         );
         r.frames.clear();
-        assert_eq!(goal_value(&Goal::Area {}, &r).unwrap_err(), Unmet::NoFrames);
+        assert_eq!(
+            goal_value(&Goal::Area { ratio: None }, &r).unwrap_err(),
+            Unmet::NoFrames
+        );
     }
 
     #[test]
@@ -370,7 +421,7 @@ mod tests {
         let mut r = rotating_squares();
         // A peak between frames (as a coarse frame count misses it) still counts.
         r.max_area_ratio = 2.5;
-        assert!((goal_value(&Goal::Area {}, &r).unwrap() + 1.5).abs() < 1e-12);
+        assert!((goal_value(&Goal::Area { ratio: None }, &r).unwrap() + 1.5).abs() < 1e-12);
     }
 
     #[test]

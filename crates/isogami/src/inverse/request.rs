@@ -3,6 +3,7 @@
 use super::error::InverseError;
 use super::objective::Score;
 use super::target::Target;
+use super::verdict::Verdict;
 use crate::catalog::CatalogSettings;
 use crate::cell::CellDims;
 use crate::contact::{ContactSettings, MAX_KERF};
@@ -348,6 +349,8 @@ pub struct RefinedDesign {
     pub invalid_evaluations: usize,
     /// True when the refined objective is below the screened one.
     pub improved: bool,
+    /// Whether the refined design meets the target, goal by goal.
+    pub verdict: Verdict,
 }
 
 /// Everything a run found.
@@ -355,6 +358,9 @@ pub struct RefinedDesign {
 pub struct InverseResult {
     /// The target in canonical text form.
     pub target: String,
+    /// Whether the best design meets the target (every goal that names a value within its
+    /// tolerance); `None` when no goal names a value. See each result's `verdict`.
+    pub met: Option<bool>,
     /// Kerf the designs were deployed with (before kerf refinement).
     pub kerf: Real,
     /// Candidates given.

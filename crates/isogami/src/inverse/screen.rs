@@ -18,6 +18,7 @@
 //!    basin than one from a shape that scores worse.
 
 use super::evaluate::{Evaluation, Evaluator, Stopped};
+use super::explain::{self, tile_count};
 use super::monitor::Monitor;
 use super::objective::score;
 use super::request::{InverseRequest, Source, Stage};
@@ -56,17 +57,15 @@ impl Screened {
 }
 
 /// Counts of the screening stages.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Default)]
 pub(crate) struct ScreenCounts {
     pub admitted: usize,
     pub prescored: usize,
     pub confirmed: usize,
     pub confirmed_valid: usize,
     pub sampled: usize,
-}
-
-fn tile_count(d: &Design) -> usize {
-    d.family.info().aspect_count * usize::from(d.dims.a()) * usize::from(d.dims.b())
+    /// When no screened design is valid: why (see [`explain::invalid_reasons`]).
+    pub invalid_reasons: String,
 }
 
 /// The pre-screening score: the objective on the stored report if it is valid there.
@@ -219,6 +218,12 @@ pub(crate) fn screen(
         monitor.stage(Stage::Sample, jobs.len());
         counts.sampled = jobs.len();
         pool.extend(evaluate_all(ev, kerf, jobs, monitor)?);
+    }
+    if !pool.iter().any(|s| s.evaluation.is_valid()) {
+        counts.invalid_reasons = explain::invalid_reasons(
+            pool.iter().map(|s| &s.evaluation),
+            &request.target.constraints,
+        );
     }
     Ok((
         best_per_topology(pool, PER_TOPOLOGY, request.triage_count()),

@@ -41,7 +41,9 @@ pub struct PathPoint {
 /// | goal | text | value (smaller is better) |
 /// |---|---|---|
 /// | `Area` | `area` | −(A − 1), A the largest area ratio det F over every step of the deployment (the report's `max_area_ratio`) |
+/// | `Area` with a ratio | `area(r)` | \|A − r\|: the sheet opens to r times its closed area |
 /// | `Expansion` | `expansion(θ°)` | −max over frames of ε(θ) |
+/// | `Expansion` with a value | `expansion(θ°, e)` | \|max over frames of ε(θ) − e\| |
 /// | `Uniform` | `uniform` | −max over frames of ε_min (the most uniformly opening sheet) |
 /// | `Poisson` | `poisson(ν)`, `isotropic` (ν = −1), `zero-poisson` (ν = 0), `ratio(r)` (ν = −r) | max over the open states of \|ν_state − ν\| |
 /// | `LockF` | `lock-f(a,b,c,d)` | ‖U_end − U*‖ (Frobenius), U* the stretch of F* = [[a, b], [c, d]] |
@@ -55,16 +57,29 @@ pub struct PathPoint {
 /// last state of the deployment, where contact stops it: a design whose deployment ends for
 /// another reason does not meet a lock goal. F is compared through U, because the sheet's
 /// overall rotation is a convention of the solver (tile 0 is held fixed).
+///
+/// `area`, `expansion(θ°)` and `uniform` ask for the most of something: they have no value
+/// to meet. Every other goal names a value, and its goal value is the distance from it: it
+/// is *met* when that distance is at most the term's tolerance
+/// ([`Goal::default_tolerance`] unless the term gives one; see [`super::verdict`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", tag = "kind", deny_unknown_fields)]
 pub enum Goal {
-    /// Largest area ratio. (Written with braces so that unknown keys beside its `kind` are
-    /// refused: serde ignores them on a unit variant.)
-    Area {},
-    /// Largest expansion along a direction.
+    /// Largest area ratio, or a given one. (Written with braces so that unknown keys beside
+    /// its `kind` are refused: serde ignores them on a unit variant.)
+    Area {
+        /// The area ratio the sheet should open to (largest over the deployment); absent:
+        /// as large as possible.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        ratio: Option<Real>,
+    },
+    /// Largest expansion along a direction, or a given one.
     Expansion {
         /// Direction in degrees from the closed sheet's x axis.
         angle_deg: Real,
+        /// The largest expansion ε(θ) the sheet should reach; absent: as large as possible.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        value: Option<Real>,
     },
     /// Largest smallest principal expansion (braces: see `Area`).
     Uniform {},
@@ -104,6 +119,27 @@ pub struct Term {
     /// Its weight (finite, > 0; default 1).
     #[serde(default = "one")]
     pub weight: Real,
+    /// Largest goal value at which the goal counts as met; absent: the goal's default
+    /// ([`Goal::default_tolerance`]). Only goals that name a value take one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tolerance: Option<Real>,
+}
+
+impl Term {
+    /// A term of weight 1 with the goal's default tolerance.
+    pub fn of(goal: Goal) -> Term {
+        Term {
+            goal,
+            weight: 1.0,
+            tolerance: None,
+        }
+    }
+
+    /// The tolerance the verdict uses: the term's own, else the goal's default; `None` for
+    /// goals that ask for the most of something.
+    pub fn effective_tolerance(&self) -> Option<Real> {
+        self.tolerance.or_else(|| self.goal.default_tolerance())
+    }
 }
 
 fn one() -> Real {
@@ -202,8 +238,27 @@ impl Goal {
     /// Checks every number of the goal.
     pub fn validate(&self) -> Result<(), InverseError> {
         match self {
-            Goal::Area {} | Goal::Uniform {} => Ok(()),
-            Goal::Expansion { angle_deg } => within("angle", *angle_deg, -360.0, 360.0),
+            Goal::Area { ratio: None } | Goal::Uniform {} => Ok(()),
+            Goal::Area { ratio: Some(r) } => {
+                if r.is_finite() && *r > 0.0 && *r <= 100.0 {
+                    Ok(())
+                } else {
+                    Err(range(
+                        "area ratio",
+                        *r,
+                        Requirement::Within {
+                            low: 0.0,
+                            high: 100.0,
+                            open_low: true,
+                            open_high: false,
+                        },
+                    ))
+                }
+            }
+            Goal::Expansion { angle_deg, value } => {
+                within("angle", *angle_deg, -360.0, 360.0)?;
+                value.map_or(Ok(()), |e| expansion("expansion value", e))
+            }
             Goal::Poisson { nu } => within("Poisson-like ratio", *nu, -1.0, 100.0),
             Goal::LockF { f } => {
                 for v in f.iter().flatten() {
@@ -267,7 +322,33 @@ impl Goal {
     pub fn needs_contact_limit(&self) -> bool {
         matches!(self, Goal::LockF { .. } | Goal::Lock { .. })
     }
+
+    /// True when the goal names a value to meet (its goal value is a distance from it);
+    /// false for `area`, `expansion(θ°)` and `uniform`, which ask for the most.
+    pub fn names_a_value(&self) -> bool {
+        !matches!(
+            self,
+            Goal::Area { ratio: None } | Goal::Expansion { value: None, .. } | Goal::Uniform {}
+        )
+    }
+
+    /// The distance at which a goal that names a value is met, unless the term says
+    /// otherwise: 0.01 for expansions, stretches and area ratios (1 % of the closed size),
+    /// 0.05 for a Poisson-like ratio (which varies over the opening of most sheets); `None`
+    /// for goals that ask for the most.
+    pub fn default_tolerance(&self) -> Option<Real> {
+        match self {
+            _ if !self.names_a_value() => None,
+            Goal::Poisson { .. } => Some(POISSON_TOLERANCE),
+            _ => Some(VALUE_TOLERANCE),
+        }
+    }
 }
+
+/// Default tolerance of goals on expansions, stretches and area ratios.
+pub const VALUE_TOLERANCE: Real = 0.01;
+/// Default tolerance of a Poisson-like ratio goal.
+pub const POISSON_TOLERANCE: Real = 0.05;
 
 impl Constraints {
     /// Checks every bound.
@@ -318,7 +399,7 @@ impl Target {
     /// A target of one goal with weight 1 and no constraints.
     pub fn goal(goal: Goal) -> Target {
         Target {
-            terms: vec![Term { goal, weight: 1.0 }],
+            terms: vec![Term::of(goal)],
             constraints: Constraints::default(),
         }
     }
@@ -348,6 +429,25 @@ impl Target {
                 ));
             }
             t.goal.validate()?;
+            if let Some(tol) = t.tolerance {
+                if !t.goal.names_a_value() {
+                    return Err(InverseError::ToleranceWithoutValue {
+                        goal: t.goal.to_string(),
+                    });
+                }
+                if !(tol.is_finite() && tol > 0.0 && tol <= 10.0) {
+                    return Err(range(
+                        "tolerance",
+                        tol,
+                        Requirement::Within {
+                            low: 0.0,
+                            high: 10.0,
+                            open_low: true,
+                            open_high: false,
+                        },
+                    ));
+                }
+            }
         }
         self.constraints.validate()
     }

@@ -1,4 +1,5 @@
-//! Levenberg–Marquardt on the stacked residuals of a matching target (lock, lock-f, path):
+//! Levenberg–Marquardt on the stacked residuals of a matching target (lock, lock-f, path,
+//! area(r), expansion(θ, e)):
 //! minimises ½‖r(x)‖², r = (√wᵢ rᵢ), whose zero is the objective's zero, with forward
 //! differences for the Jacobian (one evaluation per unknown, step 10⁻³ of a scale, taken
 //! backwards when the forward point is invalid), kept up to date between them by Broyden's

@@ -5,8 +5,8 @@
 //! deterministic, a handful of unknowns (at most six shape parameters and the kerf), and
 //! indifferent to the creases of the objective (where the contact pair that ends the
 //! deployment changes, the end state turns a corner). When every goal of the target is a
-//! match (lock, lock-f, path), the objective is a norm of residuals that vanishes at the
-//! answer, and Levenberg–Marquardt on those residuals ([`lm`], forward-difference Jacobians)
+//! match (lock, lock-f, path, area(r), expansion(θ, e)), the objective is a norm of
+//! residuals that vanishes at the answer, and Levenberg–Marquardt on those residuals ([`lm`], forward-difference Jacobians)
 //! converges in a few Jacobians where Nelder–Mead needs hundreds of points: it runs first,
 //! and Nelder–Mead continues from its result with whatever budget is left.
 //!
