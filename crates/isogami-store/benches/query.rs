@@ -20,7 +20,7 @@
 //! - `open/quick` and `open/full`: opening with quick_check, and with integrity_check, every
 //!   row's checksum and every document parsed.
 
-#[path = "../tests/common/synthetic.rs"]
+#[path = "../tests/it/common/synthetic.rs"]
 #[allow(dead_code)]
 mod synthetic;
 
