@@ -110,7 +110,7 @@ pub enum PrintError {
         "the hinge between tiles {tiles:?} comes within the gap of {other} ({})",
         match min_edge_mm {
             Some(e) => format!("the smallest edge_mm that fits is {e}, or use a narrower hinge or gap"),
-            None => "try a narrower hinge or gap".to_string(),
+            None => "no larger patch fixes it; try a narrower hinge or gap".to_string(),
         }
     )]
     HingeClash {

@@ -142,7 +142,10 @@ pub fn print_layout(patch: &Patch, settings: &PrintSettings) -> Result<PrintLayo
                 tiles,
             }) => {
                 let ratio = needed_mm / edge_mm;
-                if worst.as_ref().is_none_or(|(r, _)| !(ratio <= *r)) {
+                if worst
+                    .as_ref()
+                    .is_none_or(|(r, _)| ratio > *r || ratio.is_nan())
+                {
                     let e = too_small(patch.edge_mm, hinge_mm, edge_mm, needed_mm, tiles);
                     worst = Some((ratio, e));
                 }
@@ -285,7 +288,10 @@ impl Geometry<'_> {
         let shared = self.graph.edges[self.graph.tile_edges[t][other_edge]]
             .right
             .is_some();
-        let c = if shared { self.c } else { 0.0 };
+        // A hair (1 % of c) inside the tile rather than on its edge (the inset edge, or the
+        // outline): a slab corner exactly on a tile edge that `separate` trimmed (new vertices
+        // on a 1e-8 mm grid) leaves slivers that a float32 STL collapses.
+        let c = if shared { self.c } else { 0.0 } + 0.01 * self.c;
         let (cos, sin) = (d.dot(&f), cross(&d, &f).abs());
         let need = c + self.w * cos;
         let corner = if need <= 0.0 {
@@ -341,8 +347,8 @@ impl Geometry<'_> {
                 tiles: ids,
             });
         }
-        let [a0, a1] = band.corners(v, &sides[0]);
-        let [b0, b1] = band.corners(v, &sides[1]);
+        let [a0, a1] = band.corners(v, &sides[0], s0);
+        let [b0, b1] = band.corners(v, &sides[1], s0);
         Ok(convex_hull(&[a0, a1, b0, b1]))
     }
 }
@@ -358,6 +364,7 @@ impl Geometry<'_> {
 /// tile (depth 0 to w) is nearer to V along the edge than `s0` (the closed slab's start, which
 /// keeps its clearances); it reaches `reach` along the edge.
 struct Band {
+    closed: bool,
     b: Vec2,
     r0: Real,
     hinge: Real,
@@ -368,7 +375,10 @@ struct Band {
 impl Band {
     fn new(sides: &[(Vec2, Vec2, Vec2); 2], s0: Real, w: Real, hinge: Real) -> Band {
         let sum = sides[0].1 + sides[1].1;
-        let b = if sum.norm() > 1e-9 {
+        let closed = cross(&sides[0].1, &sides[1].1).abs() < 1e-12 && sum.norm() > 1.0;
+        let b = if closed {
+            sides[0].1
+        } else if sum.norm() > 1e-9 {
             sum.normalize()
         } else {
             sides[0].1
@@ -381,6 +391,7 @@ impl Band {
             if cos < 1e-3 {
                 // Opened to a straight angle or beyond: no band crosses the gap.
                 return Band {
+                    closed,
                     b,
                     r0: 0.0,
                     hinge,
@@ -393,6 +404,7 @@ impl Band {
         }
         let cos = sides[0].1.dot(&b);
         Band {
+            closed,
             b,
             r0,
             hinge,
@@ -402,8 +414,16 @@ impl Band {
     }
 
     /// The band's two corners at depth w into the tile of copy `(_, d, n)`, the joint at `v`.
-    fn corners(&self, v: Vec2, side: &(Vec2, Vec2, Vec2)) -> [Vec2; 2] {
-        let (_, d, n) = *side;
+    /// Where the joint is closed (the copies parallel) they are computed as the rectangle's,
+    /// from the copy's own vertex: a slab corner often lies exactly on an outline edge of its
+    /// tile, and the mesh union must see the same point there, not one 1e-15 away (a sliver
+    /// that a float32 STL collapses).
+    fn corners(&self, v: Vec2, side: &(Vec2, Vec2, Vec2), s0: Real) -> [Vec2; 2] {
+        let (own, d, n) = *side;
+        if self.closed {
+            let start = own + d * s0;
+            return [start + n * self.w, own + d * (s0 + self.hinge) + n * self.w];
+        }
         let at = |r: Real| v + d * ((r - self.w * n.dot(&self.b)) / d.dot(&self.b)) + n * self.w;
         [at(self.r0), at(self.r0 + self.hinge)]
     }
