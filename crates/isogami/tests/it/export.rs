@@ -2,6 +2,8 @@
 //! rotating-squares and designs of other families (concave tiles among them). Each design's
 //! patch is made once and shared by the tests.
 
+#[path = "export/fab_sizes.rs"]
+mod fab_sizes;
 #[path = "export/fixtures.rs"]
 mod fixtures;
 #[path = "export/fold.rs"]

@@ -17,14 +17,21 @@
 //!   three or more tiles meet. `s0` is the least distance at which every other burn at V
 //!   (other cuts, stubs, outline, relief) stays at least `h` from the bridge's far end: for
 //!   a burn of half-width c along a ray at angle φ < 90° from e,
-//!   `s0 ≥ (h + k/2 + c)/sin φ − h − k/2`, else `s0 ≥ c`. Hence the narrowest section of the
-//!   bridge is `h`, along e.
+//!   `s0 ≥ (h + k/2 + c)/sin φ − h − k/2`, else `s0 ≥ c`. The other end W of e is kept clear
+//!   the same way when no bridge sits there: the cut of e runs into W, so the burns at W
+//!   belong to the far side of the bridge, and the bridge must end at least the same
+//!   distance (with W's burns) short of W, or those burns eat into it (issue 23 item 12:
+//!   bridges of 1.447 mm with 0.81 mm necks for a 1.5 mm hinge on 2.9 mm edges). Hence the
+//!   narrowest section of the bridge is `h`, along e, and its length is `h`.
 //! * **Relief cuts.** Where two or more tiles meet on the outline at a corner the material
 //!   wraps round (reflex), a round beam cannot clear the waste corner and would leave a
 //!   sliver joining the tiles: a short cut runs from V out to the outline path.
 //!
 //! A bridge that does not fit on its edge (hinge wider than the edge, or too little room
-//! left for the cut between the bridges) is refused.
+//! left for the cut between the bridges or for the clearance at the far end) is refused,
+//! naming the edge that needs the most room relative to its length: every length the
+//! bridges need is independent of the patch's scale, so that edge fixes the smallest
+//! scale that works ([`super::laser_sheet`] turns it into the smallest `edge_mm`).
 
 use super::error::LaserError;
 use super::graph::PatchGraph;
@@ -118,6 +125,8 @@ pub fn layout_cuts(
 
     let mut cuts = Vec::new();
     let mut bridges = Vec::new();
+    // The edge that needs the most room for its length: (needed / length, error).
+    let mut worst: Option<(Real, LaserError)> = None;
     for (ei, edge) in g.edges.iter().enumerate() {
         let Some(right) = edge.right else { continue };
         let tiles_ab = [edge.left, right];
@@ -133,19 +142,7 @@ pub fn layout_cuts(
             let v = edge.v[side];
             let dir = if side == 0 { t } else { -t };
             let burns = burns_at(&g, v, ei, &reliefs, hk);
-            let mut s0 = if cleared[v] { hk } else { 0.0 };
-            for b in &burns {
-                let cos = dir.dot(&b.dir);
-                let sin = cross(&dir, &b.dir).abs();
-                let need = if cos <= 0.0 {
-                    b.c
-                } else if sin < 1e-12 {
-                    Real::INFINITY
-                } else {
-                    (hinge + hk + b.c) / sin - hinge - hk
-                };
-                s0 = s0.max(need);
-            }
+            let mut s0 = (if cleared[v] { hk } else { 0.0 }).max(clearance(&burns, dir, hinge, hk));
             if !cleared[v] && s0 > 0.0 {
                 // Nothing burns at V: a stub from V must clear the edge up to the bridge.
                 s0 = s0.max(kerf);
@@ -179,18 +176,42 @@ pub fn layout_cuts(
                 end = len - resume;
             }
         }
-        if (end - start).is_nan() || end - start <= eps {
-            return Err(LaserError::HingeTooWide {
-                hinge_mm: hinge,
-                edge_mm: len,
-                needed_mm: len - (end - start),
-                tiles: tiles_ab,
-            });
+        // A bridge at one end only: the cut of e runs into the other end, whose burns must
+        // stay clear of the bridge as those at the joint do.
+        let mut room = end - start - eps;
+        for side in 0..2 {
+            if edge.joint[side] && !edge.joint[1 - side] {
+                let w = edge.v[1 - side];
+                let dir = if side == 0 { -t } else { t };
+                let burns = burns_at(&g, w, ei, &reliefs, hk);
+                room = room.min(end - start + hk - clearance(&burns, dir, hinge, hk));
+            }
+        }
+        if room.is_nan() || room <= 0.0 {
+            let needed = len - room;
+            let ratio = if needed.is_finite() {
+                needed / len
+            } else {
+                Real::INFINITY
+            };
+            if worst.as_ref().is_none_or(|(r, _)| ratio > *r) {
+                let e = LaserError::HingeTooWide {
+                    hinge_mm: hinge,
+                    edge_mm: len,
+                    needed_mm: needed,
+                    tiles: tiles_ab,
+                };
+                worst = Some((ratio, e));
+            }
+            continue;
         }
         cuts.push(Cut {
             a: p0 + t * start,
             b: p0 + t * end,
         });
+    }
+    if let Some((_, e)) = worst {
+        return Err(e);
     }
     for (v, relief) in reliefs.iter().enumerate() {
         if let Some(p) = relief {
@@ -209,6 +230,23 @@ pub fn layout_cuts(
         outline: loops.into_iter().map(|lp| lp.cut).collect(),
         boundary,
         bridges,
+    })
+}
+
+/// The least distance from a vertex along `dir` at which a bridge of `hinge` keeps `hinge`
+/// of material from each of the vertex's other `burns` (zero when none is in the way).
+fn clearance(burns: &[Burn], dir: Vec2, hinge: Real, hk: Real) -> Real {
+    burns.iter().fold(0.0, |s0: Real, b| {
+        let cos = dir.dot(&b.dir);
+        let sin = cross(&dir, &b.dir).abs();
+        let need = if cos <= 0.0 {
+            b.c
+        } else if sin < 1e-12 {
+            Real::INFINITY
+        } else {
+            (hinge + hk + b.c) / sin - hinge - hk
+        };
+        s0.max(need)
     })
 }
 

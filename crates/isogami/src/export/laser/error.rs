@@ -83,6 +83,28 @@ pub enum LaserError {
         /// The edge's two tiles.
         tiles: [usize; 2],
     },
+    /// The patch is too small for its bridges: some edge (scaled with the patch) is shorter
+    /// than its bridges need, and those needs do not scale. Names the smallest `edge_mm` at
+    /// which every edge fits.
+    #[error(
+        "hinge {hinge_mm} mm does not fit at edge_mm {edge_mm}: the {len_mm:.3} mm edge between \
+         tiles {tiles:?} needs {needed_mm:.3} mm with kerf and clearances; the smallest edge_mm \
+         that fits is {min_edge_mm} (or use a narrower hinge)"
+    )]
+    PatchTooSmall {
+        /// The hinge width asked.
+        hinge_mm: Real,
+        /// The patch's mean edge length asked.
+        edge_mm: Real,
+        /// The smallest mean edge length at which every bridge fits (rounded up to 0.001).
+        min_edge_mm: Real,
+        /// Length of the edge that needs the most room for its length.
+        len_mm: Real,
+        /// Length its bridges need.
+        needed_mm: Real,
+        /// Its two tiles (ids in the patch).
+        tiles: [usize; 2],
+    },
     /// The kerf is so wide that a tile would lose an edge (or all its area) to the cuts.
     #[error("kerf {kerf_mm} mm is too wide for tile {tile}: {problem}")]
     KerfTooWide {

@@ -3,7 +3,7 @@
 //! cells can hold border tiles whose joints all lead out of the patch; cut free they would
 //! fall out of the sheet, so they are left off the sheet and counted in its metadata.
 
-use super::{fmt_mm, JointAt, LaserError, LaserSettings, LaserSheet};
+use super::{fmt_mm, min_edge_mm, JointAt, LaserError, LaserSettings, LaserSheet};
 use crate::export::Patch;
 use crate::math::Real;
 
@@ -50,7 +50,27 @@ pub fn laser_sheet(patch: &Patch, settings: LaserSettings) -> Result<LaserSheet,
         .iter()
         .map(|&k| patch.tiles.get(k).map_or(k, |t| t.id))
         .collect();
-    Ok(LaserSheet::new(tiles, &joints, settings, meta)?.with_tile_ids(labels))
+    let sheet = LaserSheet::new(tiles, &joints, settings, meta).map_err(|e| match e {
+        LaserError::HingeTooWide {
+            hinge_mm,
+            edge_mm: len_mm,
+            needed_mm,
+            tiles,
+        } if needed_mm.is_finite() && len_mm > 0.0 => LaserError::PatchTooSmall {
+            hinge_mm,
+            edge_mm: patch.edge_mm,
+            min_edge_mm: min_edge_mm(patch.edge_mm, needed_mm, len_mm),
+            len_mm,
+            needed_mm,
+            tiles: tiles.map(|k| {
+                ids.get(k)
+                    .and_then(|&t| patch.tiles.get(t))
+                    .map_or(k, |t| t.id)
+            }),
+        },
+        e => e,
+    })?;
+    Ok(sheet.with_tile_ids(labels))
 }
 
 /// The kept tiles, their joints (renumbered) and the kept tiles' indices among the given.

@@ -141,3 +141,11 @@ pub(crate) fn fmt_mm(x: Real) -> String {
         s.into()
     }
 }
+
+/// The smallest mean edge length (rounded up to 0.001 mm) at which an edge of `len_mm` at
+/// `edge_mm` grows to `needed_mm`: lengths scale with the patch, the needs do not.
+pub(crate) fn min_edge_mm(edge_mm: Real, needed_mm: Real, len_mm: Real) -> Real {
+    let exact = edge_mm * needed_mm / len_mm;
+    // A hair above the exact value, so the rounded size fits with the layout's own slack.
+    ((exact * (1.0 + 1e-9)) * 1000.0).ceil() / 1000.0
+}

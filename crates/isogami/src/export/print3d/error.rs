@@ -82,13 +82,44 @@ pub enum PrintError {
         /// The joint's two tiles.
         tiles: [usize; 2],
     },
+    /// The patch is too small for its hinges: the edge of some joint (scaled with the patch)
+    /// is shorter than its slab needs with the gap clearances, and those needs do not scale
+    /// (at an opened state they grow with the joint's opening). Names the smallest `edge_mm`
+    /// at which every slab fits.
+    #[error(
+        "hinge {hinge_mm} mm does not fit at edge_mm {edge_mm}: the {len_mm:.3} mm edge between \
+         tiles {tiles:?} needs {needed_mm:.3} mm with the gap clearances; the smallest edge_mm \
+         that fits is {min_edge_mm} (or use a narrower hinge or gap)"
+    )]
+    PatchTooSmall {
+        /// The hinge width asked.
+        hinge_mm: Real,
+        /// The patch's mean edge length asked.
+        edge_mm: Real,
+        /// The smallest mean edge length at which every slab fits (rounded up to 0.001).
+        min_edge_mm: Real,
+        /// Length of the edge that needs the most room for its length.
+        len_mm: Real,
+        /// Length its slab needs.
+        needed_mm: Real,
+        /// The joint's two tiles (ids in the patch).
+        tiles: [usize; 2],
+    },
     /// A hinge comes closer than the gap to a tile it does not join, or to another hinge.
-    #[error("the hinge between tiles {tiles:?} comes within the gap of {other} (try a narrower hinge or gap)")]
+    #[error(
+        "the hinge between tiles {tiles:?} comes within the gap of {other} ({})",
+        match min_edge_mm {
+            Some(e) => format!("the smallest edge_mm that fits is {e}, or use a narrower hinge or gap"),
+            None => "no larger patch fixes it; try a narrower hinge or gap".to_string(),
+        }
+    )]
     HingeClash {
         /// The joint's two tiles.
         tiles: [usize; 2],
         /// What it touches: "tile 7" or "the hinge between tiles [3, 4]".
         other: String,
+        /// The smallest mean edge length at which the sheet fits, when one was found.
+        min_edge_mm: Option<Real>,
     },
     /// The patch's geometry is unusable (tiles that do not form a tiling, a joint off its
     /// edge).

@@ -16,20 +16,28 @@
 //!   sets nothing). A tile beyond that edge is another c away: the gap. The far end keeps the same clearance at
 //!   the edge's other end (and leaves room for the other end's hinge if it has one). So a
 //!   slab joins exactly its two tiles and stays a full gap from every other tile, and its
-//!   neck in the gap is `hinge × gap`. At an opened state the slab is the convex hull of
-//!   its two halves, each placed on its own tile's edge.
+//!   neck in the gap is `hinge × gap`. At an opened state the two copies of e part by the
+//!   joint's opening angle; the slab is then a band `hinge` wide normal to their bisector
+//!   (see `Band`), so the neck stays `hinge` wide however far the joint opens, and the band
+//!   enters each tile no nearer to V than `s0`. (The convex hull of the two closed halves
+//!   that it replaces narrowed to 0.40–0.78 mm for a 0.8 mm hinge, issue 23 item 11.)
+//!   A slab that does not fit on its edge is refused with the smallest `edge_mm` that fits.
+//! * **Gaps everywhere.** After the inset, `super::separate` trims any tile that is still
+//!   nearer than the gap to another (a slot ending at a reflex stretch of the outline, tiles
+//!   meeting at an opened state's contacts).
 //!
 //! Every slab is then checked against every other tile and slab at the state: closer than
 //! the gap (or overlapping another slab) is refused, never printed fused.
 
 use super::error::PrintError;
 use super::offset::inset_edges;
+use super::separate::{bbox, boxes_within, polygon_distance, separate_tiles};
 use super::settings::PrintSettings;
 use crate::export::laser::graph::PatchGraph;
 use crate::export::laser::JointAt;
 use crate::export::piece::largest_piece;
 use crate::export::Patch;
-use crate::geometry::{interiors_overlap, segment_distance, signed_area};
+use crate::geometry::signed_area;
 use crate::math::{cross, perp, Real, Vec2};
 
 /// A lamella hinge: its footprint and the two tiles it joins.
@@ -107,6 +115,7 @@ pub fn print_layout(patch: &Patch, settings: &PrintSettings) -> Result<PrintLayo
         })?;
         tiles.push(inset);
     }
+    separate_tiles(&mut tiles, &ids, settings.gap_mm)?;
 
     let geo = Geometry {
         graph: &graph,
@@ -120,10 +129,32 @@ pub fn print_layout(patch: &Patch, settings: &PrintSettings) -> Result<PrintLayo
         hinge: settings.hinge_mm,
     };
     let mut hinges = Vec::with_capacity(joints.len());
+    // The joint whose slab needs the most room for its edge's length: (needed / length, error).
+    let mut worst: Option<(Real, PrintError)> = None;
     for joint in &joints {
         let (a, b) = (index[joint.a], index[joint.b]);
-        let slab = geo.slab(a, joint.vertex_a, b, joint.vertex_b, [joint.a, joint.b])?;
-        hinges.push((slab, [a, b]));
+        match geo.slab(a, joint.vertex_a, b, joint.vertex_b, [joint.a, joint.b]) {
+            Ok(slab) => hinges.push((slab, [a, b])),
+            Err(PrintError::HingeTooWide {
+                hinge_mm,
+                edge_mm,
+                needed_mm,
+                tiles,
+            }) => {
+                let ratio = needed_mm / edge_mm;
+                if worst
+                    .as_ref()
+                    .is_none_or(|(r, _)| ratio > *r || ratio.is_nan())
+                {
+                    let e = too_small(patch.edge_mm, hinge_mm, edge_mm, needed_mm, tiles);
+                    worst = Some((ratio, e));
+                }
+            }
+            Err(e) => return Err(e),
+        }
+    }
+    if let Some((_, e)) = worst {
+        return Err(e);
     }
     check_clearances(&tiles, &hinges, &ids, settings.gap_mm)?;
     Ok(PrintLayout {
@@ -138,6 +169,28 @@ pub fn print_layout(patch: &Patch, settings: &PrintSettings) -> Result<PrintLayo
             .collect(),
         dropped: n - ids.len(),
     })
+}
+
+/// The refusal of a slab that does not fit on its edge: every length a slab needs is fixed in
+/// mm (gap, hinge) or by angles, while the edge scales with the patch, so the patch's mean
+/// edge `edge_mm` would have to grow by `needed / len`.
+fn too_small(edge_mm: Real, hinge: Real, len: Real, needed: Real, tiles: [usize; 2]) -> PrintError {
+    if !(needed.is_finite() && len > 0.0) {
+        return PrintError::HingeTooWide {
+            hinge_mm: hinge,
+            edge_mm: len,
+            needed_mm: needed,
+            tiles,
+        };
+    }
+    PrintError::PatchTooSmall {
+        hinge_mm: hinge,
+        edge_mm,
+        min_edge_mm: crate::export::laser::min_edge_mm(edge_mm, needed, len),
+        len_mm: len,
+        needed_mm: needed,
+        tiles,
+    }
 }
 
 /// What the slab placement needs: the edge graph of the closed printed tiles, the closed and
@@ -235,7 +288,10 @@ impl Geometry<'_> {
         let shared = self.graph.edges[self.graph.tile_edges[t][other_edge]]
             .right
             .is_some();
-        let c = if shared { self.c } else { 0.0 };
+        // A hair (1 % of c) inside the tile rather than on its edge (the inset edge, or the
+        // outline): a slab corner exactly on a tile edge that `separate` trimmed (new vertices
+        // on a 1e-8 mm grid) leaves slivers that a float32 STL collapses.
+        let c = if shared { self.c } else { 0.0 } + 0.01 * self.c;
         let (cos, sin) = (d.dot(&f), cross(&d, &f).abs());
         let need = c + self.w * cos;
         let corner = if need <= 0.0 {
@@ -272,7 +328,17 @@ impl Geometry<'_> {
         let s_end = self.start(a, fa, va).max(self.start(b, fb, vb));
         let edge = &self.graph.edges[self.graph.tile_edges[a][sa.edge(self)]];
         let both_ends = edge.joint[0] && edge.joint[1];
-        let needed = s0 + self.hinge + s_end + if both_ends { self.hinge } else { 0.0 };
+        // Each tile's copy of the edge at the state: its vertex, direction and inward normal.
+        let frame = |side: Side| -> (Vec2, Vec2, Vec2) {
+            let p = &self.state[side.tile];
+            let v = p[side.vertex];
+            let d = (p[side.far(self)] - v).normalize();
+            (v, d, if side.forward { perp(&d) } else { -perp(&d) })
+        };
+        let sides = [frame(sa), frame(sb)];
+        let v = (sides[0].0 + sides[1].0) * 0.5;
+        let band = Band::new(&sides, s0, self.w, self.hinge);
+        let needed = band.reach + s_end + if both_ends { self.hinge } else { 0.0 };
         if needed.is_nan() || needed > len {
             return Err(PrintError::HingeTooWide {
                 hinge_mm: self.hinge,
@@ -281,21 +347,85 @@ impl Geometry<'_> {
                 tiles: ids,
             });
         }
-        // The two halves at the state, each on its own tile's copy of the edge.
-        let half = |side: Side| -> [Vec2; 2] {
-            let p = &self.state[side.tile];
-            let v = p[side.vertex];
-            let d = (p[side.far(self)] - v).normalize();
-            // Inward normal: left of the edge's own (counter-clockwise) direction.
-            let inward = if side.forward { perp(&d) } else { -perp(&d) };
-            [
-                v + d * s0 + inward * self.w,
-                v + d * (s0 + self.hinge) + inward * self.w,
-            ]
-        };
-        let [a0, a1] = half(sa);
-        let [b0, b1] = half(sb);
+        let [a0, a1] = band.corners(v, &sides[0], s0);
+        let [b0, b1] = band.corners(v, &sides[1], s0);
         Ok(convex_hull(&[a0, a1, b0, b1]))
+    }
+}
+
+/// A lamella slab at an opened joint: the band between two lines across the joint's gap,
+/// normal to the bisector `b` of the two copies of the edge and `hinge` apart, so the neck
+/// (the band across the gap) is `hinge` wide at any opening. Closed, the copies coincide
+/// and the band is the rectangle `[s0, s0 + hinge]` along the edge, `w` to either side.
+///
+/// On a copy with direction d and inward normal n, the band line at distance r from V
+/// along b meets the line at depth u into the tile at `s = (r − u n·b) / d·b` along the
+/// edge. The band starts at `r0`, the least r at which no point of the slab within either
+/// tile (depth 0 to w) is nearer to V along the edge than `s0` (the closed slab's start, which
+/// keeps its clearances); it reaches `reach` along the edge.
+struct Band {
+    closed: bool,
+    b: Vec2,
+    r0: Real,
+    hinge: Real,
+    w: Real,
+    reach: Real,
+}
+
+impl Band {
+    fn new(sides: &[(Vec2, Vec2, Vec2); 2], s0: Real, w: Real, hinge: Real) -> Band {
+        let sum = sides[0].1 + sides[1].1;
+        let closed = cross(&sides[0].1, &sides[1].1).abs() < 1e-12 && sum.norm() > 1.0;
+        let b = if closed {
+            sides[0].1
+        } else if sum.norm() > 1e-9 {
+            sum.normalize()
+        } else {
+            sides[0].1
+        };
+        let mut r0: Real = 0.0;
+        let mut reach: Real = 0.0;
+        for (_, d, n) in sides {
+            let cos = d.dot(&b);
+            let nb = n.dot(&b);
+            if cos < 1e-3 {
+                // Opened to a straight angle or beyond: no band crosses the gap.
+                return Band {
+                    closed,
+                    b,
+                    r0: 0.0,
+                    hinge,
+                    w,
+                    reach: Real::INFINITY,
+                };
+            }
+            r0 = r0.max(s0 * cos + (w * nb).max(0.0));
+            reach = reach.max(-w * nb.min(0.0) / cos);
+        }
+        let cos = sides[0].1.dot(&b);
+        Band {
+            closed,
+            b,
+            r0,
+            hinge,
+            w,
+            reach: reach + (r0 + hinge) / cos,
+        }
+    }
+
+    /// The band's two corners at depth w into the tile of copy `(_, d, n)`, the joint at `v`.
+    /// Where the joint is closed (the copies parallel) they are computed as the rectangle's,
+    /// from the copy's own vertex: a slab corner often lies exactly on an outline edge of its
+    /// tile, and the mesh union must see the same point there, not one 1e-15 away (a sliver
+    /// that a float32 STL collapses).
+    fn corners(&self, v: Vec2, side: &(Vec2, Vec2, Vec2), s0: Real) -> [Vec2; 2] {
+        let (own, d, n) = *side;
+        if self.closed {
+            let start = own + d * s0;
+            return [start + n * self.w, own + d * (s0 + self.hinge) + n * self.w];
+        }
+        let at = |r: Real| v + d * ((r - self.w * n.dot(&self.b)) / d.dot(&self.b)) + n * self.w;
+        [at(self.r0), at(self.r0 + self.hinge)]
     }
 }
 
@@ -307,7 +437,8 @@ fn check_clearances(
     ids: &[usize],
     gap: Real,
 ) -> Result<(), PrintError> {
-    let tol = 1e-9 * (1.0 + gap);
+    // Above the 1e-8 mm grid of the booleans that may have trimmed a tile (`separate`).
+    let tol = 1e-7 * (1.0 + gap);
     let tile_boxes: Vec<[Real; 4]> = tiles.iter().map(|p| bbox(p)).collect();
     let hinge_boxes: Vec<[Real; 4]> = hinges.iter().map(|(p, _)| bbox(p)).collect();
     for (h, (slab, pair)) in hinges.iter().enumerate() {
@@ -315,6 +446,7 @@ fn check_clearances(
         let clash = |other: String| PrintError::HingeClash {
             tiles: pair.map(|t| ids[t]),
             other,
+            min_edge_mm: None,
         };
         for (t, tile) in tiles.iter().enumerate() {
             if pair.contains(&t) || !near(&tile_boxes[t]) {
@@ -337,38 +469,6 @@ fn check_clearances(
         }
     }
     Ok(())
-}
-
-/// Distance between two simple polygons (zero when their interiors overlap).
-fn polygon_distance(p: &[Vec2], q: &[Vec2]) -> Real {
-    if interiors_overlap(p, q, 0.0) {
-        return 0.0;
-    }
-    let mut best = Real::INFINITY;
-    for i in 0..p.len() {
-        let (a, b) = (p[i], p[(i + 1) % p.len()]);
-        for j in 0..q.len() {
-            best = best.min(segment_distance(&a, &b, &q[j], &q[(j + 1) % q.len()]));
-        }
-    }
-    best
-}
-
-/// [min x, min y, max x, max y].
-fn bbox(p: &[Vec2]) -> [Real; 4] {
-    p.iter().fold(
-        [
-            Real::INFINITY,
-            Real::INFINITY,
-            Real::NEG_INFINITY,
-            Real::NEG_INFINITY,
-        ],
-        |b, v| [b[0].min(v.x), b[1].min(v.y), b[2].max(v.x), b[3].max(v.y)],
-    )
-}
-
-fn boxes_within(a: &[Real; 4], b: &[Real; 4], d: Real) -> bool {
-    a[0] <= b[2] + d && b[0] <= a[2] + d && a[1] <= b[3] + d && b[1] <= a[3] + d
 }
 
 /// Counter-clockwise convex hull (Andrew's monotone chain) of a few points.
@@ -421,19 +521,5 @@ mod tests {
         ]);
         assert_eq!(h.len(), 4);
         assert!((signed_area(&h) - 2.0).abs() < 1e-12);
-    }
-
-    #[test]
-    fn distances_between_polygons() {
-        let sq = |x: Real| {
-            vec![
-                vec2(x, 0.0),
-                vec2(x + 1.0, 0.0),
-                vec2(x + 1.0, 1.0),
-                vec2(x, 1.0),
-            ]
-        };
-        assert!((polygon_distance(&sq(0.0), &sq(1.5)) - 0.5).abs() < 1e-12);
-        assert_eq!(polygon_distance(&sq(0.0), &sq(0.5)), 0.0);
     }
 }

@@ -9,6 +9,8 @@
 //! | why a sheet is refused | [`error`] |
 //! | tile and hinge footprints (gap, hinge placement, clearances) | [`layout`] |
 //! | per-edge polygon inset (the gap) | [`offset`] |
+//! | every two tiles a gap apart (notches, opened contacts) | [`separate`] |
+//! | the smallest patch that fits, for refusals | [`smallest`] |
 //! | extrusion and the mesh boolean (manifold-rust) | [`solid`] |
 //! | the mesh, its volume and bounds | [`mesh`] |
 //! | binary STL | [`stl`] |
@@ -21,7 +23,9 @@ pub mod error;
 pub mod layout;
 pub mod mesh;
 pub mod offset;
+pub mod separate;
 pub mod settings;
+pub mod smallest;
 pub mod solid;
 pub mod stl;
 pub mod threemf;
@@ -54,7 +58,8 @@ pub struct PrintSheet {
 /// The printable sheet of `patch` at its state with `settings`.
 pub fn print_sheet(patch: &Patch, settings: &PrintSettings) -> Result<PrintSheet, PrintError> {
     settings.validate()?;
-    let layout = print_layout(patch, settings)?;
+    let layout =
+        print_layout(patch, settings).map_err(|e| smallest::with_smallest(e, patch, settings))?;
     let mesh = print_solid(&layout, settings)?;
     let mut meta: Vec<(String, String)> = vec![
         ("spec".into(), patch.design.clone()),

@@ -179,7 +179,12 @@ fn bad_settings_are_refused_with_typed_errors() {
         hinge_mm: 19.9,
         ..base
     });
-    assert!(matches!(wide, PrintError::HingeTooWide { .. }), "{wide}");
+    // The needs of a slab do not scale with the patch: the refusal names the smallest
+    // edge_mm that fits (issue 23 item 12's rule, applied to prints).
+    assert!(
+        matches!(wide, PrintError::PatchTooSmall { min_edge_mm, .. } if min_edge_mm > EDGE_MM),
+        "{wide}"
+    );
     assert!(wide.to_string().contains("19.9 mm") && !wide.to_string().contains('\n'));
     let gap = err(PrintSettings {
         gap_mm: 45.0,
