@@ -29,15 +29,16 @@
 //! Every slab is then checked against every other tile and slab at the state: closer than
 //! the gap (or overlapping another slab) is refused, never printed fused.
 
+use super::band::{convex_hull, Band};
+use super::clearance::check_clearances;
 use super::error::PrintError;
 use super::offset::inset_edges;
-use super::separate::{bbox, boxes_within, polygon_distance, separate_tiles};
+use super::separate::separate_tiles;
 use super::settings::PrintSettings;
 use crate::export::laser::graph::PatchGraph;
 use crate::export::laser::JointAt;
 use crate::export::piece::largest_piece;
 use crate::export::Patch;
-use crate::geometry::signed_area;
 use crate::math::{cross, perp, Real, Vec2};
 
 /// A lamella hinge: its footprint and the two tiles it joins.
@@ -353,173 +354,10 @@ impl Geometry<'_> {
     }
 }
 
-/// A lamella slab at an opened joint: the band between two lines across the joint's gap,
-/// normal to the bisector `b` of the two copies of the edge and `hinge` apart, so the neck
-/// (the band across the gap) is `hinge` wide at any opening. Closed, the copies coincide
-/// and the band is the rectangle `[s0, s0 + hinge]` along the edge, `w` to either side.
-///
-/// On a copy with direction d and inward normal n, the band line at distance r from V
-/// along b meets the line at depth u into the tile at `s = (r − u n·b) / d·b` along the
-/// edge. The band starts at `r0`, the least r at which no point of the slab within either
-/// tile (depth 0 to w) is nearer to V along the edge than `s0` (the closed slab's start, which
-/// keeps its clearances); it reaches `reach` along the edge.
-struct Band {
-    closed: bool,
-    b: Vec2,
-    r0: Real,
-    hinge: Real,
-    w: Real,
-    reach: Real,
-}
-
-impl Band {
-    fn new(sides: &[(Vec2, Vec2, Vec2); 2], s0: Real, w: Real, hinge: Real) -> Band {
-        let sum = sides[0].1 + sides[1].1;
-        let closed = cross(&sides[0].1, &sides[1].1).abs() < 1e-12 && sum.norm() > 1.0;
-        let b = if closed {
-            sides[0].1
-        } else if sum.norm() > 1e-9 {
-            sum.normalize()
-        } else {
-            sides[0].1
-        };
-        let mut r0: Real = 0.0;
-        let mut reach: Real = 0.0;
-        for (_, d, n) in sides {
-            let cos = d.dot(&b);
-            let nb = n.dot(&b);
-            if cos < 1e-3 {
-                // Opened to a straight angle or beyond: no band crosses the gap.
-                return Band {
-                    closed,
-                    b,
-                    r0: 0.0,
-                    hinge,
-                    w,
-                    reach: Real::INFINITY,
-                };
-            }
-            r0 = r0.max(s0 * cos + (w * nb).max(0.0));
-            reach = reach.max(-w * nb.min(0.0) / cos);
-        }
-        let cos = sides[0].1.dot(&b);
-        Band {
-            closed,
-            b,
-            r0,
-            hinge,
-            w,
-            reach: reach + (r0 + hinge) / cos,
-        }
-    }
-
-    /// The band's two corners at depth w into the tile of copy `(_, d, n)`, the joint at `v`.
-    /// Where the joint is closed (the copies parallel) they are computed as the rectangle's,
-    /// from the copy's own vertex: a slab corner often lies exactly on an outline edge of its
-    /// tile, and the mesh union must see the same point there, not one 1e-15 away (a sliver
-    /// that a float32 STL collapses).
-    fn corners(&self, v: Vec2, side: &(Vec2, Vec2, Vec2), s0: Real) -> [Vec2; 2] {
-        let (own, d, n) = *side;
-        if self.closed {
-            let start = own + d * s0;
-            return [start + n * self.w, own + d * (s0 + self.hinge) + n * self.w];
-        }
-        let at = |r: Real| v + d * ((r - self.w * n.dot(&self.b)) / d.dot(&self.b)) + n * self.w;
-        [at(self.r0), at(self.r0 + self.hinge)]
-    }
-}
-
-/// Refuses a slab closer than `gap` to a printed tile other than its two, or overlapping
-/// another slab (closer than `gap` when that slab joins other tiles).
-fn check_clearances(
-    tiles: &[Vec<Vec2>],
-    hinges: &[(Vec<Vec2>, [usize; 2])],
-    ids: &[usize],
-    gap: Real,
-) -> Result<(), PrintError> {
-    // Above the 1e-8 mm grid of the booleans that may have trimmed a tile (`separate`).
-    let tol = 1e-7 * (1.0 + gap);
-    let tile_boxes: Vec<[Real; 4]> = tiles.iter().map(|p| bbox(p)).collect();
-    let hinge_boxes: Vec<[Real; 4]> = hinges.iter().map(|(p, _)| bbox(p)).collect();
-    for (h, (slab, pair)) in hinges.iter().enumerate() {
-        let near = |b: &[Real; 4]| boxes_within(&hinge_boxes[h], b, gap);
-        let clash = |other: String| PrintError::HingeClash {
-            tiles: pair.map(|t| ids[t]),
-            other,
-            min_edge_mm: None,
-        };
-        for (t, tile) in tiles.iter().enumerate() {
-            if pair.contains(&t) || !near(&tile_boxes[t]) {
-                continue;
-            }
-            if polygon_distance(slab, tile) < gap - tol {
-                return Err(clash(format!("tile {}", ids[t])));
-            }
-        }
-        for (k, (other, other_pair)) in hinges.iter().enumerate().skip(h + 1) {
-            if !near(&hinge_boxes[k]) {
-                continue;
-            }
-            let same_pair = other_pair == pair || *other_pair == [pair[1], pair[0]];
-            let limit = if same_pair { tol } else { gap - tol };
-            if polygon_distance(slab, other) < limit {
-                let named = other_pair.map(|t| ids[t]);
-                return Err(clash(format!("the hinge between tiles {named:?}")));
-            }
-        }
-    }
-    Ok(())
-}
-
-/// Counter-clockwise convex hull (Andrew's monotone chain) of a few points.
-fn convex_hull(points: &[Vec2]) -> Vec<Vec2> {
-    let mut pts = points.to_vec();
-    pts.sort_by(|p, q| p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y)));
-    let mut hull: Vec<Vec2> = Vec::with_capacity(2 * pts.len());
-    for pass in 0..2 {
-        let start = hull.len();
-        for p in &pts {
-            while hull.len() >= start + 2
-                && cross(
-                    &(hull[hull.len() - 1] - hull[hull.len() - 2]),
-                    &(p - hull[hull.len() - 2]),
-                ) <= 0.0
-            {
-                hull.pop();
-            }
-            hull.push(*p);
-        }
-        hull.pop();
-        if pass == 0 {
-            pts.reverse();
-        }
-    }
-    debug_assert!(hull.len() < 3 || signed_area(&hull) > 0.0);
-    hull
-}
-
 fn to_vec(poly: &[[Real; 2]]) -> Vec<Vec2> {
     poly.iter().map(|p| Vec2::new(p[0], p[1])).collect()
 }
 
 fn from_vec(poly: &[Vec2]) -> Vec<[Real; 2]> {
     poly.iter().map(|p| [p.x, p.y]).collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::math::vec2;
-
-    #[test]
-    fn the_hull_of_a_rectangle_is_counter_clockwise() {
-        let h = convex_hull(&[
-            vec2(0.0, 1.0),
-            vec2(2.0, 0.0),
-            vec2(0.0, 0.0),
-            vec2(2.0, 1.0),
-        ]);
-        assert_eq!(h.len(), 4);
-        assert!((signed_area(&h) - 2.0).abs() < 1e-12);
-    }
 }

@@ -7,7 +7,9 @@
 //! |---|---|
 //! | settings, defaults (FDM PLA) and validation | [`settings`] |
 //! | why a sheet is refused | [`error`] |
-//! | tile and hinge footprints (gap, hinge placement, clearances) | [`layout`] |
+//! | tile and hinge footprints (gap, hinge placement) | [`layout`] |
+//! | a lamella slab across its joint's gap, closed or opened | `band` |
+//! | the plan's last check: slabs a gap from everything else | `clearance` |
 //! | per-edge polygon inset (the gap) | [`offset`] |
 //! | every two tiles a gap apart (notches, opened contacts) | [`separate`] |
 //! | the smallest patch that fits, for refusals | [`smallest`] |
@@ -19,6 +21,8 @@
 //! [`print_sheet`] builds the solid of an export [`Patch`] at its state; [`PrintSheet::stl`]
 //! and [`PrintSheet::threemf`] write it. Nothing here does I/O.
 
+mod band;
+mod clearance;
 pub mod error;
 pub mod layout;
 pub mod mesh;

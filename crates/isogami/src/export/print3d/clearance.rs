@@ -1,0 +1,48 @@
+//! The last check of a print plan: every lamella slab keeps the gap from every tile but
+//! its two and from every other slab, or the plan is refused (never printed fused).
+
+use super::error::PrintError;
+use super::separate::{bbox, boxes_within, polygon_distance};
+use crate::math::{Real, Vec2};
+
+/// Refuses a slab closer than `gap` to a printed tile other than its two, or overlapping
+/// another slab (closer than `gap` when that slab joins other tiles).
+pub(super) fn check_clearances(
+    tiles: &[Vec<Vec2>],
+    hinges: &[(Vec<Vec2>, [usize; 2])],
+    ids: &[usize],
+    gap: Real,
+) -> Result<(), PrintError> {
+    // Above the 1e-8 mm grid of the booleans that may have trimmed a tile (`separate`).
+    let tol = 1e-7 * (1.0 + gap);
+    let tile_boxes: Vec<[Real; 4]> = tiles.iter().map(|p| bbox(p)).collect();
+    let hinge_boxes: Vec<[Real; 4]> = hinges.iter().map(|(p, _)| bbox(p)).collect();
+    for (h, (slab, pair)) in hinges.iter().enumerate() {
+        let near = |b: &[Real; 4]| boxes_within(&hinge_boxes[h], b, gap);
+        let clash = |other: String| PrintError::HingeClash {
+            tiles: pair.map(|t| ids[t]),
+            other,
+            min_edge_mm: None,
+        };
+        for (t, tile) in tiles.iter().enumerate() {
+            if pair.contains(&t) || !near(&tile_boxes[t]) {
+                continue;
+            }
+            if polygon_distance(slab, tile) < gap - tol {
+                return Err(clash(format!("tile {}", ids[t])));
+            }
+        }
+        for (k, (other, other_pair)) in hinges.iter().enumerate().skip(h + 1) {
+            if !near(&hinge_boxes[k]) {
+                continue;
+            }
+            let same_pair = other_pair == pair || *other_pair == [pair[1], pair[0]];
+            let limit = if same_pair { tol } else { gap - tol };
+            if polygon_distance(slab, other) < limit {
+                let named = other_pair.map(|t| ids[t]);
+                return Err(clash(format!("the hinge between tiles {named:?}")));
+            }
+        }
+    }
+    Ok(())
+}
