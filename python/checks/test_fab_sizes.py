@@ -103,8 +103,7 @@ def test_item10_printed_ih1_tiles_keep_the_gap_at_the_outline(tmp_path):
 def test_item11_opened_ih88_necks_and_gaps(tmp_path):
     out = tmp_path / "o.stl"
     done, _ = export(IH88, "stl", out, "--t", "open", patch="3x3")
-    if refused_in_one_line(done):
-        return
+    # It fits at the default sizes: written, not refused.
     assert done.returncode == 0, done.stderr
     gap, neck, odd, tol = print_sizes(out)
     # Was a 0.398 mm neck for a 0.8 mm hinge, tiles 0.12-0.30 mm apart.
