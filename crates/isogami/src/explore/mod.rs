@@ -33,6 +33,7 @@ pub mod plan;
 pub mod reduced;
 pub mod separate;
 
+pub use dedup::duplicates_across;
 pub use dedup::{
     motion_invariant, sheet_symmetries, MotionIndex, MotionInvariant, Symmetry, SymmetryGroup,
 };
@@ -40,8 +41,8 @@ pub use error::ExploreError;
 pub use expand::{ExpandStats, Expander, Leaf};
 pub use motion_classes::{motion_classes, topology_motion};
 pub use pipeline::{
-    cells_to_explore, duplicates_across, enumerate_topologies, enumerate_topology_part,
-    expanded_mask_count, DesignDetails, StageTimings, TopologyOptions, TopologyReport,
+    cells_to_explore, enumerate_topologies, enumerate_topology_part, expanded_mask_count,
+    DesignDetails, StageTimings, TopologyOptions, TopologyReport,
 };
 pub use plan::{ExplorePlan, Shard, UnitPart, UnitSize, WorkItem, WorkUnit, MAX_PARTS, MAX_SHARDS};
 pub use reduced::{MaskVerdict, ReducedGraph, ReducedResult, MAX_REDUCED_EDGES};

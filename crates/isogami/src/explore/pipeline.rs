@@ -14,7 +14,7 @@
 //! seconds of work summed over threads. Deployment and the expansion threshold come after this
 //! stage and are not done here. No I/O.
 
-use super::dedup::{dedup_orbits, MotionIndex, MotionInvariant, SymmetryGroup, MOTION_TOL};
+use super::dedup::{dedup_orbits, MotionInvariant, SymmetryGroup};
 use super::error::ExploreError;
 use super::expand::{ExpandStats, Expander};
 use super::plan::UnitPart;
@@ -448,44 +448,4 @@ pub fn cells_to_explore(family: Family, options: &TopologyOptions) -> Vec<(CellD
     }
     out.sort_by_key(|(d, m)| (*m, d.a(), d.b()));
     out
-}
-
-/// A motion index and the (report, design) owner of each of its entries.
-type IndexScope = (MotionIndex, Vec<(usize, usize)>);
-
-/// Duplicates across reports: for every design of every report, the (report, design) indices
-/// of the first earlier design — in report order, then design order — whose motion invariant
-/// matches (the invariant is comparable between cells with the same number of unique edges;
-/// it does not depend on the cell's orientation or units). With `same_family`, only designs of
-/// the same family are compared: a×b designs and their rotated b×a twins, designs that
-/// repeat a smaller cell's design in a way the per-cell repeat test does not see. Without it,
-/// also families whose default shapes give congruent sheets. Order the reports smallest cell
-/// first to keep the smallest cell's design.
-pub fn duplicates_across(
-    reports: &[TopologyReport],
-    same_family: bool,
-) -> Vec<Vec<Option<(usize, usize)>>> {
-    let mut indices: std::collections::BTreeMap<Option<Family>, IndexScope> =
-        std::collections::BTreeMap::new();
-    reports
-        .iter()
-        .enumerate()
-        .map(|(r, report)| {
-            let scope = same_family.then_some(report.family);
-            let (index, owners) = indices.entry(scope).or_default();
-            report
-                .details
-                .iter()
-                .enumerate()
-                .map(|(d, det)| match index.find(&det.invariant, MOTION_TOL) {
-                    Some(id) => Some(owners[id]),
-                    None => {
-                        index.insert(det.invariant.clone());
-                        owners.push((r, d));
-                        None
-                    }
-                })
-                .collect()
-        })
-        .collect()
 }

@@ -12,6 +12,8 @@
 //!
 //! [`orbits`] strings steps 2 and 3 together over the orbit representatives that the
 //! expansion found (step 1 is the keying itself); [`lattice`] is the shared lattice helper.
+//! [`across`] then finds the duplicates the per-cell steps cannot see, across cells and
+//! families, by the same motion invariant.
 //!
 //! Not covered: designs on different cells (e.g. a 2×1 design and its 90°-rotated 1×2 twin, or
 //! a 2×2 design invariant only under t1 + t2), symmetries of the isohedral type that the
@@ -19,12 +21,14 @@
 //! (sort keys are rounded to 1e-8; such a miss keeps a duplicate, never drops a design).
 //! Plain data in and out; no I/O.
 
+pub mod across;
 mod lattice;
 pub mod motion;
 pub mod orbits;
 pub mod repeats;
 pub mod symmetry;
 
+pub use across::duplicates_across;
 pub use motion::{motion_invariant, MotionIndex, MotionInvariant, MOTION_TOL};
 pub use orbits::{dedup_orbits, DedupResult, Kept};
 pub use repeats::{is_repeat, repeat_translations};

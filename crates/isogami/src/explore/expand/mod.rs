@@ -49,9 +49,11 @@ use crate::cell::UnitCell;
 use crate::kinematics::KinematicsError;
 use crate::kinematics::Mechanism;
 use crate::math::DVec;
-use crate::mobility::{analyze, area_rate, MobilitySettings};
+use crate::mobility::{analyze, MobilitySettings};
 use crate::topology::JointChoice;
 use serde::Serialize;
+
+mod factor;
 
 /// A row counts as independent when its residual after projection exceeds this times its
 /// norm.
@@ -307,14 +309,6 @@ impl<'a> Expander<'a> {
         }
     }
 
-    /// ‖J‖_F² of the current choice (every edge decided): a bound on λ_max of H.
-    fn frobenius_sq(&self, s: &Search<'_>) -> f64 {
-        s.edges
-            .iter()
-            .map(|&e| self.row_sq[e][usize::from(s.choice[e] == JointChoice::B)])
-            .sum()
-    }
-
     fn descend(&self, s: &mut Search<'_>, depth: usize) {
         s.stats.nodes += 1;
         let n = self.cols;
@@ -405,29 +399,6 @@ impl<'a> Expander<'a> {
         }
     }
 
-    /// The unit vector orthogonal to a basis of N − 1 rows (the complement's one vector), as
-    /// a full state vector signed the way `mobility` signs motions.
-    fn null_vector(&self, s: &Search<'_>) -> DVec {
-        let n = self.cols;
-        debug_assert_eq!(s.count + 1, n);
-        let v = &s.comp[..n];
-        let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let mut full = DVec::zeros(n + 3);
-        for (c, x) in v.iter().enumerate() {
-            full[c + 3] = x / norm;
-        }
-        let rate = area_rate(&self.reference, &self.reference.rest, &full);
-        let flip = if rate.abs() > 1e-9 {
-            rate < 0.0
-        } else {
-            full[full.iamax()] < 0.0
-        };
-        if flip {
-            full = -full;
-        }
-        full
-    }
-
     /// Adds the two rows of a joint at end `end` (0 = A, 1 = B) of `edge`.
     fn add_joint(&self, s: &mut Search<'_>, edge: usize, end: usize) {
         let pair = &self.rows[edge][end];
@@ -435,192 +406,7 @@ impl<'a> Expander<'a> {
         self.add_row(s, &pair[0], norms[0]);
         self.add_row(s, &pair[1], norms[1]);
     }
-
-    /// Appends `row` (Euclidean norm `norm`) to the basis when its residual, its projection on
-    /// the complement, is not below `DEPENDENT_REL_TOL · norm`; the complement loses that
-    /// direction (one Householder reflection of its coordinates). No allocation.
-    fn add_row(&self, s: &mut Search<'_>, row: &[(usize, f64)], norm: f64) {
-        let n = self.cols;
-        let k = s.count;
-        if k == n || norm == 0.0 {
-            return;
-        }
-        let d = n - k;
-        // The row's coordinates in the complement (sparse products).
-        let u = &mut s.coords[..d];
-        for (x, cj) in u.iter_mut().zip(s.comp.chunks_exact(n)) {
-            *x = row.iter().map(|&(c, v)| cj[c] * v).sum();
-        }
-        let rho = u.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if rho <= DEPENDENT_REL_TOL * norm {
-            return;
-        }
-        // Slot k's R row changes: R⁻¹'s row k (and any after it) must be recomputed.
-        s.l_valid = s.l_valid.min(k);
-        // R's new row: the row's coefficients on the basis, then its residual.
-        let (basis, _) = s.q.split_at(k * n);
-        let rrow = &mut s.r[k * n..(k + 1) * n];
-        for (x, qj) in rrow.iter_mut().zip(basis.chunks_exact(n)) {
-            *x = row.iter().map(|&(c, v)| qj[c] * v).sum();
-        }
-        rrow[k] = rho;
-        for x in &mut rrow[k + 1..] {
-            *x = 0.0;
-        }
-        // Householder reflection H = I − β v vᵀ with v = u + sign(u₀) ρ e₀, so H u = −sign(u₀) ρ e₀:
-        // (C H)'s first vector is −sign(u₀) C u / ρ, the new basis direction, and the others
-        // span the new complement.
-        let sign = if u[0] < 0.0 { -1.0 } else { 1.0 };
-        u[0] += sign * rho;
-        let beta = 1.0 / (rho * u[0].abs());
-        let w = &mut s.image;
-        w.fill(0.0);
-        for (&vj, cj) in u.iter().zip(s.comp.chunks_exact(n)) {
-            for (x, y) in w.iter_mut().zip(cj) {
-                *x += vj * y;
-            }
-        }
-        for (&vj, cj) in u.iter().zip(s.comp.chunks_exact_mut(n)) {
-            let f = beta * vj;
-            for (x, y) in cj.iter_mut().zip(w.iter()) {
-                *x -= f * y;
-            }
-        }
-        let qk = &mut s.q[k * n..(k + 1) * n];
-        for (x, y) in qk.iter_mut().zip(&s.comp[..n]) {
-            *x = -sign * y;
-        }
-        // Drop the first vector: the last one takes its place.
-        if d > 1 {
-            s.comp.copy_within((d - 1) * n..d * n, 0);
-        }
-        s.count = k + 1;
-    }
-
-    /// The rigidity certificate of a full basis (see module docs).
-    fn certified(&self, s: &mut Search<'_>, n: usize) -> bool {
-        let threshold = s.threshold_sq;
-        self.certified_with(s, n, threshold)
-    }
-
-    /// True when the leading `size` selected rows have σ_min(R)² ≥ margin · `threshold`, via
-    /// σ_min(R) ≥ 1/‖R⁻¹‖_F.
-    fn certified_with(&self, s: &mut Search<'_>, size: usize, threshold: f64) -> bool {
-        let n = self.cols;
-        // Rows of R⁻¹ by forward substitution, column by column within a row: entry (i, c)
-        // is (δ_ic − Σ_{j=c}^{i−1} r[i][j] · l[j][c]) / r[i][i], the same operations in the
-        // same order as solving R x = e_c, so the values do not depend on when they are made.
-        for i in s.l_valid..size {
-            for c in 0..=i {
-                let mut acc = if i == c { 1.0 } else { 0.0 };
-                for j in c..i {
-                    acc -= s.r[i * n + j] * s.l[j * n + c];
-                }
-                s.l[i * n + c] = acc / s.r[i * n + i];
-            }
-            s.l_sq[i] = s.l[i * n..=i * n + i].iter().map(|x| x * x).sum();
-        }
-        s.l_valid = s.l_valid.max(size);
-        let inv_sq: f64 = s.l_sq[..size].iter().sum();
-        inv_sq.is_finite() && inv_sq > 0.0 && 1.0 / inv_sq >= RIGID_MARGIN * threshold
-    }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::cell::CellDims;
-    use crate::tiling::{Family, Tiling};
-
-    #[test]
-    fn rotating_squares_mask_keeps_the_named_design() {
-        let f = Family::from_number(76).unwrap();
-        let cell = UnitCell::new(&Tiling::default_for(f), CellDims::new(2, 2).unwrap()).unwrap();
-        let ex = Expander::new(&cell, MobilitySettings::default()).unwrap();
-        assert_eq!(ex.columns(), 13);
-        let (found, stats) = ex.expand_collect(0xFF);
-        assert_eq!(stats.configurations, 256);
-        let named = crate::topology::named_design("rotating-squares").unwrap();
-        assert!(found.contains(&named.joints));
-        assert_eq!(stats.mobility_one as usize, found.len());
-    }
-
-    /// The one-choice certificate the deduplication uses certifies exactly the leaves the
-    /// expansion certifies, with the same motion bit for bit, and nothing else.
-    #[test]
-    fn certified_motion_is_the_certified_leaf() {
-        for (n, a, b, mask) in [(76, 2, 2, 0xFFu32), (28, 1, 1, 0x3FF), (44, 1, 1, 0xF)] {
-            let f = Family::from_number(n).unwrap();
-            let cell =
-                UnitCell::new(&Tiling::default_for(f), CellDims::new(a, b).unwrap()).unwrap();
-            let ex = Expander::new(&cell, MobilitySettings::default()).unwrap();
-            let mut certified = Vec::new();
-            ex.expand(mask, &mut |leaf| {
-                if !leaf.analysed {
-                    certified.push((leaf.joints.to_vec(), leaf.motion.clone()));
-                }
-            });
-            assert!(!certified.is_empty(), "IH{n}");
-            let edges: Vec<usize> = (0..cell.edges.len())
-                .filter(|k| mask >> k & 1 == 1)
-                .collect();
-            let mut found = 0;
-            for bits in 0u32..1 << edges.len() {
-                let mut joints = vec![JointChoice::None; cell.edges.len()];
-                for (i, &e) in edges.iter().enumerate() {
-                    joints[e] = if bits >> i & 1 == 0 {
-                        JointChoice::A
-                    } else {
-                        JointChoice::B
-                    };
-                }
-                let known = certified.iter().find(|(j, _)| *j == joints);
-                match (ex.certified_motion(&joints), known) {
-                    (Some(v), Some((_, w))) => {
-                        assert!(v
-                            .iter()
-                            .zip(w.iter())
-                            .all(|(x, y)| x.to_bits() == y.to_bits()));
-                        found += 1;
-                    }
-                    (None, None) => {}
-                    (v, w) => panic!("IH{n} {joints:?}: {} vs {}", v.is_some(), w.is_some()),
-                }
-            }
-            assert_eq!(found, certified.len(), "IH{n}");
-            let mut welded = certified[0].0.clone();
-            welded[edges[0]] = JointChoice::Both;
-            assert!(ex.certified_motion(&welded).is_none());
-            assert!(ex.certified_motion(&welded[1..]).is_none());
-        }
-    }
-
-    /// Certified leaves carry the motion `analyze` would give, sign included.
-    #[test]
-    fn certified_motion_equals_analysed_motion() {
-        for (n, a, b, mask) in [(76, 2, 2, 0xFFu32), (28, 1, 1, 0x3FF), (44, 1, 1, 0xF)] {
-            let f = Family::from_number(n).unwrap();
-            let cell =
-                UnitCell::new(&Tiling::default_for(f), CellDims::new(a, b).unwrap()).unwrap();
-            let ex = Expander::new(&cell, MobilitySettings::default()).unwrap();
-            let mut checked = 0;
-            ex.expand(mask, &mut |leaf| {
-                let mech = Mechanism::new(&cell, leaf.joints).unwrap();
-                let mob = analyze(&mech, &mech.rest, MobilitySettings::default()).unwrap();
-                assert_eq!(mob.dof, 1);
-                let v = &mob.motion.as_ref().unwrap().vector;
-                let rate = mob.motion.as_ref().unwrap().area_rate;
-                let err = if rate.abs() > 1e-9 {
-                    (v - leaf.motion).norm()
-                } else {
-                    // No area change: the sign follows the largest component, which ties
-                    // within roundoff for symmetric motions, in `analyze` as here.
-                    (v - leaf.motion).norm().min((v + leaf.motion).norm())
-                };
-                assert!(err < 1e-8, "IH{n} {:?}", leaf.joints);
-                checked += usize::from(!leaf.analysed);
-            });
-            assert!(checked > 0, "IH{n}");
-        }
-    }
-}
+mod tests;

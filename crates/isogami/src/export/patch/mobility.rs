@@ -1,0 +1,116 @@
+//! The sheet a patch writes — the R×C rectangle's one-DOF completion, or the rectangle
+//! itself — and what it is as a finite mechanism.
+
+use super::PatchRequest;
+use crate::api::{requested_sheet, sheet_of_trajectory, Deployment, SheetRequest};
+use crate::deploy::DeploySettings;
+use crate::export::error::ExportError;
+use crate::finite::{FiniteSheet, Region, SheetMobility};
+use crate::math::Real;
+use crate::topology::Design;
+use serde::Serialize;
+
+/// The patch as a finite mechanism (see [`crate::finite`]), counted at the periodic state
+/// nearest t = 0.3.
+#[derive(Debug, Clone, Serialize)]
+pub struct PatchMobility {
+    /// True when the tiles are the completion of the rectangle.
+    pub completed: bool,
+    /// Degrees of freedom of the written sheet with a free boundary (1 when completed).
+    pub dof: usize,
+    /// Degrees of freedom of the raw R×C rectangle.
+    pub raw_dof: usize,
+    /// Tiles of the rectangle.
+    pub requested_tiles: usize,
+    /// Rectangle tiles left out by completion.
+    pub removed_tiles: usize,
+    /// Tiles outside the rectangle added by completion.
+    pub added_tiles: usize,
+    /// Area of the rectangle's tiles kept over the area of all of them.
+    pub covered_fraction: Real,
+}
+
+impl PatchMobility {
+    /// The record of the rectangle written as it is, with `dof` degrees of freedom.
+    fn raw(dof: usize, tiles: usize) -> PatchMobility {
+        PatchMobility {
+            completed: false,
+            dof,
+            raw_dof: dof,
+            requested_tiles: tiles,
+            removed_tiles: 0,
+            added_tiles: 0,
+            covered_fraction: 1.0,
+        }
+    }
+
+    /// A warning for a sheet that is not one mechanism with one DOF, naming its DOF.
+    pub fn warning(&self) -> Option<String> {
+        (self.dof != 1).then(|| {
+            format!(
+                "this raw patch has {} degrees of freedom with a free boundary (its boundary \
+                 tiles flop), not the design's one; the completed sheet (the default export) \
+                 opens with one",
+                self.dof
+            )
+        })
+    }
+}
+
+/// The sheet to write — the R×C rectangle's completion, or the rectangle itself with `raw`
+/// — and what it is as a mechanism, from the deployment already made.
+pub(super) fn finite_patch(
+    design: &Design,
+    cell: &crate::cell::UnitCell,
+    run: &Deployment,
+    request: &PatchRequest,
+    settings: DeploySettings,
+) -> Result<(FiniteSheet, PatchMobility), ExportError> {
+    let sheet_request = SheetRequest {
+        region: Region::Cells {
+            rows: request.rows,
+            cols: request.cols,
+        },
+        complete: request.complete,
+        settings,
+        ..SheetRequest::default()
+    };
+    let mech = &run.mechanism;
+    let requested = requested_sheet(cell, mech, &sheet_request)?;
+    if run.trajectory.steps.len() < 2 {
+        // A design locked by contact has no opened state: its raw rectangle, counted closed.
+        if request.complete {
+            let reason = "the periodic sheet does not open (locked by contact)".into();
+            return Err(
+                crate::Error::from(crate::finite::FiniteError::NoOneDofSheet { reason }).into(),
+            );
+        }
+        let poses = requested.poses(mech, &mech.rest);
+        let m: SheetMobility =
+            crate::finite::sheet_mobility(&requested, mech, &poses, None, settings.mobility)
+                .map_err(crate::Error::from)?;
+        let info = PatchMobility::raw(m.dof, requested.len());
+        return Ok((requested, info));
+    }
+    let analysis = sheet_of_trajectory(
+        design,
+        cell,
+        mech,
+        &run.trajectory,
+        &sheet_request,
+        requested,
+    )?;
+    let info = match &analysis.completion {
+        Some(c) => PatchMobility {
+            completed: true,
+            dof: c.mobility.dof,
+            raw_dof: analysis.raw_mobility.dof,
+            requested_tiles: c.report.requested,
+            removed_tiles: c.report.removed.len(),
+            added_tiles: c.report.added.len(),
+            covered_fraction: c.report.covered_fraction,
+        },
+        None => PatchMobility::raw(analysis.raw_mobility.dof, analysis.raw.len()),
+    };
+    Ok((analysis.sheet().clone(), info))
+}

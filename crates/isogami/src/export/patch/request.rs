@@ -1,0 +1,121 @@
+//! What a patch export asks for — rows and columns, scale, state, completion — and the
+//! limits every request is checked against.
+
+use crate::contact::ContactSettings;
+use crate::export::error::ExportError;
+use crate::math::Real;
+
+/// Most rows and most columns of a patch (40 × 40 cells; a 40×40 patch of a 12-tile cell
+/// holds 19 200 tiles, enough for any sheet a laser bed or a print bed takes).
+pub const MAX_PATCH: usize = 40;
+
+/// Smallest edge length or patch width in mm (a micrometre: below it the numbers written are
+/// no size any machine makes, and a subnormal scale loses its digits).
+pub const MIN_SIZE_MM: Real = 1e-3;
+
+/// Largest edge length or patch width in mm (a kilometre: a 40×40 patch of it stays far from
+/// overflow in every format).
+pub const MAX_SIZE_MM: Real = 1e6;
+
+/// Most states in [`Patch::states`].
+pub const MAX_PATCH_FRAMES: usize = 100;
+
+/// How the patch is scaled to millimetres.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Scale {
+    /// The mean edge length L of the tiles, in mm.
+    EdgeMm(Real),
+    /// The width (x extent) of the patch at the asked state, in mm.
+    WidthMm(Real),
+}
+
+/// Which state of the deployment to export.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum State {
+    /// The accepted state with t nearest this value, in [0, 1] (0 closed, 1 the contact
+    /// limit).
+    T(Real),
+    /// The state of largest area ratio: the sheet open as far as contact lets it (the last
+    /// such state on a tie).
+    Open,
+}
+
+/// What patch to make.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PatchRequest {
+    /// Cells along w, 1..=[`MAX_PATCH`].
+    pub rows: usize,
+    /// Cells along u, 1..=[`MAX_PATCH`].
+    pub cols: usize,
+    /// Millimetres.
+    pub scale: Scale,
+    /// The state.
+    pub state: State,
+    /// Cut width relative to the mean edge length, the deployment's contact setting (see
+    /// [`ContactSettings::kerf`]): it decides where contact ends the deployment.
+    pub kerf: Real,
+    /// States kept in [`Patch::states`] for animated formats, nearest to evenly spaced t,
+    /// 2..=[`MAX_PATCH_FRAMES`].
+    pub frames: usize,
+    /// Write the rectangle's completion to a one-DOF sheet ([`crate::finite::complete`]),
+    /// the default, refused when there is none; `false` writes the R×C rectangle as it is
+    /// (floppy boundary and all, its DOF named by [`PatchMobility::warning`]).
+    pub complete: bool,
+}
+
+impl Default for PatchRequest {
+    /// 6×6 cells, 20 mm mean edge, closed, default kerf, 11 states, the rectangle's one-DOF
+    /// completion.
+    fn default() -> Self {
+        PatchRequest {
+            rows: 6,
+            cols: 6,
+            scale: Scale::EdgeMm(20.0),
+            state: State::T(0.0),
+            kerf: ContactSettings::default().kerf,
+            frames: 11,
+            complete: true,
+        }
+    }
+}
+
+impl PatchRequest {
+    /// The scale's name and value in mm.
+    pub(super) fn scale_value(&self) -> (&'static str, Real) {
+        match self.scale {
+            Scale::EdgeMm(v) => ("edge length", v),
+            Scale::WidthMm(v) => ("patch width", v),
+        }
+    }
+
+    /// Checks sizes, scale, state and frame count (the kerf is checked by the deployment).
+    pub fn validate(&self) -> Result<(), ExportError> {
+        let (rows, cols) = (self.rows, self.cols);
+        if rows == 0 || cols == 0 {
+            return Err(ExportError::EmptyPatch { rows, cols });
+        }
+        if rows > MAX_PATCH || cols > MAX_PATCH {
+            return Err(ExportError::PatchTooLarge {
+                rows,
+                cols,
+                max: MAX_PATCH,
+            });
+        }
+        let (what, value) = self.scale_value();
+        if !(MIN_SIZE_MM..=MAX_SIZE_MM).contains(&value) {
+            return Err(ExportError::BadSize { what, value });
+        }
+        if let State::T(t) = self.state {
+            if !(0.0..=1.0).contains(&t) {
+                return Err(ExportError::StatePastTrajectory { t });
+            }
+        }
+        if !(2..=MAX_PATCH_FRAMES).contains(&self.frames) {
+            return Err(ExportError::FrameCount {
+                count: self.frames,
+                max: MAX_PATCH_FRAMES,
+            });
+        }
+        Ok(())
+    }
+}
