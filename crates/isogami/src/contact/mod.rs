@@ -64,6 +64,9 @@ mod lattice;
 mod local;
 mod model;
 mod narrow;
+/// The distance between two polygons as sets (0 when they overlap), for other stages that
+/// keep polygons apart (the print export's gaps).
+pub(crate) use narrow::polygon_distance;
 mod pairs;
 mod placement;
 mod psd;

@@ -15,7 +15,7 @@
 //! cut splits keeps its largest part; one that vanishes is refused.
 
 use super::error::PrintError;
-use crate::geometry::{interiors_overlap, segment_distance};
+pub(super) use crate::contact::polygon_distance;
 use crate::math::{Real, Vec2};
 use manifold_rust::cross_section::CrossSection;
 use manifold_rust::linalg::Vec2 as MVec2;
@@ -95,21 +95,6 @@ pub fn separate_tiles(
 
 fn section(poly: &[Vec2]) -> CrossSection {
     CrossSection::new(vec![poly.iter().map(|p| MVec2::new(p.x, p.y)).collect()])
-}
-
-/// Distance between two simple polygons (zero when their interiors overlap).
-pub(super) fn polygon_distance(p: &[Vec2], q: &[Vec2]) -> Real {
-    if interiors_overlap(p, q, 0.0) {
-        return 0.0;
-    }
-    let mut best = Real::INFINITY;
-    for i in 0..p.len() {
-        let (a, b) = (p[i], p[(i + 1) % p.len()]);
-        for j in 0..q.len() {
-            best = best.min(segment_distance(&a, &b, &q[j], &q[(j + 1) % q.len()]));
-        }
-    }
-    best
 }
 
 /// [min x, min y, max x, max y].
