@@ -20,6 +20,7 @@ use pyo3::types::{PyBytes, PyDict};
 fn export_error(e: ExportError, watch: Watch) -> PyErr {
     match e {
         ExportError::Library(inner) => watch.error(inner),
+        e if e.is_cancelled() => watch.cancelled(|| errors::ExportError::new_err(e.to_string())),
         other => errors::ExportError::new_err(other.to_string()),
     }
 }

@@ -27,6 +27,8 @@ pub struct Watch {
     timeout: Option<Duration>,
     last_check: Instant,
     stop: Option<Stop>,
+    /// The count the callback last heard.
+    reported: Option<usize>,
 }
 
 impl Watch {
@@ -57,14 +59,21 @@ impl Watch {
             timeout,
             last_check: now,
             stop: None,
+            reported: None,
         })
     }
 
     /// Called by the library after every accepted step with the number of states so far;
     /// `false` stops the call. Attaches to Python only when a callback is given or a signal
     /// check is due.
+    ///
+    /// The library asks on with the count unchanged while a later stage runs (a finite
+    /// sheet's completion, a print's solid: `isogami::stop::watched`); the callback hears
+    /// each count once, while the timeout and Ctrl-C are still checked.
     pub fn tick(&mut self, states: usize) -> bool {
-        self.tick_with(|py| Ok(states.into_pyobject(py)?.into_any()))
+        let new = self.reported != Some(states);
+        self.reported = Some(states);
+        self.check(new, |py| Ok(states.into_pyobject(py)?.into_any()))
     }
 
     /// As [`Watch::tick`], with the callback's one argument made by `argument` (called only
@@ -73,6 +82,16 @@ impl Watch {
         &mut self,
         argument: impl FnOnce(Python<'_>) -> PyResult<Bound<'_, PyAny>>,
     ) -> bool {
+        self.check(true, argument)
+    }
+
+    /// The timeout, then (when due) Ctrl-C and, when `call` is set, the callback.
+    fn check(
+        &mut self,
+        call: bool,
+        argument: impl FnOnce(Python<'_>) -> PyResult<Bound<'_, PyAny>>,
+    ) -> bool {
+        let callback = self.callback.as_ref().filter(|_| call);
         if let Some(limit) = self.timeout {
             if self.started.elapsed() >= limit {
                 self.stop = Some(Stop::Timeout(limit));
@@ -80,13 +99,13 @@ impl Watch {
             }
         }
         let now = Instant::now();
-        if self.callback.is_none() && now.duration_since(self.last_check) < SIGNAL_INTERVAL {
+        if callback.is_none() && now.duration_since(self.last_check) < SIGNAL_INTERVAL {
             return true;
         }
         self.last_check = now;
         let outcome = Python::attach(|py| -> Result<bool, PyErr> {
             py.check_signals()?;
-            match &self.callback {
+            match callback {
                 None => Ok(true),
                 Some(cb) => {
                     let answer = cb.call1(py, (argument(py)?,))?;
@@ -120,6 +139,12 @@ impl Watch {
         if !e.is_cancelled() {
             return errors::library(e);
         }
+        self.cancelled(|| errors::library(e))
+    }
+
+    /// The Python exception of a cancellation under this watch: what stopped it, or
+    /// `otherwise` when the watch did not.
+    pub fn cancelled(self, otherwise: impl FnOnce() -> PyErr) -> PyErr {
         match self.stop {
             Some(Stop::Raised(err)) => err,
             Some(Stop::Timeout(limit)) => errors::CancelledError::new_err(format!(
@@ -129,7 +154,7 @@ impl Watch {
             Some(Stop::Callback) => {
                 errors::CancelledError::new_err("cancelled: the progress callback returned False")
             }
-            None => errors::library(e),
+            None => otherwise(),
         }
     }
 }

@@ -108,8 +108,8 @@ where
 }
 
 /// [`run_bounded`] whose answer never waits longer than `timeout` + [`ANSWER_GRACE`]: for
-/// jobs with stages that do not poll their deadline (an export's completion and solid
-/// model). Past that the caller gets 422 `timeout` at once while the job's thread ends at its
+/// jobs with single steps that do not poll their deadline (a factorisation, a solid's
+/// union). Past that the caller gets 422 `timeout` at once while the job's thread ends at its
 /// next poll of the deadline (whose flag is set when this future is dropped); whatever the
 /// job holds (a heavy-job permit moved into it) is released only then.
 pub async fn run_answered<T, F>(timeout: Duration, job: F) -> ApiResult<T>

@@ -57,6 +57,7 @@ fn bench(c: &mut Criterion) {
             settings: settings.mobility,
             // IH9 keeps 47.5 % of a 10×10 region: below the default 50 %, still a completion.
             min_covered: 0.0,
+            keep_going: isogami::stop::NEVER,
         };
         group.bench_with_input(BenchmarkId::new("mobility", name), &raw, |b, raw| {
             b.iter(|| {

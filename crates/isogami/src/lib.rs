@@ -31,6 +31,7 @@ pub mod mobility;
 pub mod render;
 pub mod settings_error;
 pub mod shape_space;
+pub mod stop;
 pub mod tiling;
 pub mod topology;
 

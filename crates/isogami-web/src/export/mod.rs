@@ -22,7 +22,7 @@ use isogami::contact::ContactSettings;
 use isogami::deploy::DeployError;
 use isogami::export::laser::LaserError;
 use isogami::export::{
-    export_files, patch_at_with, ExportError, ExportFiles, Format, PatchRequest, MAX_PATCH,
+    export_files_until, patch_at_with, ExportError, ExportFiles, Format, PatchRequest, MAX_PATCH,
     MAX_PATCH_FRAMES,
 };
 use isogami::finite::FiniteError;
@@ -112,8 +112,9 @@ pub fn file_name(spec: &str, query: &ExportQuery) -> String {
 
 /// Most tiles in the rectangle of an export on the server. Every export analyses the
 /// rectangle's mobility, a completed one prunes it round after round and a solid (STL, 3MF)
-/// meshes it: stages that grow faster than the tile count and do not poll the time limit,
-/// so the work is bounded before it starts. The default 6×6 patch of a 50-tile cell passes;
+/// meshes it: stages that grow faster than the tile count, whose single steps (a
+/// factorisation, the solid's union) do not poll the time limit, so the work is bounded
+/// before it starts. The default 6×6 patch of a 50-tile cell passes;
 /// the largest patch of a 6-tile cell (40×40, 9,600 tiles) does not. `isogami export` has no
 /// such limit.
 pub const MAX_EXPORT_TILES: usize = 1800;
@@ -181,10 +182,8 @@ pub async fn export_bounded(
     let (patch, files) = run_answered(left, move |deadline| {
         let _permit = permit;
         let patch = patch_at_with(&design, &query.request, &mut |_| deadline.keep_going())?;
-        if !deadline.keep_going() {
-            return Err(ExportError::Library(Error::Deploy(DeployError::Cancelled)));
-        }
-        let files = export_files(format, &patch, &query.options)?;
+        let files =
+            export_files_until(format, &patch, &query.options, &|| deadline.keep_going())?;
         Ok((patch, files))
     })
     .await
@@ -235,7 +234,7 @@ fn export_timeout(e: ApiError, timeout: Duration) -> ApiError {
 /// message.
 pub fn explain_export(e: &ExportError, timeout: Duration) -> ApiError {
     match e {
-        ExportError::Library(inner) if inner.is_cancelled() => ApiError {
+        e if e.is_cancelled() => ApiError {
             hint: "export a smaller patch or fewer frames here, or run `isogami export` from the \
                    command line (no time limit)"
                 .into(),

@@ -11,6 +11,7 @@ use crate::finite::{
 };
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
+use crate::stop::{watched, KeepGoing};
 use crate::topology::Design;
 use serde::Serialize;
 
@@ -101,7 +102,8 @@ impl SheetAnalysis {
 
 /// The finite sheet of `design` that `request` asks for. The design is deployed once
 /// (periodically, without frames) to find the opened state; `progress` is that
-/// deployment's callback.
+/// deployment's callback, and is asked on while the sheet is counted and completed (with
+/// the deployment's last count: its `false` stops the work with a cancelled error).
 pub fn finite_sheet(
     design: &Design,
     request: &SheetRequest,
@@ -111,8 +113,19 @@ pub fn finite_sheet(
     let (cell, mech) = assemble(design)?;
     // The region is made and checked before the deployment, which costs more.
     let requested = requested_sheet(&cell, &mech, request)?;
-    let path = deploy_path(design, &request.settings, progress)?;
-    sheet_of_trajectory(design, &cell, &mech, &path.trajectory, request, requested)
+    let path = deploy_path(design, &request.settings, &mut *progress)?;
+    let states = path.trajectory.steps.len();
+    watched(progress, states, |keep_going| {
+        sheet_of_trajectory(
+            design,
+            &cell,
+            &mech,
+            &path.trajectory,
+            request,
+            requested,
+            keep_going,
+        )
+    })
 }
 
 /// What the finite deployment and the pull start from: the design's mechanism, its periodic
@@ -134,8 +147,19 @@ pub(crate) fn sheet_on_its_path(
     request.validate()?;
     let (cell, mech) = assemble(design)?;
     let requested = requested_sheet(&cell, &mech, request)?;
-    let path = deploy_path(design, &request.settings, progress)?;
-    let analysis = sheet_of_trajectory(design, &cell, &mech, &path.trajectory, request, requested)?;
+    let path = deploy_path(design, &request.settings, &mut *progress)?;
+    let states = path.trajectory.steps.len();
+    let analysis = watched(progress, states, |keep_going| {
+        sheet_of_trajectory(
+            design,
+            &cell,
+            &mech,
+            &path.trajectory,
+            request,
+            requested,
+            keep_going,
+        )
+    })?;
     Ok((mech, path, analysis))
 }
 
@@ -162,7 +186,7 @@ pub(crate) fn opened_step(traj: &Trajectory, t: Real) -> usize {
 
 /// [`finite_sheet`] on a deployment already made (`traj` of `mech`, assembled from `cell`) and
 /// the region's sheet ([`requested_sheet`]): what the export uses, so that a patch is deployed
-/// once.
+/// once. `keep_going` is polled between the counts and before every round of completion.
 pub(crate) fn sheet_of_trajectory(
     design: &Design,
     cell: &UnitCell,
@@ -170,6 +194,7 @@ pub(crate) fn sheet_of_trajectory(
     traj: &Trajectory,
     request: &SheetRequest,
     requested: FiniteSheet,
+    keep_going: KeepGoing<'_>,
 ) -> Result<SheetAnalysis> {
     if traj.steps.len() < 2 {
         return Err(FiniteError::NoOneDofSheet {
@@ -192,6 +217,7 @@ pub(crate) fn sheet_of_trajectory(
         motion: &motion,
         settings: mobility,
         min_covered: request.min_covered,
+        keep_going,
     };
     let raw_mobility = ctx.mobility(&requested)?;
     let closed_motion = motion_at(&mech.rest)?;
@@ -200,6 +226,9 @@ pub(crate) fn sheet_of_trajectory(
         let periodic = periodic_velocity(sheet, mech, &closed_motion);
         Ok(sheet_mobility(sheet, mech, &poses, Some(&periodic), mobility)?.dof)
     };
+    if !keep_going() {
+        return Err(FiniteError::Cancelled.into());
+    }
     let raw_closed_dof = closed_dof(&requested)?;
     let (completion, completed_closed_dof) = if request.complete {
         let c = complete(&ctx, &requested)?;

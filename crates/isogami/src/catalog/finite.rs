@@ -81,6 +81,7 @@ pub(crate) fn figures_of_trajectory(
         motion: &motion,
         settings: mobility,
         min_covered: request.min_covered,
+        keep_going: crate::stop::NEVER,
     };
     let raw_dof = ctx.mobility(&requested)?.dof;
     let covered = match complete(&ctx, &requested) {

@@ -64,6 +64,7 @@ impl Error {
             self,
             Error::Deploy(crate::deploy::DeployError::Cancelled)
                 | Error::Inverse(crate::inverse::InverseError::Cancelled)
+                | Error::Finite(crate::finite::FiniteError::Cancelled)
         )
     }
 }

@@ -93,3 +93,14 @@ pub enum ExportError {
     #[error(transparent)]
     Library(#[from] crate::Error),
 }
+
+impl ExportError {
+    /// True when the caller's progress callback or stop check stopped the export.
+    pub fn is_cancelled(&self) -> bool {
+        match self {
+            ExportError::Library(e) => e.is_cancelled(),
+            ExportError::Print(e) => matches!(e, super::print3d::PrintError::Cancelled),
+            _ => false,
+        }
+    }
+}

@@ -13,9 +13,10 @@ use super::kirigami_sim::{kirigami_sim_files, KIRIGAMI_SIM_FILES};
 use super::laser::{laser_dxf, laser_sheet, laser_svg, LaserSettings};
 use super::obj::obj_text;
 use super::patch::{patch_at_with, Patch, PatchRequest};
-use super::print3d::{print_sheet, PrintSettings};
+use super::print3d::{print_sheet_until, PrintSettings};
 use super::tile_table::{tile_csv, tile_table};
 use crate::deploy::Progress;
+use crate::stop::{watched, KeepGoing, NEVER};
 use crate::topology::Design;
 
 /// Settings of the formats beyond the patch: the laser layout, the 3D-print solid, and the
@@ -69,6 +70,18 @@ pub fn export_files(
     patch: &Patch,
     options: &ExportOptions,
 ) -> Result<ExportFiles, ExportError> {
+    export_files_until(format, patch, options, NEVER)
+}
+
+/// [`export_files`] polling `keep_going` while the print formats lay out and build their
+/// solid (the other formats are written from the patch at once): a cancelled error once it
+/// says stop.
+pub fn export_files_until(
+    format: Format,
+    patch: &Patch,
+    options: &ExportOptions,
+    keep_going: KeepGoing<'_>,
+) -> Result<ExportFiles, ExportError> {
     let one = |text: String| ExportFiles::One(text.into_bytes());
     let sheet = || laser_sheet(patch, options.laser.clone());
     Ok(match format {
@@ -83,10 +96,10 @@ pub fn export_files(
                 reason: e.to_string(),
             },
         )? + "\n"),
-        Format::Stl => ExportFiles::One(print_sheet(patch, &options.print)?.stl()),
-        Format::ThreeMf => {
-            ExportFiles::One(print_sheet(patch, &options.print)?.threemf(&options.creator)?)
-        }
+        Format::Stl => ExportFiles::One(print_sheet_until(patch, &options.print, keep_going)?.stl()),
+        Format::ThreeMf => ExportFiles::One(
+            print_sheet_until(patch, &options.print, keep_going)?.threemf(&options.creator)?,
+        ),
         Format::KirigamiSim => ExportFiles::Folder(
             KIRIGAMI_SIM_FILES
                 .into_iter()
@@ -97,8 +110,8 @@ pub fn export_files(
 }
 
 /// Checks `request` and `options`, deploys `design` (reporting to `progress`, which may stop
-/// it), places the patch and writes `format`. Returns the patch too, for a summary of what
-/// was written.
+/// it, and is asked on while the sheet is completed and a print's solid is built), places
+/// the patch and writes `format`. Returns the patch too, for a summary of what was written.
 pub fn export_design(
     design: &Design,
     request: &PatchRequest,
@@ -108,7 +121,13 @@ pub fn export_design(
 ) -> Result<(Patch, ExportFiles), ExportError> {
     request.validate()?;
     options.validate(format)?;
-    let patch = patch_at_with(design, request, progress)?;
-    let files = export_files(format, &patch, options)?;
+    let mut states = 0;
+    let patch = patch_at_with(design, request, &mut |n| {
+        states = n;
+        progress(n)
+    })?;
+    let files = watched(progress, states, |keep_going| {
+        export_files_until(format, &patch, options, keep_going)
+    })?;
     Ok((patch, files))
 }

@@ -34,7 +34,7 @@ pub mod print3d;
 pub mod tile_table;
 
 pub use error::ExportError;
-pub use files::{export_design, export_files, ExportFiles, ExportOptions};
+pub use files::{export_design, export_files, export_files_until, ExportFiles, ExportOptions};
 pub use format::{Format, SettingsGroup};
 pub use patch::{
     patch_at, patch_at_with, Patch, PatchJoint, PatchRequest, PatchState, PatchTile, Scale, State,

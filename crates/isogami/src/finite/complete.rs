@@ -20,6 +20,7 @@ use crate::cell::UnitCell;
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
 use crate::mobility::MobilitySettings;
+use crate::stop::KeepGoing;
 use serde::Serialize;
 use std::collections::HashSet;
 
@@ -66,6 +67,9 @@ pub struct Context<'a> {
     /// Smallest covered fraction accepted: a completion that keeps less of the region is
     /// refused (a lone linkage loop is a one-DOF sheet, but not the sheet that was asked for).
     pub min_covered: Real,
+    /// Polled before every pruning round: `false` stops completion with
+    /// [`FiniteError::Cancelled`] ([`crate::stop::NEVER`] never stops it).
+    pub keep_going: KeepGoing<'a>,
 }
 
 impl Context<'_> {
@@ -87,6 +91,14 @@ pub fn complete(ctx: &Context<'_>, requested: &FiniteSheet) -> Result<Completion
         || prune(ctx, requested, requested.clone()),
         || prune(ctx, requested, grow(ctx, requested)),
     );
+    // A stopped candidate stops the whole (the other alone would make the result depend on
+    // when the stop came).
+    if [&pruned, &grown]
+        .iter()
+        .any(|c| matches!(c, Err(FiniteError::Cancelled)))
+    {
+        return Err(FiniteError::Cancelled);
+    }
     let chosen = match (pruned, grown) {
         (Ok(p), Ok(g)) => {
             if covered(ctx, requested, &g.0) > covered(ctx, requested, &p.0) {
@@ -222,6 +234,9 @@ fn prune(
     mut sheet: FiniteSheet,
 ) -> Result<(FiniteSheet, SheetMobility), FiniteError> {
     loop {
+        if !(ctx.keep_going)() {
+            return Err(FiniteError::Cancelled);
+        }
         sheet = drop_loose(ctx, sheet);
         if sheet.len() < 2 {
             return Err(FiniteError::NoOneDofSheet {
@@ -253,18 +268,54 @@ fn prune(
         if mobility.floppy.is_empty() && mobility.dof == 1 {
             return Ok((sheet, mobility));
         }
-        // The tiles taking the largest share of the extra modes (ties within 10 %, e.g. the
-        // symmetric corners of a rectangle, go together).
-        let top = mobility.leverage.iter().copied().fold(0.0, Real::max);
-        let drop: Vec<usize> = (0..sheet.len())
-            .filter(|&t| top > 0.0 && mobility.leverage[t] >= 0.9 * top)
-            .collect();
-        let mut keep = vec![true; sheet.len()];
-        for t in drop {
-            keep[t] = false;
-        }
+        let keep: Vec<bool> = flaps(&mobility).iter().map(|&drop| !drop).collect();
         sheet = sheet.keep(ctx.cell, ctx.mech, &keep);
     }
+}
+
+/// The tiles one pruning round drops (flagged per tile): those taking the largest share of
+/// the extra modes (ties within 10 %, e.g. the symmetric corners of a rectangle, go
+/// together), and with them the flap of every other local extra mode (moving at most half
+/// the sheet) whose moving tiles are apart from every mode already taken: its tiles taking
+/// the largest share of the extra modes within it (ties within 10 %).
+///
+/// A round that took only the global top would peel one flap at a time, each round a fresh
+/// factorisation (a 10×10 sheet's boundary has dozens of flaps); flaps that share no moving
+/// tile are independent, so dropping them together removes what rounds one by one would.
+fn flaps(mobility: &SheetMobility) -> Vec<bool> {
+    let leverage = &mobility.leverage;
+    let n = leverage.len();
+    let top = leverage.iter().copied().fold(0.0, Real::max);
+    let mut drop: Vec<bool> = leverage
+        .iter()
+        .map(|&l| top > 0.0 && l >= 0.9 * top)
+        .collect();
+    // Tiles moving in a mode already taken.
+    let mut taken = vec![false; n];
+    for mode in &mobility.floppy {
+        if mode.tiles.iter().any(|&t| drop[t]) {
+            for &t in &mode.tiles {
+                taken[t] = true;
+            }
+        }
+    }
+    for mode in &mobility.floppy {
+        if 2 * mode.tiles.len() > n || mode.tiles.iter().any(|&t| taken[t]) {
+            continue;
+        }
+        let local = mode
+            .tiles
+            .iter()
+            .map(|&t| leverage[t])
+            .fold(0.0, Real::max);
+        for &t in &mode.tiles {
+            taken[t] = true;
+            if local > 0.0 && leverage[t] >= 0.9 * local {
+                drop[t] = true;
+            }
+        }
+    }
+    drop
 }
 
 /// `sheet` without tiles held by fewer than two pins (repeatedly) and without every piece

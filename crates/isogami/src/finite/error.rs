@@ -44,4 +44,7 @@ pub enum FiniteError {
         /// Why not.
         reason: String,
     },
+    /// The caller's check stopped the work (see [`crate::stop`]).
+    #[error("cancelled")]
+    Cancelled,
 }

@@ -333,3 +333,64 @@ fn giving_up_below_the_smallest_share_never_changes_a_verdict() {
         }
     }
 }
+
+#[test]
+fn a_stop_check_stops_completion_between_its_rounds() {
+    use isogami::finite::{complete, Context};
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let spec = "IH9:0.04739750492,0.35,0.225335752741:1x2:--aaabb--aa-";
+    let design = resolve_design(spec).unwrap();
+    let cell = design.cell().unwrap();
+    let mech = Mechanism::new(&cell, &design.joints).unwrap();
+    let (q, motion) = opened(&design, &mech);
+    let region = Region::Cells { rows: 6, cols: 6 };
+    let raw = FiniteSheet::new(&cell, &mech, region.tiles(&mech, 20.0).unwrap());
+    let asked = AtomicUsize::new(0);
+    // Goes on for the first round of each candidate, then says stop.
+    let check = || asked.fetch_add(1, Ordering::SeqCst) < 2;
+    let ctx = |keep_going| Context {
+        cell: &cell,
+        mech: &mech,
+        q: &q,
+        motion: &motion,
+        settings: Default::default(),
+        min_covered: 0.5,
+        keep_going,
+    };
+    let whole = complete(&ctx(isogami::stop::NEVER), &raw).unwrap();
+    assert!(whole.report.removed.len() > 2, "prunes over several rounds");
+    let stopped = complete(&ctx(&check), &raw);
+    assert!(
+        matches!(stopped, Err(FiniteError::Cancelled)),
+        "{stopped:?}"
+    );
+    // Each candidate stops at its first poll past the second: no round runs on.
+    assert!(asked.load(Ordering::SeqCst) <= 4, "{asked:?}");
+}
+
+#[test]
+fn a_progress_callback_stops_the_completion_after_the_deployment() {
+    let design = resolve_design("IH9:0.04739750492,0.35,0.225335752741:1x2:--aaabb--aa-").unwrap();
+    // The deployment reports each count once; the completion is asked on with the last count
+    // again: saying stop then ends the work with a cancelled error, not a sheet.
+    let mut last = 0;
+    let mut repeats = 0;
+    let err = finite_sheet(
+        &design,
+        &SheetRequest {
+            region: Region::Cells { rows: 8, cols: 8 },
+            ..SheetRequest::default()
+        },
+        &mut |n| {
+            if n == last {
+                repeats += 1;
+                return false;
+            }
+            last = n;
+            true
+        },
+    )
+    .unwrap_err();
+    assert!(err.is_cancelled(), "{err}");
+    assert_eq!(repeats, 1, "asked once more after saying stop");
+}

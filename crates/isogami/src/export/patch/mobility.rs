@@ -1,6 +1,7 @@
 //! The sheet a patch writes — the R×C rectangle's one-DOF completion, or the rectangle
 //! itself — and what it is as a finite mechanism.
 
+use crate::stop::KeepGoing;
 use super::PatchRequest;
 use crate::api::{requested_sheet, sheet_of_trajectory, Deployment, SheetRequest};
 use crate::deploy::DeploySettings;
@@ -58,13 +59,15 @@ impl PatchMobility {
 }
 
 /// The sheet to write — the R×C rectangle's completion, or the rectangle itself with `raw`
-/// — and what it is as a mechanism, from the deployment already made.
+/// — and what it is as a mechanism, from the deployment already made. `keep_going` may
+/// stop the completion.
 pub(super) fn finite_patch(
     design: &Design,
     cell: &crate::cell::UnitCell,
     run: &Deployment,
     request: &PatchRequest,
     settings: DeploySettings,
+    keep_going: KeepGoing<'_>,
 ) -> Result<(FiniteSheet, PatchMobility), ExportError> {
     let sheet_request = SheetRequest {
         region: Region::Cells {
@@ -99,6 +102,7 @@ pub(super) fn finite_patch(
         &run.trajectory,
         &sheet_request,
         requested,
+        keep_going,
     )?;
     let info = match &analysis.completion {
         Some(c) => PatchMobility {

@@ -132,7 +132,8 @@ pub fn patch_at(design: &Design, request: &PatchRequest) -> Result<Patch, Export
 }
 
 /// [`patch_at`] with a progress callback for the deployment: called with the number of
-/// accepted states; returning `false` stops the export (a cancelled error).
+/// accepted states, and asked on (with the last count) while the sheet is completed;
+/// returning `false` stops the export (a cancelled error).
 pub fn patch_at_with(
     design: &Design,
     request: &PatchRequest,
@@ -148,8 +149,18 @@ pub fn patch_at_with(
         },
         frames: FrameSelection::AllSteps,
     };
-    let run = deploy(design, &deploy_request, progress)?;
-    let (sheet, finite) = finite_patch(design, &cell, &run, request, deploy_request.settings)?;
+    let run = deploy(design, &deploy_request, &mut *progress)?;
+    let states = run.trajectory.steps.len();
+    let (sheet, finite) = crate::stop::watched(progress, states, |keep_going| {
+        finite_patch(
+            design,
+            &cell,
+            &run,
+            request,
+            deploy_request.settings,
+            keep_going,
+        )
+    })?;
     let frames = &run.report.frames;
     let chosen = choose_frame(frames, request.state);
     let place = Placer::new(&geometry.tiles, &sheet.tiles);

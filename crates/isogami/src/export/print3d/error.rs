@@ -140,4 +140,7 @@ pub enum PrintError {
         /// Why.
         reason: String,
     },
+    /// The caller's check stopped the work (see [`crate::stop`]).
+    #[error("cancelled")]
+    Cancelled,
 }

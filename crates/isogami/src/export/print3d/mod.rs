@@ -42,6 +42,7 @@ pub use solid::print_solid;
 
 use super::laser::fmt_mm;
 use super::Patch;
+use crate::stop::{KeepGoing, NEVER};
 use threemf::ModelMeta;
 
 /// A printable sheet: its footprints, the united mesh and what it was made from.
@@ -61,10 +62,21 @@ pub struct PrintSheet {
 
 /// The printable sheet of `patch` at its state with `settings`.
 pub fn print_sheet(patch: &Patch, settings: &PrintSettings) -> Result<PrintSheet, PrintError> {
+    print_sheet_until(patch, settings, NEVER)
+}
+
+/// [`print_sheet`] polling `keep_going` between its stages (layout, the search for the
+/// smallest size that fits after a refusal, every tile's solid, the union):
+/// [`PrintError::Cancelled`] once it says stop.
+pub fn print_sheet_until(
+    patch: &Patch,
+    settings: &PrintSettings,
+    keep_going: KeepGoing<'_>,
+) -> Result<PrintSheet, PrintError> {
     settings.validate()?;
-    let layout =
-        print_layout(patch, settings).map_err(|e| smallest::with_smallest(e, patch, settings))?;
-    let mesh = print_solid(&layout, settings)?;
+    let layout = print_layout(patch, settings)
+        .map_err(|e| smallest::with_smallest(e, patch, settings, keep_going))?;
+    let mesh = print_solid(&layout, settings, keep_going)?;
     let mut meta: Vec<(String, String)> = vec![
         ("spec".into(), patch.design.clone()),
         (

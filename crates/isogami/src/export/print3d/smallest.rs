@@ -10,6 +10,7 @@ use super::layout::print_layout;
 use super::settings::PrintSettings;
 use crate::export::Patch;
 use crate::math::Real;
+use crate::stop::{KeepGoing, NEVER};
 
 /// Scales tried before giving up: 1.05^60 ≈ 19.
 const GROW_STEPS: usize = 60;
@@ -17,19 +18,35 @@ const GROW_STEPS: usize = 60;
 /// The smallest `edge_mm` (rounded up to 0.001, from `start` upwards) at which `patch` lays
 /// out with `settings`, or `None` when none up to ~19× its size does.
 pub fn smallest_edge_mm(patch: &Patch, settings: &PrintSettings, start: Real) -> Option<Real> {
+    search(patch, settings, start, NEVER).unwrap_or(None)
+}
+
+/// [`smallest_edge_mm`] polling `keep_going` before every layout: `Err(Cancelled)` once it
+/// says stop.
+fn search(
+    patch: &Patch,
+    settings: &PrintSettings,
+    start: Real,
+    keep_going: KeepGoing<'_>,
+) -> Result<Option<Real>, PrintError> {
     let base = patch.edge_mm;
     if !(base > 0.0 && start.is_finite()) {
-        return None;
+        return Ok(None);
     }
-    let fits = |edge: Real| print_layout(&scaled(patch, edge / base), settings).is_ok();
+    let fits = |edge: Real| -> Result<bool, PrintError> {
+        if !keep_going() {
+            return Err(PrintError::Cancelled);
+        }
+        Ok(print_layout(&scaled(patch, edge / base), settings).is_ok())
+    };
     let round = |e: Real| (e * 1000.0).ceil() / 1000.0;
     let mut lo = base;
     let mut hi = round(start.max(base));
     let mut steps = 0;
-    while !fits(hi) {
+    while !fits(hi)? {
         steps += 1;
         if steps > GROW_STEPS {
-            return None;
+            return Ok(None);
         }
         lo = hi;
         hi = round(hi * 1.05);
@@ -39,13 +56,13 @@ pub fn smallest_edge_mm(patch: &Patch, settings: &PrintSettings, start: Real) ->
         if mid >= hi {
             break;
         }
-        if fits(mid) {
+        if fits(mid)? {
             hi = mid;
         } else {
             lo = mid;
         }
     }
-    Some(hi)
+    Ok(Some(hi))
 }
 
 /// `patch` with every length scaled by `k` (without its deployment frames).
@@ -69,8 +86,15 @@ fn scaled(patch: &Patch, k: Real) -> Patch {
 }
 
 /// `e` with the smallest edge_mm that fits filled in (clashes and slabs too long for their
-/// edges); other refusals unchanged.
-pub(super) fn with_smallest(e: PrintError, patch: &Patch, settings: &PrintSettings) -> PrintError {
+/// edges); other refusals unchanged; [`PrintError::Cancelled`] when `keep_going` stops the
+/// search.
+pub(super) fn with_smallest(
+    e: PrintError,
+    patch: &Patch,
+    settings: &PrintSettings,
+    keep_going: KeepGoing<'_>,
+) -> PrintError {
+    let smallest = |start: Real| search(patch, settings, start, keep_going);
     match e {
         PrintError::PatchTooSmall {
             hinge_mm,
@@ -82,15 +106,24 @@ pub(super) fn with_smallest(e: PrintError, patch: &Patch, settings: &PrintSettin
         } => PrintError::PatchTooSmall {
             hinge_mm,
             edge_mm,
-            min_edge_mm: smallest_edge_mm(patch, settings, min_edge_mm).unwrap_or(min_edge_mm),
-            len_mm,
-            needed_mm,
-            tiles,
+        } => match smallest(min_edge_mm) {
+            Ok(found) => PrintError::PatchTooSmall {
+                hinge_mm,
+                edge_mm,
+                min_edge_mm: found.unwrap_or(min_edge_mm),
+                len_mm,
+                needed_mm,
+                tiles,
+            },
+            Err(stopped) => stopped,
         },
-        PrintError::HingeClash { tiles, other, .. } => PrintError::HingeClash {
-            tiles,
-            other,
-            min_edge_mm: smallest_edge_mm(patch, settings, patch.edge_mm * 1.05),
+        PrintError::HingeClash { tiles, other, .. } => match smallest(patch.edge_mm * 1.05) {
+            Ok(min_edge_mm) => PrintError::HingeClash {
+                tiles,
+                other,
+                min_edge_mm,
+            },
+            Err(stopped) => stopped,
         },
         e => e,
     }

@@ -11,20 +11,27 @@ use super::layout::PrintLayout;
 use super::mesh::PrintMesh;
 use super::settings::PrintSettings;
 use crate::math::Real;
+use crate::stop::KeepGoing;
 use manifold_rust::linalg::Vec2 as MVec2;
 use manifold_rust::manifold::Manifold;
 use manifold_rust::types::Error as Status;
 
-/// The united solid of `layout`.
+/// The united solid of `layout`. `keep_going` is polled before every tile's and slab's
+/// prism and before the union ([`PrintError::Cancelled`] once it says stop).
 pub fn print_solid(
     layout: &PrintLayout,
     settings: &PrintSettings,
+    keep_going: KeepGoing<'_>,
 ) -> Result<PrintMesh, PrintError> {
-    let tiles = prisms(layout.tiles.iter(), settings.thickness_mm)?;
+    let tiles = prisms(layout.tiles.iter(), settings.thickness_mm, keep_going)?;
     let slabs = prisms(
         layout.hinges.iter().map(|h| &h.polygon),
         settings.lamella_mm,
+        keep_going,
     )?;
+    if !keep_going() {
+        return Err(PrintError::Cancelled);
+    }
     let body = Manifold::compose(&tiles).union(&Manifold::compose(&slabs));
     check(&body, "union")?;
     let bodies = body.decompose().len();
@@ -71,9 +78,13 @@ pub fn print_solid(
 fn prisms<'a>(
     polygons: impl Iterator<Item = &'a Vec<[Real; 2]>>,
     height: Real,
+    keep_going: KeepGoing<'_>,
 ) -> Result<Vec<Manifold>, PrintError> {
     polygons
         .map(|poly| {
+            if !keep_going() {
+                return Err(PrintError::Cancelled);
+            }
             let outline: Vec<MVec2> = poly.iter().map(|p| MVec2::new(p[0], p[1])).collect();
             let prism = Manifold::extrude(&vec![outline], height, 0, 0.0, MVec2::new(1.0, 1.0));
             check(&prism, "extrusion")?;

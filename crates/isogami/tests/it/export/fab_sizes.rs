@@ -148,3 +148,16 @@ fn issue_23_item_12_laser_bridges_clear_both_ends_or_name_the_smallest_edge() {
     let below = laser_sheet(&patch(IH1, min_edge_mm - 0.01, State::T(0.0)), settings);
     assert!(matches!(below, Err(LaserError::PatchTooSmall { .. })));
 }
+
+#[test]
+fn a_stopped_search_for_the_smallest_size_says_cancelled_not_a_size() {
+    use isogami::export::print3d::print_sheet_until;
+    let s = PrintSettings::default();
+    let small = patch(IH88, 3.0, State::Open);
+    // Without a stop, the refusal names the smallest size (the search ran to its end) ...
+    let e = print_sheet_until(&small, &s, isogami::stop::NEVER).unwrap_err();
+    assert!(matches!(e, PrintError::PatchTooSmall { .. }), "{e}");
+    // ... stopped, it is a cancellation: no size it did not finish finding.
+    let e = print_sheet_until(&small, &s, &|| false).unwrap_err();
+    assert!(matches!(e, PrintError::Cancelled), "{e}");
+}

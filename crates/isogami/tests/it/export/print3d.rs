@@ -293,3 +293,23 @@ fn stl_and_3mf_bytes_hold_the_same_mesh() {
     assert!(model.contains(&patch.design) && model.contains("gap_mm: 0.4"));
     assert!(zip.by_name("[Content_Types].xml").is_ok() && zip.by_name("_rels/.rels").is_ok());
 }
+
+#[test]
+fn a_stop_check_stops_the_solid_before_its_first_prism() {
+    use isogami::export::export_files_until;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let patch = &closed()[0];
+    let options = ExportOptions::default();
+    // Stopped before the first prism: no file, a cancelled error.
+    let asked = AtomicUsize::new(0);
+    let stop_now = || {
+        asked.fetch_add(1, Ordering::SeqCst);
+        false
+    };
+    let e = export_files_until(Format::Stl, patch, &options, &stop_now).unwrap_err();
+    assert!(e.is_cancelled(), "{e}");
+    assert_eq!(asked.load(Ordering::SeqCst), 1, "stopped at the first poll");
+    // The same export without a stop is the file export_files writes.
+    let go_on = export_files_until(Format::Stl, patch, &options, isogami::stop::NEVER).unwrap();
+    assert_eq!(go_on, export_files(Format::Stl, patch, &options).unwrap());
+}
