@@ -141,10 +141,11 @@ pub fn check_work(cell_tiles: usize, query: &ExportQuery) -> ApiResult<()> {
 
 /// Runs the export of `query` on the blocking pool: its size checked first
 /// ([`check_work`]), then one of the `heavy` permits taken (waiting at most `timeout`, else
-/// 503 `busy`), then the library's stages — the patch (deployment polled at every step),
-/// a poll of the deadline, the format — answered by `timeout` (+ the grace of
-/// [`run_answered`]) or stopped when the caller's future is dropped (the client went
-/// away). The permit goes with the job and is released when its thread ends.
+/// 503 `busy`), then the library's stages — the patch (its deployment and completion) and
+/// the format (a print's layout and solid), each polling the deadline — answered by
+/// `timeout` (+ the grace of [`run_answered`]) or stopped when the caller's future is
+/// dropped (the client went away). The permit goes with the job and is released when its
+/// thread ends, within one step of the stop.
 pub async fn export_bounded(
     query: ExportQuery,
     timeout: Duration,
