@@ -306,13 +306,14 @@ async fn an_export_is_answered_by_its_deadline_and_its_job_stops_and_frees_its_p
     // The job polls its deadline in every stage (deployment, completion rounds, each solid),
     // so it stops soon after the answer and gives its permit back: a second export gets it
     // long before the first would have ended (it used to hold it for the whole `full`).
+    // (The second export may itself run into the short limit: any answer but `busy` says it
+    // had the permit.)
     let small = "/api/export?design=rotating-squares&format=tiles-csv&patch=1x1";
     loop {
         let reply = get(&app, small).await;
-        if reply.status == 200 {
+        if reply.status == 200 || reply.json()["kind"] != "busy" {
             break;
         }
-        assert_eq!(reply.json()["kind"], "busy", "{}", reply.text());
         assert!(
             started.elapsed() < answered + full / 2,
             "the stopped export still held its permit {:?} after it was answered (it runs {full:?})",
