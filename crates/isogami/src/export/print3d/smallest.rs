@@ -103,9 +103,6 @@ pub(super) fn with_smallest(
             len_mm,
             needed_mm,
             tiles,
-        } => PrintError::PatchTooSmall {
-            hinge_mm,
-            edge_mm,
         } => match smallest(min_edge_mm) {
             Ok(found) => PrintError::PatchTooSmall {
                 hinge_mm,
