@@ -183,8 +183,7 @@ pub async fn export_bounded(
     let (patch, files) = run_answered(left, move |deadline| {
         let _permit = permit;
         let patch = patch_at_with(&design, &query.request, &mut |_| deadline.keep_going())?;
-        let files =
-            export_files_until(format, &patch, &query.options, &|| deadline.keep_going())?;
+        let files = export_files_until(format, &patch, &query.options, &|| deadline.keep_going())?;
         Ok((patch, files))
     })
     .await

@@ -96,7 +96,9 @@ pub fn export_files_until(
                 reason: e.to_string(),
             },
         )? + "\n"),
-        Format::Stl => ExportFiles::One(print_sheet_until(patch, &options.print, keep_going)?.stl()),
+        Format::Stl => {
+            ExportFiles::One(print_sheet_until(patch, &options.print, keep_going)?.stl())
+        }
         Format::ThreeMf => ExportFiles::One(
             print_sheet_until(patch, &options.print, keep_going)?.threemf(&options.creator)?,
         ),

@@ -303,11 +303,7 @@ fn flaps(mobility: &SheetMobility) -> Vec<bool> {
         if 2 * mode.tiles.len() > n || mode.tiles.iter().any(|&t| taken[t]) {
             continue;
         }
-        let local = mode
-            .tiles
-            .iter()
-            .map(|&t| leverage[t])
-            .fold(0.0, Real::max);
+        let local = mode.tiles.iter().map(|&t| leverage[t]).fold(0.0, Real::max);
         for &t in &mode.tiles {
             taken[t] = true;
             if local > 0.0 && leverage[t] >= 0.9 * local {

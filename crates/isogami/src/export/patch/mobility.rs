@@ -1,13 +1,13 @@
 //! The sheet a patch writes — the R×C rectangle's one-DOF completion, or the rectangle
 //! itself — and what it is as a finite mechanism.
 
-use crate::stop::KeepGoing;
 use super::PatchRequest;
 use crate::api::{requested_sheet, sheet_of_trajectory, Deployment, SheetRequest};
 use crate::deploy::DeploySettings;
 use crate::export::error::ExportError;
 use crate::finite::{FiniteSheet, Region, SheetMobility};
 use crate::math::Real;
+use crate::stop::KeepGoing;
 use crate::topology::Design;
 use serde::Serialize;
 

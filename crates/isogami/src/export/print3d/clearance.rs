@@ -1,23 +1,37 @@
 //! The last check of a print plan: every lamella slab keeps the gap from every tile but
-//! its two and from every other slab, or the plan is refused (never printed fused).
+//! its two and from every other slab, or the plan is refused (never printed fused). Slabs
+//! of one pin point (a tile pinned to two others at one vertex) may meet, and may come near
+//! every tile pinned there: those tiles turn about that point, so they print as one lamella.
 
 use super::error::PrintError;
 use super::separate::{bbox, boxes_within, polygon_distance};
 use crate::math::{Real, Vec2};
 
-/// Refuses a slab closer than `gap` to a printed tile other than its two, or overlapping
-/// another slab (closer than `gap` when that slab joins other tiles).
+/// Refuses a slab closer than `gap` to a printed tile other than those pinned at its pin
+/// point, or overlapping another slab (closer than `gap` when that slab joins other tiles at
+/// another pin point). `pins` numbers every slab's pin point.
 pub(super) fn check_clearances(
     tiles: &[Vec<Vec2>],
     hinges: &[(Vec<Vec2>, [usize; 2])],
+    pins: &[usize],
     ids: &[usize],
     gap: Real,
 ) -> Result<(), PrintError> {
+    // The tiles pinned at each pin point.
+    let pinned = |pin: usize| -> Vec<usize> {
+        hinges
+            .iter()
+            .zip(pins)
+            .filter(|(_, &p)| p == pin)
+            .flat_map(|((_, pair), _)| *pair)
+            .collect()
+    };
     // Above the 1e-8 mm grid of the booleans that may have trimmed a tile (`separate`).
     let tol = 1e-7 * (1.0 + gap);
     let tile_boxes: Vec<[Real; 4]> = tiles.iter().map(|p| bbox(p)).collect();
     let hinge_boxes: Vec<[Real; 4]> = hinges.iter().map(|(p, _)| bbox(p)).collect();
     for (h, (slab, pair)) in hinges.iter().enumerate() {
+        let at_pin = pinned(pins[h]);
         let near = |b: &[Real; 4]| boxes_within(&hinge_boxes[h], b, gap);
         let clash = |other: String| PrintError::HingeClash {
             tiles: pair.map(|t| ids[t]),
@@ -25,7 +39,7 @@ pub(super) fn check_clearances(
             min_edge_mm: None,
         };
         for (t, tile) in tiles.iter().enumerate() {
-            if pair.contains(&t) || !near(&tile_boxes[t]) {
+            if at_pin.contains(&t) || !near(&tile_boxes[t]) {
                 continue;
             }
             if polygon_distance(slab, tile) < gap - tol {
@@ -33,7 +47,7 @@ pub(super) fn check_clearances(
             }
         }
         for (k, (other, other_pair)) in hinges.iter().enumerate().skip(h + 1) {
-            if !near(&hinge_boxes[k]) {
+            if !near(&hinge_boxes[k]) || (pins[k] == pins[h] && other_pair != pair) {
                 continue;
             }
             let same_pair = other_pair == pair || *other_pair == [pair[1], pair[0]];

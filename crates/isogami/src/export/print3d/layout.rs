@@ -27,7 +27,9 @@
 //!   meeting at an opened state's contacts).
 //!
 //! Every slab is then checked against every other tile and slab at the state: closer than
-//! the gap (or overlapping another slab) is refused, never printed fused.
+//! the gap (or overlapping another slab) is refused, never printed fused — except the slabs
+//! of one pin point (a tile pinned to two others at one vertex: the three turn about that
+//! point), which may meet and print as one lamella.
 
 use super::band::{convex_hull, Band};
 use super::clearance::check_clearances;
@@ -130,12 +132,17 @@ pub fn print_layout(patch: &Patch, settings: &PrintSettings) -> Result<PrintLayo
         hinge: settings.hinge_mm,
     };
     let mut hinges = Vec::with_capacity(joints.len());
+    let pin_of = pins(&joints, &index);
+    let mut pin = Vec::with_capacity(joints.len());
     // The joint whose slab needs the most room for its edge's length: (needed / length, error).
     let mut worst: Option<(Real, PrintError)> = None;
-    for joint in &joints {
+    for (j, joint) in joints.iter().enumerate() {
         let (a, b) = (index[joint.a], index[joint.b]);
         match geo.slab(a, joint.vertex_a, b, joint.vertex_b, [joint.a, joint.b]) {
-            Ok(slab) => hinges.push((slab, [a, b])),
+            Ok(slab) => {
+                hinges.push((slab, [a, b]));
+                pin.push(pin_of[j]);
+            }
             Err(PrintError::HingeTooWide {
                 hinge_mm,
                 edge_mm,
@@ -157,7 +164,7 @@ pub fn print_layout(patch: &Patch, settings: &PrintSettings) -> Result<PrintLayo
     if let Some((_, e)) = worst {
         return Err(e);
     }
-    check_clearances(&tiles, &hinges, &ids, settings.gap_mm)?;
+    check_clearances(&tiles, &hinges, &pin, &ids, settings.gap_mm)?;
     Ok(PrintLayout {
         tile_ids: ids.clone(),
         tiles: tiles.iter().map(|p| from_vec(p)).collect(),
@@ -170,6 +177,34 @@ pub fn print_layout(patch: &Patch, settings: &PrintSettings) -> Result<PrintLayo
             .collect(),
         dropped: n - ids.len(),
     })
+}
+
+/// The pin point of every joint, numbered: joints that share a vertex of a tile are one pin
+/// (found from tile and vertex indices, never from positions). Where a tile is pinned to two
+/// others at one vertex, those three turn about one point, so their slabs may meet there and
+/// print as one lamella (IH31's and IH32's closed cells pin three tiles at a corner).
+fn pins(joints: &[&crate::export::PatchJoint], index: &[usize]) -> Vec<usize> {
+    use std::collections::HashMap;
+    let mut parent: Vec<usize> = (0..joints.len()).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let mut first: HashMap<(usize, usize), usize> = HashMap::new();
+    for (j, joint) in joints.iter().enumerate() {
+        for key in [
+            (index[joint.a], joint.vertex_a),
+            (index[joint.b], joint.vertex_b),
+        ] {
+            let other = *first.entry(key).or_insert(j);
+            let (x, y) = (root(&mut parent, j), root(&mut parent, other));
+            parent[x.max(y)] = x.min(y);
+        }
+    }
+    (0..joints.len()).map(|j| root(&mut parent, j)).collect()
 }
 
 /// The refusal of a slab that does not fit on its edge: every length a slab needs is fixed in

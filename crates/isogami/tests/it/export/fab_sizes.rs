@@ -161,3 +161,62 @@ fn a_stopped_search_for_the_smallest_size_says_cancelled_not_a_size() {
     let e = print_sheet_until(&small, &s, &|| false).unwrap_err();
     assert!(matches!(e, PrintError::Cancelled), "{e}");
 }
+
+#[test]
+fn tiles_pinned_at_one_corner_print_with_one_lamella_there() {
+    // IH31's and IH32's cells pin a tile to two others at one vertex: the two slabs meet
+    // inside that tile. They were refused as a clash "no larger patch fixes", advising a
+    // narrower hinge, which does not fix it either.
+    let s = PrintSettings::default();
+    for spec in ["IH31::1x1:-baaaaabbb-a", "IH32::1x1:-baabbbaaaa-"] {
+        for state in [State::T(0.0), State::Open] {
+            let request = PatchRequest {
+                rows: 2,
+                cols: 2,
+                scale: Scale::EdgeMm(20.0),
+                state,
+                complete: false,
+                ..PatchRequest::default()
+            };
+            let patch = patch_at(&resolve_design(spec).unwrap(), &request).unwrap();
+            let sheet = print_sheet(&patch, &s).unwrap_or_else(|e| panic!("{spec}: {e}"));
+            // Tiles keep the gap from each other (measured here with geo), and every slab
+            // is a full hinge wide.
+            let gap = smallest_gap(&sheet.layout);
+            assert!(
+                gap >= s.gap_mm * (1.0 - 1e-6),
+                "{spec}: tiles {gap} mm apart"
+            );
+            assert!(narrowest_slab(&sheet.layout) >= s.hinge_mm * (1.0 - 1e-9));
+            // Slabs of two pairs come within the gap of each other only where their pins are
+            // one point (measured on the exported pin positions).
+            let pin = |pair: [usize; 2]| {
+                patch
+                    .joints
+                    .iter()
+                    .find(|j| [j.a, j.b] == pair || [j.b, j.a] == pair)
+                    .map(|j| j.point_mm)
+                    .unwrap()
+            };
+            let slabs = &sheet.layout.hinges;
+            let mut met = 0;
+            for (i, x) in slabs.iter().enumerate() {
+                for y in &slabs[..i] {
+                    let d = Euclidean.distance(&polygon(&x.polygon), &polygon(&y.polygon));
+                    if d < s.gap_mm * (1.0 - 1e-6) {
+                        let (p, q) = (pin(x.tiles), pin(y.tiles));
+                        let apart = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt();
+                        assert!(
+                            apart < 1e-9 * patch.size_mm[0],
+                            "{spec}: slabs {:?} and {:?} {d} mm apart, pins {apart} mm apart",
+                            x.tiles,
+                            y.tiles
+                        );
+                        met += 1;
+                    }
+                }
+            }
+            assert!(met > 0, "{spec}: the cell pins three tiles at a corner");
+        }
+    }
+}
