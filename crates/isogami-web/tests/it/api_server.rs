@@ -251,39 +251,44 @@ async fn exports_too_large_for_the_server_are_422_before_any_work() {
     assert_eq!(reply.status, 200, "{}", reply.text());
 }
 
-/// An export of `uri` (a completed 5×5 STL) takes at least `shortest` in the library alone: the fastest of three runs, so that caches warmed
-/// by the first run do not make the server's run shorter than the figure the test relies on.
-fn stage_bound_export() -> (String, Duration) {
-    let design = resolve_design("IH88::1x1:bbbaabbab").unwrap();
-    let request = PatchRequest {
-        rows: 5,
-        cols: 5,
-        ..PatchRequest::default()
+/// An export whose completion is most of its work: IH9's 16×16 rectangle (about 1,000
+/// tiles, under the server's cap) pruned round after round (to a refusal: it keeps less than
+/// half the region). Returns its URI, the time of the same export raw (deployment and counts
+/// alone) and completed, in the library.
+fn completion_bound_export() -> (String, Duration, Duration) {
+    let spec = "IH9:0.04739750492,0.35,0.225335752741:1x2:--aaabb--aa-";
+    let design = resolve_design(spec).unwrap();
+    let time = |complete: bool| {
+        let request = PatchRequest {
+            rows: 16,
+            cols: 16,
+            complete,
+            ..PatchRequest::default()
+        };
+        let started = Instant::now();
+        let _ = export_design(
+            &design,
+            &request,
+            Format::TilesCsv,
+            &ExportOptions::default(),
+            &mut |_| true,
+        );
+        started.elapsed()
     };
-    let shortest = (0..3)
-        .map(|_| {
-            let started = Instant::now();
-            let _ = export_design(
-                &design,
-                &request,
-                Format::Stl,
-                &ExportOptions::default(),
-                &mut |_| true,
-            );
-            started.elapsed()
-        })
-        .min()
-        .unwrap();
+    let raw = time(false);
+    let full = time(true);
     (
-        "/api/export?design=IH88::1x1:bbbaabbab&format=stl&patch=5x5".into(),
-        shortest,
+        format!("/api/export?design={spec}&format=tiles-csv&patch=16x16"),
+        raw,
+        full,
     )
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn an_export_is_answered_by_its_deadline_and_its_job_stops_and_frees_its_permit() {
-    let (uri, full) = stage_bound_export();
-    let timeout = (full / 8).max(Duration::from_millis(20));
+    let (uri, raw, full) = completion_bound_export();
+    // A deadline inside the completion.
+    let timeout = raw + full.saturating_sub(raw) / 8;
     let app = app_with(
         &catalogue().db,
         ServerSettings {
@@ -303,23 +308,20 @@ async fn an_export_is_answered_by_its_deadline_and_its_job_stops_and_frees_its_p
         answered < timeout * 5 + Duration::from_millis(500),
         "answered after {answered:?} with a {timeout:?} limit (the export alone takes {full:?})"
     );
-    // The job polls its deadline in every stage (deployment, completion rounds, each solid),
-    // so it stops soon after the answer and gives its permit back: a second export gets it
-    // long before the first would have ended (it used to hold it for the whole `full`).
-    // (The second export may itself run into the short limit: any answer but `busy` says it
-    // had the permit.)
+    // The completion polls the deadline every pruning round, so the job stops by itself and
+    // gives its permit back before it answers: the next export gets the permit at once. (It
+    // used to run its completion to the end, holding the permit up to `full`, and a second
+    // export waiting `timeout` for it was told the server is busy.) That export may itself
+    // run into the short limit: any answer but `busy` says it had the permit.
     let small = "/api/export?design=rotating-squares&format=tiles-csv&patch=1x1";
-    loop {
-        let reply = get(&app, small).await;
-        if reply.status == 200 || reply.json()["kind"] != "busy" {
-            break;
-        }
-        assert!(
-            started.elapsed() < answered + full / 2,
-            "the stopped export still held its permit {:?} after it was answered (it runs {full:?})",
-            started.elapsed() - answered
-        );
-    }
+    let reply = get(&app, small).await;
+    assert!(
+        reply.status == 200 || reply.json()["kind"] != "busy",
+        "the stopped export still held its permit {:?} after it was answered (the export \
+         takes {full:?}, {raw:?} raw, limit {timeout:?}): {}",
+        started.elapsed() - answered,
+        reply.text()
+    );
 }
 
 #[test]
