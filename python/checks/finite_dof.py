@@ -372,6 +372,28 @@ def fmt_gap(g):
     return "inf" if math.isinf(g) else f"{g:.1f}"
 
 
+def completion_table(done, errors):
+    """What completion did over the compared sheets, and why the others have none (the
+    export's refusal, grouped by its reason with the numbers taken out)."""
+    comp = [r["completion"] for r in done if "completion" in r]
+    if comp:
+        covered = sorted(c["covered"] for c in comp)
+        whole = sum(1 for c in comp if c["removed"] == 0 and c["added"] == 0)
+        pruned = sum(1 for c in comp if c["removed"] > 0)
+        grown = sum(1 for c in comp if c["grown"])
+        print(f"# completion: {len(comp)} sheets; {whole} the whole region as it is, {pruned} "
+              f"pruned, {grown} grown first; covered fraction median "
+              f"{covered[len(covered) // 2]:.3f}, worst {covered[0]:.3f}")
+    reasons = {}
+    for r in errors:
+        text = r["error"].split("no one-DOF sheet in this region: ")[-1]
+        kind = ("isostatic cell (3n − 2p = 0): every finite sheet flops along its boundary"
+                if "3n − 2p = 0" in text else re.sub(r"[0-9.]+", "N", text.split(";")[0]))
+        reasons[kind] = reasons.get(kind, 0) + 1
+    for kind, count in sorted(reasons.items(), key=lambda kv: -kv[1]):
+        print(f"# no one-DOF sheet: {count} × {kind}")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--bin", required=True, help="the isogami binary")
@@ -448,6 +470,8 @@ def main(argv=None):
             hist[key] = hist.get(key, 0) + 1
         print("# (dof_numpy, dof_isogami): count  " +
               ", ".join(f"{k}: {v}" for k, v in sorted(hist.items())))
+    if opts.completed:
+        completion_table(done, errors)
     for r in disagree:
         flag = "" if opts.completed else " --raw"
         print(f"# disagree: {r['spec']}  numpy {r['numpy']['dof_one_frame']} "

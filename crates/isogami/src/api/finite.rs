@@ -109,23 +109,7 @@ pub fn finite_sheet(
     request: &SheetRequest,
     progress: Progress<'_>,
 ) -> Result<SheetAnalysis> {
-    request.validate()?;
-    let (cell, mech) = assemble(design)?;
-    // The region is made and checked before the deployment, which costs more.
-    let requested = requested_sheet(&cell, &mech, request)?;
-    let path = deploy_path(design, &request.settings, &mut *progress)?;
-    let states = path.trajectory.steps.len();
-    watched(progress, states, |keep_going| {
-        sheet_of_trajectory(
-            design,
-            &cell,
-            &mech,
-            &path.trajectory,
-            request,
-            requested,
-            keep_going,
-        )
-    })
+    Ok(deployed_sheet(design, request, progress)?.2)
 }
 
 /// What the finite deployment and the pull start from: the design's mechanism, its periodic
@@ -144,8 +128,18 @@ pub(crate) fn sheet_on_its_path(
         ))
         .into());
     }
+    deployed_sheet(design, request, progress)
+}
+
+/// [`finite_sheet`] with the mechanism and the periodic deployment it was counted on.
+fn deployed_sheet(
+    design: &Design,
+    request: &SheetRequest,
+    progress: Progress<'_>,
+) -> Result<(Mechanism, super::DeployedPath, SheetAnalysis)> {
     request.validate()?;
     let (cell, mech) = assemble(design)?;
+    // The region is made and checked before the deployment, which costs more.
     let requested = requested_sheet(&cell, &mech, request)?;
     let path = deploy_path(design, &request.settings, &mut *progress)?;
     let states = path.trajectory.steps.len();
