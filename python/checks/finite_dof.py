@@ -189,6 +189,9 @@ class DofCount:
     # Largest distance between the two vertices of a pin, over the mean edge length.
     pin_residual: float
     mean_edge_mm: float
+    # "svd": numpy's dense SVD of J; "sparse": the smallest eigenvalues of JᵀJ by block
+    # inverse iteration on scipy's SuperLU factor, for sheets too large for a dense SVD.
+    method: str = "svd"
 
     @property
     def dof_one_frame(self):
@@ -203,24 +206,90 @@ class DofCount:
         return self.gap_decades < MIN_GAP_DECADES
 
 
-def count_dof(polys, pins, rel_tol=REL_TOL):
-    """Free-boundary degrees of freedom of tiles `polys` joined by `pins` (see the module docs)."""
+# The rank threshold of the sparse method (relative singular value). It works on JᵀJ, whose
+# rounding floor is about eps times its largest eigenvalue, i.e. sqrt(eps) ~ 1.5e-8 in singular
+# values: the threshold sits two decades above that, and two below the smallest non-zero
+# singular value seen on any completed sheet (1.3e-4).
+SPARSE_REL_TOL = 1e-6
+
+# Sheets with more unknowns than this are counted by the sparse method (a dense SVD of a
+# 10x10 sheet of a large cell, ~3000 columns, takes half a minute).
+DENSE_MAX_COLUMNS = 1500
+
+
+def sparse_jacobian(polys, pins, scale):
+    """The Jacobian of `constraint_jacobian`, as a scipy CSR matrix."""
+    from scipy.sparse import coo_matrix
+
+    centres = [area_centroid(p) for p in polys]
+    rows, cols, vals = [], [], []
+    for r, (a, va, b, vb) in enumerate(pins):
+        for tile, vertex, sign in ((a, va, 1.0), (b, vb, -1.0)):
+            rx, ry = (polys[tile][vertex] - centres[tile]) / scale
+            c = 3 * tile
+            rows += [2 * r, 2 * r + 1, 2 * r, 2 * r + 1]
+            cols += [c, c + 1, c + 2, c + 2]
+            vals += [sign, sign, -sign * ry, sign * rx]
+    return coo_matrix((vals, (rows, cols)), shape=(2 * len(pins), 3 * len(polys))).tocsr()
+
+
+def small_singular_values(jac, seed=0):
+    """(largest singular value, the smallest ones ascending) of sparse `jac`: square roots of
+    JᵀJ's eigenvalues, the largest by Lanczos, the smallest by block inverse iteration — a
+    random block solved six times with a SuperLU factor of JᵀJ + εI (ε = 1e-12 of the largest
+    eigenvalue, so the factor exists; a kernel direction grows by (λ + ε)/ε per solve against
+    a mode of eigenvalue λ, 1e4 for the smallest non-zero ones seen, λ ~ 1e-8 of the largest),
+    orthonormalised after each, then Rayleigh–Ritz. A block, not Lanczos: the kernel is a
+    multiple eigenvalue, and single-vector Lanczos finds a multiple eigenvalue once. The
+    block doubles until it holds at least two values above the rank threshold."""
+    from scipy.sparse import identity
+    from scipy.sparse.linalg import eigsh, splu
+
+    gram = (jac.T @ jac).tocsc()
+    size = gram.shape[0]
+    top = float(eigsh(gram, k=1, which="LA", return_eigenvectors=False)[0])
+    lu = splu((gram + 1e-12 * top * identity(size, format="csc")).tocsc())
+    rng = np.random.default_rng(seed)
+    k = 8
+    while True:
+        k = min(k, size)
+        x = rng.standard_normal((size, k))
+        for _ in range(6):
+            x, _ = np.linalg.qr(lu.solve(x))
+        ritz = x.T @ (gram @ x)
+        vals = np.clip(np.linalg.eigvalsh(0.5 * (ritz + ritz.T)), 0.0, None)
+        if (np.sqrt(vals / top) > SPARSE_REL_TOL).sum() >= 2 or k == size:
+            return math.sqrt(top), np.sqrt(vals)
+        k *= 2
+
+
+def count_dof(polys, pins, rel_tol=REL_TOL, method=None):
+    """Free-boundary degrees of freedom of tiles `polys` joined by `pins` (see the module docs).
+    `method` "svd" (numpy's dense SVD) or "sparse" (`small_singular_values`); by default the
+    dense SVD up to DENSE_MAX_COLUMNS unknowns."""
     n = len(polys)
     scale = mean_edge_length(polys)
     residual = max(
         (float(np.linalg.norm(polys[a][va] - polys[b][vb])) / scale for a, va, b, vb in pins),
         default=0.0,
     )
-    jac = constraint_jacobian(polys, pins, scale)
     pieces = pieces_of(n, pins)
-    if jac.size == 0:
+    if not pins:
         return DofCount(n, len(pins), pieces, 0, 3 * n - 3 * pieces, 0.0, 0.0, math.inf,
                         math.inf, residual, scale)
-    s = np.linalg.svd(jac, compute_uv=False)
-    s_max = float(s[0])
-    rel = s / s_max if s_max > 0 else s
-    nonzero = rel > rel_tol
-    rank = int(nonzero.sum())
+    method = method or ("svd" if 3 * n <= DENSE_MAX_COLUMNS else "sparse")
+    if method == "svd":
+        s = np.linalg.svd(constraint_jacobian(polys, pins, scale), compute_uv=False)
+        s_max = float(s[0])
+        rel = s / s_max if s_max > 0 else s
+        nonzero = rel > rel_tol
+        rank = int(nonzero.sum())
+    else:
+        s_max, small = small_singular_values(sparse_jacobian(polys, pins, scale))
+        rel = small / s_max
+        nonzero = rel > max(rel_tol, SPARSE_REL_TOL)
+        # The values not computed are all above the smallest computed non-zero one.
+        rank = 3 * n - int((~nonzero).sum())
     largest_zero = float(rel[~nonzero].max()) if (~nonzero).any() else 0.0
     smallest_nonzero = float(rel[nonzero].min()) if nonzero.any() else 0.0
     if largest_zero > 0 and smallest_nonzero > 0:
@@ -229,7 +298,7 @@ def count_dof(polys, pins, rel_tol=REL_TOL):
         gap = math.inf
     dof = 3 * n - rank - 3 * pieces
     return DofCount(n, len(pins), pieces, rank, dof, s_max, largest_zero, smallest_nonzero,
-                    gap, residual, scale)
+                    gap, residual, scale, method)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -154,3 +154,17 @@ def test_completed_sheet_dof_matches_isogami_sheet(isogami, tmp_path, design):
     assert row["numpy"]["dof_one_frame"] == 1, row
     assert row["numpy"]["dof_one_frame"] == row["isogami"]["dof"], row
     assert row["numpy"]["gap_decades"] >= fd.MIN_GAP_DECADES, row
+
+
+@pytest.mark.parametrize("design,completed", [
+    ("IH44:0.5,0.027564102564:1x2:-aaabbaa", False),  # raw: 15 extra modes, k doubles
+    ("IH9:0.04739750492,0.35,0.225335752741:1x2:--aaabb--aa-", True),
+])
+def test_the_sparse_count_equals_the_dense_svd(isogami, tmp_path, design, completed):
+    polys, pins, _ = fd.export_sheet(isogami, design, "4x4", T, tmp_path, completed=completed)
+    dense = fd.count_dof(polys, pins, method="svd")
+    sparse = fd.count_dof(polys, pins, method="sparse")
+    assert (sparse.rank, sparse.dof, sparse.method) == (dense.rank, dense.dof, "sparse")
+    assert sparse.gap_decades > fd.MIN_GAP_DECADES
+    # The same smallest non-zero singular value, to the solvers' accuracy.
+    assert abs(sparse.smallest_nonzero / dense.smallest_nonzero - 1) < 1e-6
