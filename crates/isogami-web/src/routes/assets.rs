@@ -40,3 +40,10 @@ pub async fn asset(method: Method, uri: Uri) -> Response {
             .into_response(),
     }
 }
+
+/// `data/site.json` of the server: the file a page fetches first to learn its mode (a static
+/// site from `isogami site` holds its own, `"mode": "static"`, with the catalogue's data),
+/// answered here so that no page logs a 404 in server mode.
+pub async fn server_mode() -> axum::Json<serde_json::Value> {
+    axum::Json(serde_json::json!({ "mode": "server" }))
+}

@@ -24,6 +24,7 @@
 //! | `GET /api/inverse/{id}` | its state, progress, leaders, result |
 //! | `DELETE /api/inverse/{id}` | stop it |
 //! | `POST /api/inverse/{id}/save` | save its refined designs as user designs |
+//! | `GET /data/site.json` | `{"mode": "server"}`: what a page asks first (a static site's file says `static`) |
 
 mod assets;
 mod catalogue;
@@ -75,6 +76,7 @@ pub fn router(state: AppState) -> Router {
         .method_not_allowed_fallback(|| async { ApiError::method_not_allowed() });
     Router::new()
         .nest("/api", api)
+        .route("/data/site.json", get(assets::server_mode))
         .fallback(assets::asset)
         .layer(DefaultBodyLimit::max(limit))
         .layer(middleware::from_fn_with_state(bodies, bounded_body))

@@ -349,3 +349,14 @@ async fn embedded_front_end_is_served_as_built() {
     assert_eq!(root.body, index);
     assert!(root.content_type.starts_with("text/html"));
 }
+
+#[tokio::test]
+async fn the_server_says_its_mode_where_a_page_looks_first() {
+    // Every page fetches ./data/site.json first (a static site's file says "static"); the
+    // server answers it, so no page logs a 404 in server mode (issue 24 item 8).
+    let app = app();
+    let reply = get(&app, "/data/site.json").await;
+    assert_eq!(reply.status, StatusCode::OK);
+    assert!(reply.content_type.starts_with("application/json"));
+    assert_eq!(reply.json()["mode"], "server");
+}

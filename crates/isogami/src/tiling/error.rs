@@ -36,7 +36,12 @@ pub enum TilingError {
         value: Real,
     },
     /// Shape parameters that give an unusable tile.
-    #[error("{family} with parameters [{}]: {culprit} give(s) a {problem}", format_params(.params))]
+    #[error(
+        "{family} with parameters [{}]: {culprit} {} {} {problem}",
+        format_params(.params),
+        .culprit.verb(),
+        .problem.article()
+    )]
     InvalidShape {
         /// The family.
         family: Family,
@@ -58,6 +63,27 @@ pub enum Culprit {
     Alone(Vec<(usize, Real)>),
     /// None breaks it alone; these changed parameters do together.
     Together(Vec<(usize, Real)>),
+}
+
+impl Culprit {
+    /// "gives" for one parameter, "give" for several or the default parameters.
+    pub fn verb(&self) -> &'static str {
+        match self {
+            Culprit::Alone(ix) | Culprit::Together(ix) if ix.len() == 1 => "gives",
+            _ => "give",
+        }
+    }
+}
+
+impl ShapeProblem {
+    /// "an" before a problem whose text starts with a vowel ("an inverted tile"), else "a".
+    pub fn article(&self) -> &'static str {
+        let text = self.to_string();
+        match text.chars().next() {
+            Some('a' | 'e' | 'i' | 'o' | 'u') => "an",
+            _ => "a",
+        }
+    }
 }
 
 impl fmt::Display for Culprit {
@@ -108,5 +134,40 @@ impl fmt::Display for ShapeProblem {
                 "tiling whose tiles overlap (tiles cover {covered:.6} per lattice cell of area {lattice:.6})"
             ),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_invalid_shape_reads_as_english() {
+        let error = |culprit, problem| {
+            TilingError::InvalidShape {
+                family: Family::from_number(28).unwrap(),
+                params: vec![0.1, 0.2],
+                culprit,
+                problem,
+            }
+            .to_string()
+        };
+        let one = error(Culprit::Alone(vec![(1, 0.2)]), ShapeProblem::Inverted);
+        assert!(
+            one.ends_with(
+                "parameter v1=0.2 gives an inverted tile (its vertices run the other way round)"
+            ),
+            "{one}"
+        );
+        let two = error(
+            Culprit::Together(vec![(0, 0.1), (1, 0.2)]),
+            ShapeProblem::Degenerate,
+        );
+        assert!(two.contains("together give a degenerate tile"), "{two}");
+        let defaults = error(Culprit::Defaults, ShapeProblem::Degenerate);
+        assert!(
+            defaults.contains("the default parameters give a degenerate"),
+            "{defaults}"
+        );
     }
 }
