@@ -279,9 +279,11 @@ fn prune(
 /// the sheet) whose moving tiles are apart from every mode already taken: its tiles taking
 /// the largest share of the extra modes within it (ties within 10 %).
 ///
-/// A round that took only the global top would peel one flap at a time, each round a fresh
-/// factorisation (a 10×10 sheet's boundary has dozens of flaps); flaps that share no moving
-/// tile are independent, so dropping them together removes what rounds one by one would.
+/// A round that took only the global top peels one flap at a time, each round a fresh
+/// factorisation; where several flaps that share no moving tile are floppy at once they go
+/// together (IH44's 10×10 completion: 70 → 37 ms). Flaps apart are independent to first
+/// order; over the default exploration's 792 designs the catalogue's 6×6 figures are the same
+/// as with one flap per round (587 complete, 410 of them whole, worst share 0.792).
 fn flaps(mobility: &SheetMobility) -> Vec<bool> {
     let leverage = &mobility.leverage;
     let n = leverage.len();
