@@ -17,21 +17,17 @@ pub(super) fn check_clearances(
     ids: &[usize],
     gap: Real,
 ) -> Result<(), PrintError> {
-    // The tiles pinned at each pin point.
-    let pinned = |pin: usize| -> Vec<usize> {
-        hinges
-            .iter()
-            .zip(pins)
-            .filter(|(_, &p)| p == pin)
-            .flat_map(|((_, pair), _)| *pair)
-            .collect()
-    };
+    // The tiles pinned at each pin point, collected once.
+    let mut at: std::collections::HashMap<usize, Vec<usize>> = std::collections::HashMap::new();
+    for ((_, pair), &pin) in hinges.iter().zip(pins) {
+        at.entry(pin).or_default().extend(pair);
+    }
     // Above the 1e-8 mm grid of the booleans that may have trimmed a tile (`separate`).
     let tol = 1e-7 * (1.0 + gap);
     let tile_boxes: Vec<[Real; 4]> = tiles.iter().map(|p| bbox(p)).collect();
     let hinge_boxes: Vec<[Real; 4]> = hinges.iter().map(|(p, _)| bbox(p)).collect();
     for (h, (slab, pair)) in hinges.iter().enumerate() {
-        let at_pin = pinned(pins[h]);
+        let at_pin = &at[&pins[h]];
         let near = |b: &[Real; 4]| boxes_within(&hinge_boxes[h], b, gap);
         let clash = |other: String| PrintError::HingeClash {
             tiles: pair.map(|t| ids[t]),
