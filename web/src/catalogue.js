@@ -6,7 +6,7 @@
 
 import { openData } from './data.js';
 import { h, fmt, showNotice, clearNotice, debounce } from './dom.js';
-import { createScatter } from './plots.js';
+import { createScatter } from './scatter.js';
 import {
   FACETS, MEASURES, MAIN_MEASURES, TEXT_SORT_KEYS, facetLabel, facetText, measureLabel,
 } from './schema.js';

@@ -1,8 +1,6 @@
-// Plots drawn with d3: the catalogue's scatter of two measures (points on a <canvas> so that
-// 10^4 designs stay smooth, hover found with a d3 quadtree in pixel space, axes in SVG), the
-// line plot of min/max principal expansion versus t with a marker at the current t, and the
-// polar profile of the stretch U at the current t. Each returns a small object with update
-// methods; none fetches data.
+// Plots drawn with d3: the line plot of min/max principal expansion versus t with a marker at
+// the current t, and the polar profile of the stretch U at the current t (the catalogue's
+// scatter is in scatter.js). Each returns a small object with update methods; none fetches data.
 
 import * as d3 from 'd3';
 
@@ -20,10 +18,6 @@ function padDomain([lo, hi]) {
   return [lo - pad, hi + pad];
 }
 
-/**
- * Scatter plot of `{spec, x, y}` points. `onClick(point)` opens a design; `describe(point)`
- * fills the hover tooltip element.
- */
 /** The x label under the plot and the y label turned along its left side. */
 function axisLabels(svg, width, h, xLabel, yLabel) {
   svg
@@ -39,121 +33,6 @@ function axisLabels(svg, width, h, xLabel, yLabel) {
     .attr('transform', `translate(14,${(MARGIN.top + h - MARGIN.bottom) / 2}) rotate(-90)`)
     .attr('text-anchor', 'middle')
     .text(yLabel);
-}
-
-export function createScatter(container, { onClick, describe, height = 340 }) {
-  container.classList.add('plot', 'scatter');
-  const svg = d3.select(container).append('svg').attr('aria-hidden', 'true');
-  const canvas = document.createElement('canvas');
-  canvas.setAttribute('role', 'img');
-  canvas.dataset.testid = 'scatter-canvas';
-  container.append(canvas);
-  const tip = document.createElement('div');
-  tip.className = 'tooltip';
-  tip.hidden = true;
-  tip.dataset.testid = 'scatter-tooltip';
-  container.append(tip);
-  let tree = null;
-  let state = { points: [], sx: null, sy: null, hovered: null, xLabel: '', yLabel: '' };
-
-  function draw() {
-    const { width, height: h } = size(container, height);
-    const { points, xLabel, yLabel } = state;
-    const sx = d3
-      .scaleLinear()
-      .domain(padDomain(d3.extent(points, (p) => p.x)))
-      .range([MARGIN.left, width - MARGIN.right])
-      .nice();
-    const sy = d3
-      .scaleLinear()
-      .domain(padDomain(d3.extent(points, (p) => p.y)))
-      .range([h - MARGIN.bottom, MARGIN.top])
-      .nice();
-    state.sx = sx;
-    state.sy = sy;
-    svg.attr('width', width).attr('height', h).attr('viewBox', `0 0 ${width} ${h}`);
-    svg.selectAll('*').remove();
-    svg
-      .append('g')
-      .attr('transform', `translate(0,${h - MARGIN.bottom})`)
-      .call(d3.axisBottom(sx).ticks(Math.max(2, Math.floor(width / 90))));
-    svg.append('g').attr('transform', `translate(${MARGIN.left},0)`).call(d3.axisLeft(sy).ticks(6));
-    axisLabels(svg, width, h, xLabel, yLabel);
-    const ratio = window.devicePixelRatio || 1;
-    canvas.width = Math.round(width * ratio);
-    canvas.height = Math.round(h * ratio);
-    canvas.style.width = `${width}px`;
-    canvas.style.height = `${h}px`;
-    canvas.setAttribute('aria-label', `scatter of ${points.length} designs: ${yLabel} against ${xLabel}`);
-    const ctx = canvas.getContext('2d');
-    ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
-    ctx.clearRect(0, 0, width, h);
-    const r = points.length > 3000 ? 2 : 3;
-    ctx.fillStyle = 'rgba(31, 95, 168, 0.6)';
-    for (const p of points) {
-      ctx.beginPath();
-      ctx.arc(sx(p.x), sy(p.y), r, 0, 2 * Math.PI);
-      ctx.fill();
-    }
-    if (state.hovered) {
-      ctx.strokeStyle = '#c0392b';
-      ctx.lineWidth = 2;
-      ctx.beginPath();
-      ctx.arc(sx(state.hovered.x), sy(state.hovered.y), r + 4, 0, 2 * Math.PI);
-      ctx.stroke();
-    }
-    tree = d3
-      .quadtree()
-      .x((p) => sx(p.x))
-      .y((p) => sy(p.y))
-      .addAll(points);
-  }
-
-  function pick(event) {
-    if (!tree) return null;
-    const rect = canvas.getBoundingClientRect();
-    return tree.find(event.clientX - rect.left, event.clientY - rect.top, 10) || null;
-  }
-
-  canvas.addEventListener('mousemove', (event) => {
-    const p = pick(event);
-    if (p !== state.hovered) {
-      state.hovered = p;
-      draw();
-    }
-    if (p) {
-      const rect = container.getBoundingClientRect();
-      describe(p, tip);
-      tip.hidden = false;
-      const left = event.clientX - rect.left + 14;
-      tip.style.left = `${Math.min(left, rect.width - 220)}px`;
-      tip.style.top = `${event.clientY - rect.top + 14}px`;
-      canvas.style.cursor = 'pointer';
-    } else {
-      tip.hidden = true;
-      canvas.style.cursor = 'default';
-    }
-  });
-  canvas.addEventListener('mouseleave', () => {
-    tip.hidden = true;
-    if (state.hovered) {
-      state.hovered = null;
-      draw();
-    }
-  });
-  canvas.addEventListener('click', (event) => {
-    const p = pick(event);
-    if (p) onClick(p);
-  });
-  new ResizeObserver(() => draw()).observe(container);
-
-  return {
-    update(points, xLabel, yLabel) {
-      state = { ...state, points, xLabel, yLabel, hovered: null };
-      tip.hidden = true;
-      draw();
-    },
-  };
 }
 
 /**
