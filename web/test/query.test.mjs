@@ -76,5 +76,6 @@ test('pages and scatter', () => {
   assert.deepEqual(p.rows.map((r) => r.spec), ['D']);
   const pts = scatter(rows, emptyCatalogueState(), 'max_expansion', 'poisson_max');
   assert.deepEqual(pts.map((x) => x.spec), ['B', 'C', 'D']);
-  assert.deepEqual(pts[0], { spec: 'B', x: 0.3, y: -0.5 });
+  assert.deepEqual(pts[0], { spec: 'B', x: 0.3, y: -0.5, family: 'IH2', behaviour: null });
+  assert.deepEqual(pts[2], { spec: 'D', x: 0.1, y: -0.5, family: 'IH10', behaviour: 'orthotropic_positive_poisson' });
 });

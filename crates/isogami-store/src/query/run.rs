@@ -145,21 +145,42 @@ impl Store {
         let (cx, cy) = (x.column()?, y.column()?);
         w.push(format!("{cx} IS NOT NULL AND {cy} IS NOT NULL"), []);
         let sql = format!(
-            "SELECT spec, {cx}, {cy} FROM designs {} ORDER BY id LIMIT ?",
+            "SELECT spec, {cx}, {cy}, family, behaviour FROM designs {} ORDER BY id LIMIT ?",
             w.sql()
         );
         let mut params = w.params.clone();
         params.push(Value::Integer(i64::from(limit)));
         let mut stmt = self.conn.prepare_cached(&sql)?;
-        let points = stmt
+        let rows = stmt
             .query_map(params_from_iter(params.iter()), |r| {
-                Ok(ScatterPoint {
-                    spec: r.get(0)?,
-                    x: r.get(1)?,
-                    y: r.get(2)?,
-                })
+                Ok((
+                    r.get::<_, String>(0)?,
+                    r.get::<_, f64>(1)?,
+                    r.get::<_, f64>(2)?,
+                    r.get::<_, Value>(3)?,
+                    r.get::<_, Value>(4)?,
+                ))
             })?
-            .collect::<Result<_, _>>()?;
-        Ok(points)
+            .collect::<Result<Vec<_>, _>>()?;
+        rows.into_iter()
+            .map(|(spec, x, y, family, behaviour)| {
+                let unread = || StoreError::Damaged(format!("{spec}: family or behaviour unread"));
+                let family = match facet_value(Facet::Family, family)? {
+                    FacetValue::Family(f) => f,
+                    _ => return Err(unread()),
+                };
+                let behaviour = match facet_value(Facet::Behaviour, behaviour)? {
+                    FacetValue::Behaviour(b) => b,
+                    _ => return Err(unread()),
+                };
+                Ok(ScatterPoint {
+                    spec,
+                    x,
+                    y,
+                    family,
+                    behaviour,
+                })
+            })
+            .collect()
     }
 }

@@ -417,7 +417,7 @@ pub struct Page {
     pub rows: Vec<DesignSummary>,
 }
 
-/// One design as a point of a scatter plot.
+/// One design as a point of a scatter plot, with what a plot colours it by.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ScatterPoint {
     /// Spec.
@@ -426,6 +426,10 @@ pub struct ScatterPoint {
     pub x: f64,
     /// y value.
     pub y: f64,
+    /// Tiling family.
+    pub family: Family,
+    /// Behaviour class (None when the sheet does not expand).
+    pub behaviour: Option<BehaviourClass>,
 }
 
 /// A query that cannot be run.

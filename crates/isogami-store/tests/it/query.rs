@@ -331,8 +331,8 @@ fn scatter_points_are_the_filtered_designs_that_have_both_measures() {
         assert_eq!(points.len(), expected.len());
         for (p, d) in points.iter().zip(expected) {
             assert_eq!(
-                (&p.spec, Some(p.x), Some(p.y)),
-                (&d.spec, measure(d, x), measure(d, y))
+                (&p.spec, Some(p.x), Some(p.y), p.family, p.behaviour),
+                (&d.spec, measure(d, x), measure(d, y), d.family, d.behaviour)
             );
         }
         assert_eq!(s.scatter(&q, x, y, 3).unwrap().len(), points.len().min(3));
