@@ -68,6 +68,7 @@ fn _isogami(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(shape::shape_mobility, m)?)?;
     m.add_function(wrap_pyfunction!(shape::follow_shape, m)?)?;
     m.add_function(wrap_pyfunction!(shape::rank_drop_shape, m)?)?;
+    m.add_function(wrap_pyfunction!(shape::param_ranges_of, m)?)?;
     m.add_function(wrap_pyfunction!(finite::finite_sheet, m)?)?;
     m.add_function(wrap_pyfunction!(finite::deploy_sheet, m)?)?;
     m.add_function(wrap_pyfunction!(pull::pull_sheet, m)?)?;

@@ -1,11 +1,11 @@
 //! Shape-aware mobility from Python (the library's `shape_space`): whether a design's one
 //! degree of freedom survives shape changes, its shape constraints, moving a parameter along
-//! them, and the rank-drop search of a rigid design's shapes.
+//! them, the rank-drop search of a rigid design's shapes, and each parameter's valid range.
 
 use crate::convert::{design_of, to_python};
 use crate::design::PyDesign;
 use crate::errors;
-use isogami::shape_space::{classify, follow, rank_drop, ShapeError, ShapeSettings};
+use isogami::shape_space::{classify, follow, param_ranges, rank_drop, ShapeError, ShapeSettings};
 use pyo3::prelude::*;
 
 fn shape_error(e: ShapeError) -> PyErr {
@@ -60,4 +60,30 @@ pub fn rank_drop_shape(py: Python<'_>, design: &Bound<'_, PyAny>) -> PyResult<Op
         .detach(|| rank_drop(&d, &ShapeSettings::default()))
         .map_err(shape_error)?;
     Ok(found.map(|r| PyDesign { inner: r.design }))
+}
+
+/// The valid range of each shape parameter of the design, the others fixed: a list of dicts
+/// with ``index``, ``value``, ``lo``, ``hi`` (the interval around the value where the design
+/// builds and its tiles inset by half of ``kerf``, in units of the mean edge length),
+/// ``lo_open`` / ``hi_open`` (the end is the searched window's edge, value ± 2 scales),
+/// ``well_shaped`` (``(lo, hi)`` where the tile also passes the exploration's shape-quality
+/// rule, or None) and ``tol`` (the bisection tolerance). None when the design does not build
+/// at that kerf.
+#[pyfunction]
+#[pyo3(signature = (design, kerf=0.01))]
+pub fn param_ranges_of<'py>(
+    py: Python<'py>,
+    design: &Bound<'py, PyAny>,
+    kerf: f64,
+) -> PyResult<Option<Bound<'py, PyAny>>> {
+    let d = design_of(design)?;
+    if !kerf.is_finite() || kerf <= 0.0 {
+        return Err(pyo3::exceptions::PyValueError::new_err(format!(
+            "kerf {kerf} must be a positive finite number"
+        )));
+    }
+    match py.detach(|| param_ranges(&d, kerf)) {
+        Some(r) => Ok(Some(to_python(py, &r)?)),
+        None => Ok(None),
+    }
 }

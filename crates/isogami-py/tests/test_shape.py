@@ -49,3 +49,26 @@ def test_rank_drop_finds_a_moving_shape():
 def test_errors(call, error, message):
     with pytest.raises(error, match=message):
         call()
+
+
+def test_param_ranges_bound_the_shapes_that_build():
+    # IH59's old slider (default ± 0.5) was ill-shaped at 16 of 21 positions: the range is
+    # the part that builds, and just outside it the design is refused.
+    spec = "IH59:0.030263157895:1x1:aaaa"
+    (r,) = isogami.param_ranges_of(spec)
+    assert r["index"] == 0 and r["lo"] <= r["value"] <= r["hi"]
+    for x in [r["lo"] + (r["hi"] - r["lo"]) * k / 10 for k in range(11)]:
+        isogami.design(f"IH59:{x:.12g}:1x1:aaaa")  # builds
+    if not r["hi_open"]:
+        with pytest.raises(isogami.IsogamiError):
+            isogami.deploy(f"IH59:{r['hi'] + 10 * r['tol']:.12g}:1x1:aaaa")
+    lo, hi = r["well_shaped"]
+    assert r["lo"] <= lo <= r["value"] <= hi <= r["hi"]
+    assert isogami.param_ranges_of(spec, kerf=5.0) is None
+
+
+def test_families_describe_their_parameters():
+    info = isogami.family("IH28").info()
+    effects = info["param_effects"]
+    assert [e["index"] for e in effects] == list(range(info["param_count"]))
+    assert all(e["description"] for e in effects)

@@ -16,7 +16,7 @@ the browser's filters. Long calls release the GIL and can be interrupted with Ct
 Main entry points: ``design``, ``families``/``family``, ``cell``, ``analyze``, ``deploy``
 (with ``DeploySettings``), ``linkages``, ``compare``, ``open_database`` (with ``Query``),
 ``export`` (``export_formats``), ``inverse`` (inverse design on a database), ``shape_mobility`` / ``follow_shape`` /
-``rank_drop_shape`` (shape-aware mobility), ``finite_sheet`` / ``deploy_sheet`` / ``pull_sheet`` (finite sheets: a region's
+``rank_drop_shape`` / ``param_ranges_of`` (shape-aware mobility, each parameter's valid range), ``finite_sheet`` / ``deploy_sheet`` / ``pull_sheet`` (finite sheets: a region's
 degrees of freedom, its completion to one DOF and its deployment) and the measure functions (``polar``, ``principal_expansions``, ``expansion_profile``, ...).
 Every library error is an ``IsogamiError`` subclass carrying the library's message.
 """
@@ -80,6 +80,7 @@ from ._isogami import (
     finite_sheet,
     inverse,
     follow_shape,
+    param_ranges_of,
     rank_drop_shape,
     shape_mobility,
     families,
@@ -151,6 +152,7 @@ __all__ = [
     "finite_sheet",
     "inverse",
     "follow_shape",
+    "param_ranges_of",
     "rank_drop_shape",
     "shape_mobility",
     "families",

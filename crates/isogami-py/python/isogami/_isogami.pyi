@@ -77,6 +77,7 @@ __all__ = [
     "principal_direction",
     "principal_expansions",
     "pull_sheet",
+    "param_ranges_of",
     "rank_drop_shape",
     "shape_mobility",
 ]
@@ -462,7 +463,7 @@ class Linkages:
     def degree_histogram(self) -> Dict[int, int]: ...
     @property
     def other_faces(self) -> List[Dict[str, Any]]: ...
-    def tile_linkages(self) -> List[Optional[int]]: ...
+    def tile_linkages(self) -> List[List[int]]: ...
     def to_dict(self) -> Dict[str, Any]:
         """As ``isogami linkages --json`` prints it."""
     def svg(self) -> str: ...
@@ -818,6 +819,10 @@ def follow_shape(design: DesignLike, index: int, value: float) -> Design:
 
 def rank_drop_shape(design: DesignLike) -> Optional[Design]:
     """A shape of a rigid design's topology with exactly one DOF, or None."""
+
+def param_ranges_of(design: DesignLike, kerf: float = 0.01) -> Optional[List[Dict[str, Any]]]:
+    """Each shape parameter's valid interval, the others fixed (index, value, lo, hi,
+    lo_open, hi_open, well_shaped, tol); None when the design does not build at that kerf."""
 
 @final
 class FiniteSheet:

@@ -19,6 +19,7 @@
 //! | `POST /api/designs` | save a posted design as a user design |
 //! | `GET /api/shape?design=` | generic or special over the shape space; constraints, pinned |
 //! | `POST /api/shape/follow` | move one shape parameter, the others following the constraints |
+//! | `GET /api/shape/ranges?design=[&kerf=]` | each shape parameter's valid range, the others fixed |
 //! | `GET /api/inverse` | inverse design's defaults, caps, saving allowed, running job |
 //! | `POST /api/inverse` | start an inverse-design job (202 `{id}`; 409 while one runs) |
 //! | `GET /api/inverse/{id}` | its state, progress, leaders, result |
@@ -66,6 +67,7 @@ pub fn router(state: AppState) -> Router {
         .route("/deploy", post(design::deploy_live))
         .route("/shape", get(shape::mobility))
         .route("/shape/follow", post(shape::follow_shape))
+        .route("/shape/ranges", get(shape::ranges))
         .route("/sheet", get(sheet::sheet))
         .route("/export", get(export::export))
         .route("/export/formats", get(export::formats))

@@ -1,8 +1,10 @@
 //! Shape-aware mobility for the design page's shape sliders (issue 13 item 6): whether a
 //! design keeps one degree of freedom at every nearby shape (generic) or only on a
 //! sub-manifold (special), and moving one parameter while the others follow that sub-manifold,
-//! so a slider moves along the mechanism's family instead of breaking it. Both call the
-//! library's `isogami::shape_space` and nothing else; both run on the blocking pool.
+//! so a slider moves along the mechanism's family instead of breaking it; and each
+//! parameter's valid range (the others fixed), which the sliders are limited to, so that no
+//! slider position is refused as ill-shaped. All call the library's `isogami::shape_space`
+//! and nothing else, on the blocking pool.
 
 use crate::error::{ApiError, ApiResult};
 use crate::filters::{get as param, pairs, truncate};
@@ -14,7 +16,9 @@ use axum::extract::{RawQuery, State};
 use axum::http::StatusCode;
 use axum::Json;
 use isogami::api::{resolve_design, Design};
-use isogami::shape_space::{classify, follow, ShapeError, ShapeMobility, ShapeSettings};
+use isogami::shape_space::{
+    classify, follow, param_ranges, ParamRange, ShapeError, ShapeMobility, ShapeSettings,
+};
 use serde::{Deserialize, Serialize};
 
 /// Longest design text accepted.
@@ -154,4 +158,58 @@ pub async fn follow_shape(
         steps: followed.steps,
         adjusted: followed.adjusted,
     }))
+}
+
+/// The answer of `GET /api/shape/ranges`.
+#[derive(Debug, Serialize)]
+pub struct RangesAnswer {
+    /// The design's spec.
+    pub spec: String,
+    /// The kerf the ranges hold for.
+    pub kerf: f64,
+    /// One range per shape parameter (the library's `ParamRange`).
+    pub ranges: Vec<ParamRange>,
+}
+
+/// `GET /api/shape/ranges?design=[&kerf=]`: each shape parameter's valid interval, the
+/// others fixed (where the design builds and insets at the kerf, so deploying it is never
+/// refused as ill-shaped), and the well-shaped band inside it. 422 `ill_shaped` for a design
+/// that does not build at its own parameters.
+pub async fn ranges(
+    State(state): State<AppState>,
+    RawQuery(raw): RawQuery,
+) -> ApiResult<Json<RangesAnswer>> {
+    let pairs = pairs(raw.as_deref());
+    if let Some((k, _)) = pairs.iter().find(|(k, _)| k != "design" && k != "kerf") {
+        return Err(ApiError::bad_parameter(format!(
+            "unknown parameter {:?}",
+            truncate(k)
+        )));
+    }
+    let text = param(&pairs, "design")
+        .ok_or_else(|| ApiError::bad_parameter("missing parameter design"))?;
+    let design = design_of(text)?;
+    let kerf = match param(&pairs, "kerf") {
+        None => isogami::contact::ContactSettings::default().kerf,
+        Some(t) => t
+            .parse::<f64>()
+            .ok()
+            .filter(|k| k.is_finite())
+            .ok_or_else(|| ApiError::bad_parameter("kerf must be a finite number"))?,
+    };
+    isogami::contact::ContactSettings::with_kerf(kerf)
+        .validate()
+        .map_err(|e| ApiError::bad_parameter(e.to_string()))?;
+    let timeout = state.settings().sim_timeout;
+    let spec = design.to_string();
+    let out = run_bounded(timeout, move |_| param_ranges(&design, kerf)).await?;
+    let ranges = out.ok_or_else(|| {
+        ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "ill_shaped",
+            format!("{spec} does not build at kerf {kerf}"),
+            "move the shape sliders back towards the defaults, or make the kerf narrower",
+        )
+    })?;
+    Ok(Json(RangesAnswer { spec, kerf, ranges }))
 }

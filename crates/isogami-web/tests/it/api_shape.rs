@@ -184,3 +184,60 @@ async fn bad_requests_are_one_line_errors() {
     let rigid: Value = cases[3].0.json();
     assert_eq!(rigid["kind"], "not_one_dof", "{rigid}");
 }
+
+/// Issue 24 item 4: the sliders' ranges. Deploying at each end of a parameter's range is
+/// accepted, and just past an end that is not the window's edge is refused as ill-shaped:
+/// the server's refusal and the range come from the same checks.
+#[tokio::test]
+async fn shape_ranges_end_where_the_deployment_refuses_the_shape() {
+    let app = app();
+    let spec = "IH59:0.030263157895:1x1:aaaa";
+    let r = get(&app, &format!("/api/shape/ranges?design={}", enc(spec)))
+        .await
+        .ok();
+    assert_eq!(r["spec"], spec);
+    let range = &r["ranges"][0];
+    let (lo, hi, tol) = (
+        range["lo"].as_f64().unwrap(),
+        range["hi"].as_f64().unwrap(),
+        range["tol"].as_f64().unwrap(),
+    );
+    assert!(lo < 0.030263157895 && 0.030263157895 < hi, "{range}");
+    let with = |x: f64| format!("IH59:{x}:1x1:aaaa");
+    for x in [lo, hi] {
+        let d = post_design(&app, "/api/deploy", &with(x), json!({})).await;
+        assert_ne!(
+            d.status,
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "{x}: {}",
+            d.text()
+        );
+    }
+    if range["hi_open"] == false {
+        let d = post_design(&app, "/api/deploy", &with(hi + 10.0 * tol), json!({})).await;
+        assert_eq!(
+            assert_error(&d, StatusCode::UNPROCESSABLE_ENTITY, "past hi"),
+            "ill_shaped"
+        );
+    }
+    let bad = get(
+        &app,
+        &format!("/api/shape/ranges?design={}&kerf=-1", enc(spec)),
+    )
+    .await;
+    assert_error(&bad, StatusCode::BAD_REQUEST, "bad kerf");
+    let unknown = get(&app, &format!("/api/shape/ranges?design={}&k=1", enc(spec))).await;
+    assert_error(&unknown, StatusCode::BAD_REQUEST, "unknown key");
+    // The families list says what each parameter does.
+    let families = get(&app, "/api/families").await.ok();
+    let ih59 = families
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["name"] == "IH59")
+        .unwrap();
+    assert!(!ih59["param_effects"][0]["description"]
+        .as_str()
+        .unwrap()
+        .is_empty());
+}

@@ -23,6 +23,7 @@ mod error;
 mod follow;
 mod jacobian;
 mod kernel;
+mod range;
 mod rank_drop;
 mod search;
 
@@ -30,6 +31,7 @@ pub use classify::{classify, ShapeClass, ShapeMobility};
 pub use error::ShapeError;
 pub use follow::{follow, Followed};
 pub use jacobian::param_scales;
+pub use range::{builds, param_ranges, well_shaped, ParamRange, RANGE_TOL, WINDOW};
 pub use rank_drop::{rank_drop, RankDrop};
 pub use search::{neighbours, search_neighbours, Finding, SearchReport};
 

@@ -52,6 +52,8 @@ pub struct FamilyInfo {
     pub aspect_count: usize,
     /// Shape class of every prototile edge, in order.
     pub edges: Vec<PrototileEdge>,
+    /// What each shape parameter does to the tile (for slider labels), in order.
+    pub param_effects: Vec<super::describe::ParamEffect>,
 }
 
 impl Family {
@@ -124,6 +126,7 @@ impl Family {
             vertex_count: t.num_vertices(),
             aspect_count: t.num_aspects(),
             edges,
+            param_effects: super::describe::param_effects(self),
         }
     }
 }

@@ -6,12 +6,14 @@
 //! from aspects and translation vectors in `cell`. No I/O.
 
 mod canonical;
+mod describe;
 mod error;
 mod family;
 mod sampling;
 mod shape;
 
 pub use canonical::{canonical_param, canonical_params, is_canonical, CANONICAL_DIGITS};
+pub use describe::{param_effects, ParamEffect};
 pub use error::{Culprit, ShapeProblem, TilingError};
 pub use family::{EdgeShapeKind, Family, FamilyInfo, PrototileEdge};
 pub use sampling::{
