@@ -34,6 +34,11 @@ pub struct MotionVariant {
     pub designs: u64,
     /// The first of them by spec (to open it).
     pub example: String,
+    /// The largest area ratio the example reaches (its own: other shapes of one mechanism
+    /// open differently).
+    pub example_area_ratio: f64,
+    /// Smallest and largest area ratio over the topology's designs.
+    pub area_ratio: [f64; 2],
 }
 
 /// A class of topologies that move alike.
@@ -160,11 +165,15 @@ impl Store {
         params: P,
     ) -> StoreResult<Vec<MotionClass>> {
         let mut stmt = self.conn.prepare(&format!(
-            "SELECT m.topology, m.representative, m.checksum,
-                    min(d.family), min(d.cell), count(d.id), min(d.spec)
-             FROM motion_classes m JOIN designs d ON d.topology = m.topology
-             {filter}
-             GROUP BY m.topology ORDER BY m.representative, m.topology"
+            "SELECT g.topology, g.representative, g.checksum, g.family, g.cell, g.n, g.example,
+                    (SELECT e.max_area_ratio FROM designs e WHERE e.spec = g.example), g.lo, g.hi
+             FROM (SELECT m.topology, m.representative, m.checksum, min(d.family) AS family,
+                          min(d.cell) AS cell, count(d.id) AS n, min(d.spec) AS example,
+                          min(d.max_area_ratio) AS lo, max(d.max_area_ratio) AS hi
+                   FROM motion_classes m JOIN designs d ON d.topology = m.topology
+                   {filter}
+                   GROUP BY m.topology) g
+             ORDER BY g.representative, g.topology"
         ))?;
         let rows = stmt.query_map(params, |r| {
             Ok((
@@ -175,11 +184,23 @@ impl Store {
                 r.get::<_, String>(4)?,
                 r.get::<_, i64>(5)?,
                 r.get::<_, String>(6)?,
+                r.get::<_, f64>(7)?,
+                [r.get::<_, f64>(8)?, r.get::<_, f64>(9)?],
             ))
         })?;
         let mut by: BTreeMap<String, Vec<MotionVariant>> = BTreeMap::new();
         for row in rows {
-            let (topology, rep, stored, family, cell, designs, example) = row?;
+            let (
+                topology,
+                rep,
+                stored,
+                family,
+                cell,
+                designs,
+                example,
+                example_area_ratio,
+                area_ratio,
+            ) = row?;
             verify(&motion_class_values(&topology, &rep), stored, || {
                 format!("motion class row of {topology}")
             })?;
@@ -189,6 +210,8 @@ impl Store {
                 cell,
                 designs: designs as u64,
                 example,
+                example_area_ratio,
+                area_ratio,
             });
         }
         let mut classes: Vec<MotionClass> = by

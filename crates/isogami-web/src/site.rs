@@ -4,6 +4,8 @@
 //! for the CLI command the design page composes, inverse design's defaults and the database's
 //! file name for the command the inverse-design page composes; its presence
 //! switches the pages to static mode), `data/designs.json` (every catalogue row),
+//! `data/motions.json` (`{computed, classes: {topology: representative}}`: the motion class
+//! of every classed topology, for the mechanisms view and "same motion elsewhere"),
 //! `data/design/<slug>.json` (each design view) and `thumbs/<slug>.svg`. The site is built
 //! in a temporary folder beside the target and moved into place at the end, so an
 //! interrupted run leaves no half-written site; an existing folder is only replaced when it
@@ -177,6 +179,22 @@ pub fn write_site(
             }),
         )?;
         w.json("data/designs.json", &summaries)?;
+        // The mechanisms view and "same motion elsewhere" in the browser (web/src/query.js):
+        // each classed topology's representative.
+        let classes = store.motion_classes().map_err(store_err)?;
+        let map: std::collections::BTreeMap<&str, &str> = classes
+            .iter()
+            .flatten()
+            .flat_map(|c| {
+                c.variants
+                    .iter()
+                    .map(|v| (v.topology.as_str(), c.representative.as_str()))
+            })
+            .collect();
+        w.json(
+            "data/motions.json",
+            &json!({ "computed": classes.is_some(), "classes": map }),
+        )?;
         for (k, summary) in summaries.iter().enumerate() {
             let stored = store
                 .design(&summary.spec)

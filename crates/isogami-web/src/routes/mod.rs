@@ -10,6 +10,7 @@
 //! | `GET /api/scatter?x=&y=&filters` | two measures of every matching design |
 //! | `GET /api/design?spec=` | the design view of a stored design |
 //! | `GET /api/thumbnail?spec=` | its thumbnail (SVG) |
+//! | `GET /api/motions?filters` | the matching designs grouped by distinct motion (mechanisms view) |
 //! | `GET /api/motion?spec=` | the same motion in other cells and families (its class) |
 //! | `GET /api/gif?spec=[&kerf=]` | its deployment as an animated GIF |
 //! | `GET /api/export/formats` | export formats, their settings fields, defaults and limits |
@@ -32,6 +33,7 @@ mod catalogue;
 mod design;
 mod export;
 mod inverse;
+mod motions;
 mod shape;
 mod sheet;
 
@@ -63,6 +65,7 @@ pub fn router(state: AppState) -> Router {
         .route("/design", get(design::stored))
         .route("/thumbnail", get(design::thumbnail))
         .route("/motion", get(design::motion))
+        .route("/motions", get(motions::motions))
         .route("/gif", get(design::gif))
         .route("/deploy", post(design::deploy_live))
         .route("/shape", get(shape::mobility))

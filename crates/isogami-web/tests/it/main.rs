@@ -6,6 +6,7 @@ mod api_design;
 mod api_export;
 mod api_inverse;
 mod api_limits;
+mod api_motions;
 mod api_safety;
 mod api_server;
 mod api_shape;
