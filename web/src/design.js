@@ -11,7 +11,15 @@
 import { openData, ApiError } from './data.js';
 import { h, fmt, showNotice, clearNotice, debounce } from './dom.js';
 import { createLinePlot, createPolarPlot } from './plots.js';
-import { frameAt, motionBounds, linkageColour, NO_LINKAGE_COLOUR } from './patch.js';
+import {
+  frameAt,
+  motionBounds,
+  linkageColour,
+  linkageFill,
+  tileLinkageKinds,
+  NO_LINKAGE_COLOUR,
+  SHARED_LINKAGE_COLOUR,
+} from './patch.js';
 import { drawSheet } from './sheet.js';
 import { createEditor } from './editor.js';
 import { designSearch, parseDesignState } from './url.js';
@@ -245,6 +253,7 @@ function setupControls() {
   });
   $('show-links').addEventListener('change', () => {
     state.links = $('show-links').checked;
+    renderLegend();
     renderFrame();
   });
   $('copy').addEventListener('click', async () => {
@@ -265,7 +274,7 @@ function setupControls() {
   $('download-svg').addEventListener('click', () => {
     if (!view) return;
     const frame = frameAt(view.report, state.t);
-    const svg = frameSvg(view, frame, { rows: state.rows, cols: state.cols, colour: state.colour, bounds });
+    const svg = frameSvg(view, frame, { rows: state.rows, cols: state.cols, colour: state.colour, bounds, links: state.links });
     download(`${fileStem(view.spec)}.t${state.t.toFixed(3)}.svg`, svg, 'image/svg+xml');
   });
   $('download-gif').addEventListener('click', () => {
@@ -383,22 +392,42 @@ function renderFrameMeasures(frame) {
   );
 }
 
+/** The legend: one entry per linkage with its loop colour (a line swatch, as drawn), then what
+ * the tile fill means — by linkage only the kinds present (one linkage, shared, none), or the
+ * rotation ramp. */
 function renderLegend() {
   if (!view) return;
+  const l = view.linkages ? view.linkages.linkages : [];
+  const tilesOf = (i) => (view.tile_linkages || []).filter((set) => set.length === 1 && set[0] === i).length;
+  const colouring = state.colour !== 'rotation';
+  const loops = l.map((k, i) =>
+    h(
+      'li',
+      { 'data-testid': 'legend-linkage', 'data-colour': linkageColour(i) },
+      h('span', { class: 'swatch loop', style: `background:${linkageColour(i)}` }),
+      `linkage ${i + 1}: ${k.bars}-bar loop`,
+      colouring && tilesOf(i) ? [' ', h('span', { class: 'swatch', style: `background:${linkageFill(i)}` }), `its own tiles`] : null,
+    ),
+  );
+  if (!l.length) loops.push(h('li', {}, 'no linkages (no closed loop of pinned tiles)'));
+  else if (!state.links) loops.push(h('li', { class: 'muted' }, 'loops hidden: tick “linkage loops” to draw them'));
+  let fills;
   if (state.colour === 'rotation') {
     const m = view.report.max_tile_rotation;
-    $('legend').replaceChildren(
+    fills = [
       h('span', { class: 'ramp' }),
       ` tile rotation: −${fmt(m)} rad (clockwise, blue) through 0 (white) to +${fmt(m)} rad (counter-clockwise, red)`,
-    );
-    return;
+    ];
+  } else {
+    const kinds = tileLinkageKinds(view);
+    const item = (colour, text) => h('li', {}, h('span', { class: 'swatch', style: `background:${colour}` }), text);
+    const list = [];
+    if (kinds.single) list.push(h('li', {}, 'tile in one linkage only: that loop’s colour, pale'));
+    if (kinds.shared) list.push(item(SHARED_LINKAGE_COLOUR, 'tile shared by several linkages (the loops tell them apart)'));
+    if (kinds.none) list.push(item(NO_LINKAGE_COLOUR, 'tile in no linkage'));
+    fills = [h('ul', { 'data-testid': 'legend-fills' }, list)];
   }
-  const l = view.linkages;
-  const items = (l ? l.linkages : []).map((k, i) =>
-    h('li', {}, h('span', { class: 'swatch', style: `background:${linkageColour(i)}` }), `linkage ${i + 1}: ${k.bars}-bar`),
-  );
-  items.push(h('li', {}, h('span', { class: 'swatch', style: `background:${NO_LINKAGE_COLOUR}` }), 'in no linkage'));
-  $('legend').replaceChildren(h('ul', {}, items));
+  $('legend').replaceChildren(h('ul', { 'data-testid': 'legend-loops' }, loops), ...fills);
 }
 
 main().catch((e) => fail(e));

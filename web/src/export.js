@@ -4,7 +4,7 @@
 // frame per tile), and an SVG of the current frame drawn from the same geometry as the
 // canvas. The text builders are pure; `download` alone touches the DOM.
 
-import { patchPins, patchPolygons, tileColours } from './patch.js';
+import { linkageColour, patchLinkages, patchPins, patchPolygons, tileColours } from './patch.js';
 import { cellText } from './schema.js';
 
 /** One CSV field (RFC 4180 quoting). */
@@ -116,8 +116,9 @@ export function trajectoryCsv(report) {
 
 const num = (v) => Number(v.toFixed(6));
 
-/** SVG of the patch in `frame` (tiling units, y up), as drawn on the canvas. */
-export function frameSvg(view, frame, { rows, cols, colour, bounds }) {
+/** SVG of the patch in `frame` (tiling units, y up), as drawn on the canvas: tiles, pins and,
+ * with `links`, the linkage loops through their joints in their colours over a white halo. */
+export function frameSvg(view, frame, { rows, cols, colour, bounds, links = false }) {
   const [x0, y0, x1, y1] = bounds;
   const pad = 0.02 * Math.max(x1 - x0, y1 - y0);
   const w = x1 - x0 + 2 * pad;
@@ -130,6 +131,12 @@ export function frameSvg(view, frame, { rows, cols, colour, bounds }) {
         .map(([x, y]) => `${num(x)},${num(y)}`)
         .join(' ')}"/>`,
   );
+  const loopPoints = (l) => l.points.map(([x, y]) => `${num(x)},${num(y)}`).join(' ');
+  const loops = links ? patchLinkages(view, frame, rows, cols) : [];
+  const halo = loops.map((l) => `<polygon points="${loopPoints(l)}"/>`);
+  const strokes = loops.map(
+    (l) => `<polygon data-linkage="${l.index}" data-cell="${l.cell.join(',')}" stroke="${linkageColour(l.index)}" points="${loopPoints(l)}"/>`,
+  );
   const pins = patchPins(view, frame, rows, cols).map(
     ([x, y]) => `<circle cx="${num(x)}" cy="${num(y)}" r="${num(stroke * 1.5)}"/>`,
   );
@@ -140,6 +147,16 @@ export function frameSvg(view, frame, { rows, cols, colour, bounds }) {
     `<g stroke="#333" stroke-width="${stroke}" stroke-linejoin="round">`,
     ...polys,
     '</g>',
+    ...(loops.length
+      ? [
+          `<g fill="none" stroke="#fff" stroke-width="${num(stroke * 3)}" stroke-linejoin="round">`,
+          ...halo,
+          '</g>',
+          `<g fill="none" stroke-width="${num(stroke * 1.5)}" stroke-linejoin="round" data-testid="linkage-loops">`,
+          ...strokes,
+          '</g>',
+        ]
+      : []),
     `<g fill="#222">`,
     ...pins,
     '</g></g></svg>',

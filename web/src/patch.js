@@ -1,7 +1,9 @@
 // Geometry of an R×C patch of a design at any t, from a DesignView: frames interpolated in t,
-// world polygons of every tile copy, pin positions, linkage loops, bounds over the whole
-// motion, and tile colours (by linkage or by rotation). Shared by the canvas (sheet.js) and
-// the SVG export so both draw the same thing. Pure functions, no DOM.
+// world polygons of every tile copy, pin positions, linkage loops (each through its joints, in
+// its linkage's colour, as the paper's Fig. 6), bounds over the whole motion, and tile colours
+// (by linkage — only for a tile in exactly one linkage; tiles shared by several are grey — or
+// by rotation). Shared by the canvas (sheet.js) and the SVG export so both draw the same
+// thing. Pure functions, no DOM.
 //
 // Tile k of cell (i, j) in a frame: world = (x, y) + R(θ)·p + i·u + j·w, with p the tile's
 // polygon in its own frame (geometry.tiles[k]) and (x, y, θ) its pose in the frame.
@@ -90,12 +92,14 @@ export function patchPins(view, frame, rows, cols) {
   return out;
 }
 
-/** Linkage loops of the patch: `[{index, bars, points}]`, one polygon through the joints of each
- * linkage per cell copy whose loop lies in the patch's cells (or just past its edge). */
+/** Linkage loops of the patch: `[{index, bars, cell, points}]`, one polygon through the joints of
+ * each linkage per cell copy whose tiles all lie in the patch's cells (a linkage none of whose
+ * copies fits, in a small patch, is drawn once, from cell (0, 0)). */
 export function patchLinkages(view, frame, rows, cols) {
   const analysis = view.linkages;
   if (!analysis) return [];
   const edges = view.geometry.edges;
+  const inside = (i, j) => i >= 0 && j >= 0 && i < cols && j < rows;
   const out = [];
   analysis.linkages.forEach((linkage, index) => {
     const joints = linkage.joints.map((jt) => {
@@ -103,12 +107,16 @@ export function patchLinkages(view, frame, rows, cols) {
       const end = String(jt.end).toLowerCase() === 'a' ? e.a : e.b;
       return { tile: e.tile_a, cell: jt.cell, p: localPoint(view, e.tile_a, end) };
     });
-    for (const [i, j] of patchCells(rows, cols)) {
-      const points = joints.map((jt) =>
-        place(frame.tiles[jt.tile], jt.p, shiftOf(frame, i + jt.cell[0], j + jt.cell[1])),
-      );
-      out.push({ index, bars: linkage.bars, points });
-    }
+    const loop = (i, j) => ({
+      index,
+      bars: linkage.bars,
+      cell: [i, j],
+      points: joints.map((jt) => place(frame.tiles[jt.tile], jt.p, shiftOf(frame, i + jt.cell[0], j + jt.cell[1]))),
+    });
+    const cells = patchCells(rows, cols).filter(([i, j]) =>
+      linkage.nodes.every(([, c]) => inside(i + c[0], j + c[1])),
+    );
+    for (const [i, j] of cells.length ? cells : [[0, 0]]) out.push(loop(i, j));
   });
   return out;
 }
@@ -152,21 +160,53 @@ function grow(b, view, frame, rows, cols) {
   return out;
 }
 
-const LINKAGE_COLOURS = ['#8dd3c7', '#fdb462', '#bebada', '#fb8072', '#80b1d3', '#b3de69', '#fccde5', '#ffffb3', '#bc80bd', '#ccebc5'];
-export const NO_LINKAGE_COLOUR = '#d9d9d9';
+// Loop colours: the Okabe–Ito colour-blind-safe set (without black and the low-contrast yellow)
+// and two more; strong enough to read as lines over the tiles.
+const LINKAGE_COLOURS = ['#0072b2', '#e69f00', '#009e73', '#cc79a7', '#d55e00', '#56b4e9', '#6a3d9a', '#8c6d1f'];
+/** Fill of a tile shared by several linkages: the assignment does not tell them apart. */
+export const SHARED_LINKAGE_COLOUR = '#d9d9d9';
+/** Fill of a tile in no linkage. */
+export const NO_LINKAGE_COLOUR = '#ffffff';
 
-/** Colour of linkage `index` (fills and loop strokes agree). */
+/** Colour of linkage `index`: its loop's stroke and legend swatch. */
 export function linkageColour(index) {
   return LINKAGE_COLOURS[index % LINKAGE_COLOURS.length];
 }
 
-/** A function tile → fill colour for the chosen colouring. */
+/** Fill of a tile in linkage `index` only: its loop colour mixed 70 % with white. */
+export function linkageFill(index) {
+  const n = parseInt(linkageColour(index).slice(1), 16);
+  const ch = (shift) => Math.round(255 - (255 - ((n >> shift) & 255)) * 0.3);
+  return `#${[ch(16), ch(8), ch(0)].map((v) => v.toString(16).padStart(2, '0')).join('')}`;
+}
+
+/** Every linkage through tile `k` (indices, ascending). */
+export function tileLinkageSet(view, k) {
+  return (view.tile_linkages || [])[k] || [];
+}
+
+/** How the linkage colouring reads for this view: `{single, shared, none}` counts of tiles in
+ * one, several and no linkage — the legend shows only the kinds present. */
+export function tileLinkageKinds(view) {
+  const kinds = { single: 0, shared: 0, none: 0 };
+  view.geometry.tiles.forEach((_, k) => {
+    const n = tileLinkageSet(view, k).length;
+    kinds[n === 0 ? 'none' : n === 1 ? 'single' : 'shared'] += 1;
+  });
+  return kinds;
+}
+
+/** A function tile → fill colour for the chosen colouring. By linkage: a tile in exactly one
+ * linkage takes that linkage's pale colour, a tile in several is grey, a tile in none white. */
 export function tileColours(view, frame, colour) {
   if (colour === 'rotation') {
     const m = Math.max(1e-6, view.report.max_tile_rotation || 0);
     const scale = d3.scaleDiverging(d3.interpolateRdBu).domain([m, 0, -m]);
     return (k) => scale(frame.rotations[k] ?? 0);
   }
-  const links = view.tile_linkage || [];
-  return (k) => (links[k] === null || links[k] === undefined ? NO_LINKAGE_COLOUR : linkageColour(links[k]));
+  return (k) => {
+    const set = tileLinkageSet(view, k);
+    if (set.length === 1) return linkageFill(set[0]);
+    return set.length ? SHARED_LINKAGE_COLOUR : NO_LINKAGE_COLOUR;
+  };
 }

@@ -1,6 +1,9 @@
 // Draws a design's R×C patch at one t on a <canvas>: tiles filled by linkage or rotation,
-// pins, optionally the unit cell with its lattice vectors and the linkage loops (Fig. 6).
-// The scale is fixed over the whole motion (bounds from patch.js) so the sheet visibly opens.
+// pins, the linkage loops (on by default: each loop a line through its joints in its linkage's
+// colour over a white halo, as the paper's Fig. 6) and optionally the unit cell with its
+// lattice vectors. The scale is fixed over the whole motion (bounds from patch.js) so the sheet
+// visibly opens. The loops drawn are left on the canvas as `data-linkage-loops` (JSON: index,
+// colour and points in CSS pixels) so that tests can check the pixels along them.
 
 import {
   linkageColour,
@@ -52,28 +55,38 @@ export function drawSheet(canvas, view, frame, opts) {
     ctx.arc(x, y, 2 * px, 0, 2 * Math.PI);
     ctx.fill();
   }
-  if (opts.links) {
-    ctx.lineWidth = 3 * px;
-    for (const loop of patchLinkages(view, frame, opts.rows, opts.cols)) {
+  const loops = opts.links ? patchLinkages(view, frame, opts.rows, opts.cols) : [];
+  if (loops.length) {
+    const path = (loop) => {
       ctx.beginPath();
       loop.points.forEach(([x, y], i) => (i ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
       ctx.closePath();
-      ctx.globalAlpha = 0.45;
-      ctx.fillStyle = linkageColour(loop.index);
-      ctx.fill();
-      ctx.globalAlpha = 1;
-      ctx.strokeStyle = darker(linkageColour(loop.index));
+    };
+    ctx.strokeStyle = '#ffffff';
+    ctx.lineWidth = 6 * px;
+    for (const loop of loops) {
+      path(loop);
+      ctx.stroke();
+    }
+    ctx.lineWidth = 3 * px;
+    for (const loop of loops) {
+      path(loop);
+      ctx.strokeStyle = linkageColour(loop.index);
       ctx.stroke();
     }
     ctx.fillStyle = '#222222';
-    for (const loop of patchLinkages(view, frame, opts.rows, opts.cols)) {
+    for (const loop of loops) {
       for (const [x, y] of loop.points) {
         ctx.beginPath();
-        ctx.arc(x, y, 3.5 * px, 0, 2 * Math.PI);
+        ctx.arc(x, y, 3 * px, 0, 2 * Math.PI);
         ctx.fill();
       }
     }
   }
+  const toCss = ([x, y]) => [round1(width / 2 + s * (x - cx)), round1(height / 2 - s * (y - cy))];
+  canvas.dataset.linkageLoops = JSON.stringify(
+    loops.map((l) => ({ index: l.index, colour: linkageColour(l.index), points: l.points.map(toCss) })),
+  );
   if (opts.cell) {
     const c = unitCell(view, frame, opts.rows, opts.cols);
     ctx.setLineDash([6 * px, 4 * px]);
@@ -88,6 +101,8 @@ export function drawSheet(canvas, view, frame, opts) {
     arrow(ctx, c.origin, c.w, '#1f5fa8', px);
   }
 }
+
+const round1 = (v) => Math.round(v * 10) / 10;
 
 /** Centre of the bounding box of some polygons. */
 function centre(polygons) {
@@ -116,11 +131,4 @@ function arrow(ctx, o, v, colour, px) {
   ctx.lineTo(tip[0] - d[0] * head + d[1] * head * 0.5, tip[1] - d[1] * head - d[0] * head * 0.5);
   ctx.closePath();
   ctx.fill();
-}
-
-/** A darker shade of a #rrggbb colour, for loop strokes over the fills. */
-export function darker(hex) {
-  const n = parseInt(hex.slice(1), 16);
-  const ch = (shift) => Math.round(((n >> shift) & 255) * 0.55);
-  return `rgb(${ch(16)}, ${ch(8)}, ${ch(0)})`;
 }

@@ -96,7 +96,7 @@ export function catalogueSearch(state) {
   return text ? `?${text}` : '';
 }
 
-export const DESIGN_DEFAULTS = { rows: 4, cols: 4, colour: 'linkage', t: 0, cell: false, links: false };
+export const DESIGN_DEFAULTS = { rows: 4, cols: 4, colour: 'linkage', t: 0, cell: false, links: true };
 
 /** Reads the design page's view: spec, patch rows × columns, kerf, colouring, t. */
 export function parseDesignState(search) {
@@ -115,7 +115,7 @@ export function parseDesignState(search) {
     colour: p.get('colour') === 'rotation' ? 'rotation' : 'linkage',
     t: Number.isFinite(t) && t >= 0 && t <= 1 ? t : 0,
     cell: p.get('cell') === '1',
-    links: p.get('links') === '1',
+    links: p.get('links') !== '0',
   };
 }
 
@@ -129,7 +129,7 @@ export function designSearch(s) {
   if (s.colour !== DESIGN_DEFAULTS.colour) p.set('colour', s.colour);
   if (s.t) p.set('t', String(Math.round(s.t * 1000) / 1000));
   if (s.cell) p.set('cell', '1');
-  if (s.links) p.set('links', '1');
+  if (!s.links) p.set('links', '0');
   return `?${p.toString()}`;
 }
 

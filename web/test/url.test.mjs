@@ -35,8 +35,11 @@ test('malformed catalogue parameters are dropped, not passed on', () => {
 test('design view round-trips and clamps', () => {
   const s = parseDesignState('?spec=IH1%3A0.1%2C0.2%3A2x1%3A--bbb-&R=3&C=8&kerf=0.02&colour=rotation&t=0.25&cell=1');
   assert.equal(s.spec, 'IH1:0.1,0.2:2x1:--bbb-');
-  assert.deepEqual([s.rows, s.cols, s.kerf, s.colour, s.t, s.cell, s.links], [3, 8, 0.02, 'rotation', 0.25, true, false]);
+  assert.deepEqual([s.rows, s.cols, s.kerf, s.colour, s.t, s.cell, s.links], [3, 8, 0.02, 'rotation', 0.25, true, true]);
   assert.deepEqual(parseDesignState(designSearch(s)), s);
+  const off = parseDesignState('?spec=x&links=0');
+  assert.equal(off.links, false, 'linkage loops are drawn unless links=0');
+  assert.deepEqual(parseDesignState(designSearch(off)), off);
   const bad = parseDesignState('?spec=x&R=99&C=0&kerf=-1&t=2');
   assert.deepEqual([bad.rows, bad.cols, bad.kerf, bad.t], [4, 4, null, 0]);
 });

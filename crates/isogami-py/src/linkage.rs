@@ -50,9 +50,9 @@ impl PyLinkages {
         to_python(py, &self.inner.other_faces)
     }
 
-    /// For each tile of the cell, the index (into ``linkages``) of the smallest linkage
-    /// through one of its copies, or None.
-    fn tile_linkages(&self) -> Vec<Option<usize>> {
+    /// For each tile of the cell, the indices (into ``linkages``) of every linkage through
+    /// one of its copies, ascending (empty for none): a tile is often in several.
+    fn tile_linkages(&self) -> Vec<Vec<usize>> {
         tile_linkages(&self.inner, self.tile_count())
     }
 

@@ -40,8 +40,8 @@ pub struct DesignView {
     pub geometry: SheetGeometry,
     /// Linkages, when known.
     pub linkages: Option<LinkageAnalysis>,
-    /// For each tile, the index of the smallest linkage through it.
-    pub tile_linkage: Vec<Option<usize>>,
+    /// For each tile, the indices of every linkage through it (ascending; empty for none).
+    pub tile_linkages: Vec<Vec<usize>>,
 }
 
 impl DesignView {
@@ -88,9 +88,9 @@ impl DesignView {
         linkages: Option<LinkageAnalysis>,
     ) -> DesignView {
         let tiles = geometry.tiles.len();
-        let tile_linkage = linkages
+        let tile_linkages = linkages
             .as_ref()
-            .map_or_else(|| vec![None; tiles], |l| tile_linkages(l, tiles));
+            .map_or_else(|| vec![Vec::new(); tiles], |l| tile_linkages(l, tiles));
         DesignView {
             spec,
             origin,
@@ -99,7 +99,7 @@ impl DesignView {
             report,
             geometry,
             linkages,
-            tile_linkage,
+            tile_linkages,
         }
     }
 }

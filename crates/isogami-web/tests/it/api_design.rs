@@ -94,11 +94,19 @@ fn check_view(view: &Value, what: &str) {
             report[key]
         );
     }
-    let tile_linkage = view["tile_linkage"].as_array().unwrap();
-    assert_eq!(tile_linkage.len(), tiles, "{what}");
-    if let Some(linkages) = view["linkages"]["linkages"].as_array() {
-        for l in tile_linkage.iter().filter_map(Value::as_u64) {
-            assert!((l as usize) < linkages.len(), "{what}");
+    let tile_linkages = view["tile_linkages"].as_array().unwrap();
+    assert_eq!(tile_linkages.len(), tiles, "{what}");
+    let linkages = view["linkages"]["linkages"].as_array();
+    for (tile, set) in tile_linkages.iter().enumerate() {
+        for l in set.as_array().unwrap() {
+            let l = l.as_u64().unwrap() as usize;
+            let linkage = &linkages.expect("a tile lists a linkage only when there are some")[l];
+            let through = linkage["nodes"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .any(|n| n[0].as_u64() == Some(tile as u64));
+            assert!(through, "{what}: tile {tile} lists linkage {l}, which misses it");
         }
     }
 }

@@ -1,6 +1,6 @@
 //! What a front end needs to draw a design and edit its joints: each tile's polygon in its
 //! own frame (placed by a report frame's [`TilePose`](crate::deploy::TilePose)), the cell's
-//! unique edges with their closed-state endpoints and joint choices, and which linkage each
+//! unique edges with their closed-state endpoints and joint choices, and which linkages each
 //! tile belongs to. Plain data, in the tiling's units like the deployment report.
 
 use super::assemble;
@@ -100,22 +100,21 @@ pub fn sheet_geometry(design: &Design) -> Result<SheetGeometry> {
     })
 }
 
-/// For each of the cell's `tiles` tiles, the index in `analysis.linkages` of the smallest
-/// linkage (fewest bars, then first listed) that runs through one of its copies, or `None`
-/// when no linkage does. Front ends colour tiles by it.
-pub fn tile_linkages(analysis: &LinkageAnalysis, tiles: usize) -> Vec<Option<usize>> {
-    let mut out: Vec<Option<usize>> = vec![None; tiles];
+/// For each of the cell's `tiles` tiles, the indices in `analysis.linkages` of every linkage that
+/// runs through one of its copies, ascending (empty when none does).
+///
+/// A tile is often a bar of several linkages (in `IH16:0.216506350946:1x1:-a-a-aaaa` every tile
+/// is in all three 4-bars), so a tile's linkage is a set, not one index: front ends colour a
+/// tile by its linkage only when the set has one element, and draw the linkages themselves as
+/// loops through their joints (paper Fig. 6).
+pub fn tile_linkages(analysis: &LinkageAnalysis, tiles: usize) -> Vec<Vec<usize>> {
+    let mut out: Vec<Vec<usize>> = vec![Vec::new(); tiles];
     for (index, linkage) in analysis.linkages.iter().enumerate() {
         for &(tile, _) in &linkage.nodes {
-            let Some(slot) = out.get_mut(tile) else {
-                continue;
-            };
-            let better = match *slot {
-                None => true,
-                Some(old) => linkage.bars < analysis.linkages[old].bars,
-            };
-            if better {
-                *slot = Some(index);
+            if let Some(set) = out.get_mut(tile) {
+                if set.last() != Some(&index) {
+                    set.push(index);
+                }
             }
         }
     }
@@ -184,9 +183,30 @@ mod tests {
         let tiles = design.cell().unwrap().tiles.len();
         let by_tile = tile_linkages(&analysis, tiles);
         assert_eq!(by_tile.len(), tiles);
-        for k in by_tile {
-            let k = k.expect("every tile is in a linkage");
-            assert_eq!(analysis.linkages[k].bars, 4);
+        for set in by_tile {
+            assert!(!set.is_empty(), "every tile is in a linkage");
+            for k in set {
+                assert_eq!(analysis.linkages[k].bars, 4);
+            }
         }
+    }
+
+    /// Issue 24 item 5: a tile in several linkages lists them all (the old answer, the smallest
+    /// one, coloured every IH16 tile "linkage 0"), each listed linkage runs through the tile,
+    /// and every linkage through a tile is listed.
+    #[test]
+    fn a_tile_lists_every_linkage_through_it() {
+        let design = resolve_design("IH16:0.216506350946:1x1:-a-a-aaaa").unwrap();
+        let analysis = linkages(&design).unwrap();
+        assert_eq!(analysis.linkages.len(), 3);
+        let tiles = design.cell().unwrap().tiles.len();
+        let by_tile = tile_linkages(&analysis, tiles);
+        for (tile, set) in by_tile.iter().enumerate() {
+            let want: Vec<usize> = (0..analysis.linkages.len())
+                .filter(|&k| analysis.linkages[k].nodes.iter().any(|n| n.0 == tile))
+                .collect();
+            assert_eq!(set, &want, "tile {tile}");
+        }
+        assert!(by_tile.iter().all(|set| set.len() == 3));
     }
 }
