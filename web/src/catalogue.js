@@ -1,6 +1,12 @@
 // The catalogue page (index.html): facet filters with disjunctive counts, range filters, a
-// scatter of any two measures (hover shows the design, click opens it), a grid or table of
-// designs with thumbnails, sorting by any column either way, paging, a spec box, downloads.
+// scatter of any two measures (stacks with counts, colour by behaviour or family, brushing sets
+// the two axes' ranges; scatter.js), a grid or table of designs with thumbnails, sorting by
+// any column either way, paging, a spec box, downloads. The default view is the mechanisms
+// view (issue 24 item 2): one card per distinct motion (GET /api/motions or query.js's
+// motionGroups) with its counts and ranges over the matching designs, its best example's
+// thumbnail, and its variants expanding in place; the grid and table list designs. Default
+// order: largest area ratio first. A facet with one value is shown as a one-line fact. The
+// page's query string is remembered in sessionStorage for the design page's back link.
 // The whole view lives in the URL (history.replaceState). Data comes through data.js, so
 // the page is the same over `isogami serve` and over a static site.
 
@@ -11,7 +17,7 @@ import {
   FACETS, MEASURES, MAIN_MEASURES, TEXT_SORT_KEYS, facetLabel, facetText, measureLabel,
 } from './schema.js';
 import {
-  PAGE_SIZES, catalogueSearch, designHref, filterParams, parseCatalogueState,
+  PAGE_SIZES, catalogueSearch, designHref, filterParams, parseCatalogueState, rememberCatalogue,
 } from './url.js';
 import { allRows, catalogueCsv, catalogueJson, dictionaryCsv, download } from './export.js';
 
@@ -39,19 +45,7 @@ async function main() {
   setupSpecBox();
   setupToolbar();
   setupRanges();
-  scatter = createScatter($('scatter'), {
-    onClick: (p) => {
-      location.href = designHref(p.spec);
-    },
-    describe: (p, tip) => {
-      tip.replaceChildren(
-        h('img', { src: data.thumbnailUrl(p.spec), alt: '', width: 96, height: 48 }),
-        h('code', {}, p.spec),
-        h('div', {}, `${measureLabel(state.x)}: ${fmt(p.x)}`),
-        h('div', {}, `${measureLabel(state.y)}: ${fmt(p.y)}`),
-      );
-    },
-  });
+  setupScatter();
   try {
     const stats = await data.stats();
     $('stats').textContent = `${stats.designs} designs · isogami ${stats.tool_version ?? '?'}`;
@@ -59,6 +53,48 @@ async function main() {
     showError(e);
   }
   await refresh();
+}
+
+/** The scatter: stacks of designs, colour select, brush → the two axes' ranges, clear them. */
+function setupScatter() {
+  scatter = createScatter($('scatter'), {
+    onOpen: (spec) => {
+      location.href = designHref(spec);
+    },
+    onBrush: ({ x, y }) =>
+      change(() => {
+        const ranges = state.ranges.filter((r) => r.measure !== state.x && r.measure !== state.y);
+        if (state.x === state.y) {
+          ranges.push({ measure: state.x, min: Math.max(x[0], y[0]), max: Math.min(x[1], y[1]) });
+        } else {
+          ranges.push({ measure: state.x, min: x[0], max: x[1] }, { measure: state.y, min: y[0], max: y[1] });
+        }
+        state.ranges = ranges;
+        state.offset = 0;
+      }),
+    href: (spec) => designHref(spec),
+    thumbnailUrl: (spec) => data.thumbnailUrl(spec),
+    countEl: $('scatter-count'),
+  });
+  $('scatter-colour').addEventListener('change', () => {
+    state.colour = $('scatter-colour').value;
+    history.replaceState(null, '', `${location.pathname}${catalogueSearch(state)}`);
+    scatter.setColour(state.colour);
+  });
+  $('scatter-clear').addEventListener('click', () =>
+    change(() => {
+      state.ranges = state.ranges.filter((r) => r.measure !== state.x && r.measure !== state.y);
+      state.offset = 0;
+    }),
+  );
+}
+
+/** The scatter's controls in agreement with the state. */
+function syncScatter() {
+  $('scatter-colour').value = state.colour;
+  const axisRanges = state.ranges.filter((r) => r.measure === state.x || r.measure === state.y);
+  $('scatter-clear').hidden = axisRanges.length === 0;
+  $('scatter-clear').textContent = `clear the ${axisRanges.map((r) => measureLabel(r.measure)).join(' and ')} range${axisRanges.length > 1 ? 's' : ''}`;
 }
 
 function showError(e) {
@@ -69,29 +105,32 @@ function showError(e) {
 async function refresh() {
   const token = ++seq;
   history.replaceState(null, '', `${location.pathname}${catalogueSearch(state)}`);
+  rememberCatalogue(catalogueSearch(state));
+  const mechanisms = state.view === 'mechanisms';
   syncControls();
+  syncScatter();
   const scatterKey = `${filterParams(state)}|${state.x}|${state.y}`;
   const wantScatter = scatterKey !== lastScatterKey;
   document.body.classList.add('loading');
   try {
     const [page, facets, points] = await Promise.all([
-      data.designs(state),
+      mechanisms ? data.motions(state) : data.designs(state),
       data.facets(state),
       wantScatter ? data.scatter(state, state.x, state.y) : null,
     ]);
     if (token !== seq) return;
-    if (page.total > 0 && state.offset >= page.total) {
+    if (!mechanisms && page.total > 0 && state.offset >= page.total) {
       state.offset = Math.floor((page.total - 1) / state.limit) * state.limit;
       refresh();
       return;
     }
     clearNotice($('notice'));
     renderFacets(facets);
-    renderPage(page);
+    if (mechanisms) renderMechanisms(page);
+    else renderPage(page);
     if (points) {
       lastScatterKey = scatterKey;
-      scatter.update(points, measureLabel(state.x), measureLabel(state.y));
-      $('scatter-count').textContent = `${points.length} points`;
+      scatter.update(points, measureLabel(state.x), measureLabel(state.y), state.colour);
     }
   } catch (e) {
     if (token === seq) showError(e);
@@ -124,14 +163,13 @@ function setupToolbar() {
   $('x').addEventListener('change', () => change(() => (state.x = $('x').value)));
   $('y').addEventListener('change', () => change(() => (state.y = $('y').value)));
   $('sort-key').replaceChildren(
-    h('option', { value: '' }, 'default (spec)'),
     ...TEXT_SORT_KEYS.filter((k) => k !== 'spec').concat(['spec']).map((k) => h('option', { value: k }, k.replace(/_/g, ' '))),
     ...MEASURES.map((m) => h('option', { value: m.name }, m.label)),
   );
   $('sort-key').addEventListener('change', () =>
     change(() => {
       const key = $('sort-key').value;
-      state.sort = key ? { key, desc: state.sort?.desc ?? false } : null;
+      state.sort = { key, desc: state.sort?.desc ?? false };
       state.offset = 0;
     }),
   );
@@ -148,6 +186,7 @@ function setupToolbar() {
       state.offset = 0;
     }),
   );
+  $('view-mechanisms').addEventListener('click', () => change(() => (state.view = 'mechanisms')));
   $('view-grid').addEventListener('click', () => change(() => (state.view = 'grid')));
   $('view-table').addEventListener('click', () => change(() => (state.view = 'table')));
   $('prev').addEventListener('click', () => change(() => (state.offset = Math.max(0, state.offset - state.limit))));
@@ -235,12 +274,16 @@ function setupRanges() {
 function syncControls() {
   $('x').value = state.x;
   $('y').value = state.y;
-  $('sort-key').value = state.sort ? state.sort.key : '';
+  $('sort-key').value = state.sort ? state.sort.key : 'spec';
   const desc = state.sort?.desc ?? false;
   $('sort-dir').textContent = desc ? '↓ descending' : '↑ ascending';
   $('sort-dir').setAttribute('aria-pressed', String(desc));
   $('limit').value = String(state.limit);
+  $('view-mechanisms').setAttribute('aria-pressed', String(state.view === 'mechanisms'));
   $('view-grid').setAttribute('aria-pressed', String(state.view === 'grid'));
+  // The mechanisms view lists every matching class: no pages.
+  $('limit').closest('label').hidden = state.view === 'mechanisms';
+  $('pager').hidden = state.view === 'mechanisms';
   $('view-table').setAttribute('aria-pressed', String(state.view === 'table'));
   for (const m of MEASURES) {
     const r = state.ranges.find((x) => x.measure === m.name);
@@ -256,6 +299,15 @@ function renderFacets(facets) {
   const boxes = FACETS.map((f) => {
     const counts = [...(facets[f.name] || [])];
     const selected = state.filters[f.name];
+    // One value and nothing ticked: not a filter, a fact about every design shown.
+    if (counts.length === 1 && selected.length === 0) {
+      return h(
+        'p',
+        { class: 'facet-fact', testid: `facet-fact-${f.name}` },
+        h('span', { class: 'facet-name' }, `${f.label}: `),
+        `${facetLabel(f.name, counts[0].value)} (all ${counts[0].count} shown)`,
+      );
+    }
     for (const text of selected) {
       if (!counts.some((c) => facetText(f.name, c.value) === text)) counts.push({ value: text, count: 0, missing: true });
     }
@@ -288,6 +340,8 @@ function renderFacets(facets) {
 
 function renderPage(page) {
   $('total').textContent = String(page.total);
+  $('total-label').textContent = page.total === 1 ? 'design' : 'designs';
+  $('mechanism-count').textContent = '';
   const pages = Math.max(1, Math.ceil(page.total / state.limit));
   const current = Math.floor(state.offset / state.limit) + 1;
   $('page-info').textContent = `page ${current} of ${pages}`;
@@ -299,6 +353,126 @@ function renderPage(page) {
     return;
   }
   list.replaceChildren(state.view === 'table' ? table(page.rows) : grid(page.rows));
+}
+
+/** A span of values as text: one value, or "lo–hi". */
+function spanText(s) {
+  if (!s) return '–';
+  const lo = fmt(s.min);
+  const hi = fmt(s.max);
+  return lo === hi ? lo : `${lo}–${hi}`;
+}
+
+/** "IH2, IH3, IH9 +4" for a card's heading. */
+function listText(items, shown = 4) {
+  const head = items.slice(0, shown).join(', ');
+  return items.length > shown ? `${head} +${items.length - shown}` : head;
+}
+
+const plural = (n, word) => `${n} ${word}${n === 1 ? '' : 's'}`;
+
+let cardSeq = 0;
+
+/** One mechanism card: counts, ranges over its matching designs, best example, variants. */
+function motionCard(g) {
+  const best = g.members[0];
+  const id = `variants-${++cardSeq}`;
+  const unclassified = g.representative === null;
+  const cells = g.cells.map((c) => facetLabel('cell', c));
+  const title = unclassified
+    ? `${plural(g.designs, 'design')} without a computed motion class`
+    : `${listText(g.families.map(String))} · ${listText(cells, 3)}`;
+  const behaviours = g.behaviours
+    .map((b) => `${facetLabel('behaviour', b.value)}${g.behaviours.length > 1 ? ` (${b.count})` : ''}`)
+    .join(', ');
+  const variants = h(
+    'ul',
+    { id, class: 'variants', hidden: true, testid: 'card-variants' },
+    g.members.map((m) =>
+      h(
+        'li',
+        {},
+        h(
+          'a',
+          { href: designHref(m.spec), testid: 'card-variant', 'data-spec': m.spec, 'data-area': String(m.max_area_ratio) },
+          h('img', { src: data.thumbnailUrl(m.spec), alt: '', loading: 'lazy', width: 120, height: 60 }),
+          h('code', { class: 'spec' }, m.spec),
+          h('span', { class: 'facts' }, `area ${fmt(m.max_area_ratio)} · max ε ${fmt(m.max_expansion)} · ${facetLabel('behaviour', m.behaviour)}`),
+        ),
+      ),
+    ),
+  );
+  const toggle = h(
+    'button',
+    {
+      type: 'button',
+      class: 'expand',
+      'aria-expanded': 'false',
+      'aria-controls': id,
+      testid: 'motion-expand',
+      onclick: () => {
+        const open = toggle.getAttribute('aria-expanded') !== 'true';
+        toggle.setAttribute('aria-expanded', String(open));
+        variants.hidden = !open;
+        toggle.textContent = open ? `hide the ${plural(g.designs, 'variant')}` : `show the ${plural(g.designs, 'variant')}`;
+      },
+    },
+    `show the ${plural(g.designs, 'variant')}`,
+  );
+  return h(
+    'li',
+    {
+      class: `motion-card${unclassified ? ' unclassified' : ''}`,
+      testid: 'motion-card',
+      'data-representative': g.representative ?? '',
+      'data-designs': String(g.designs),
+      'data-best': best.spec,
+    },
+    h(
+      'a',
+      { class: 'card', href: designHref(best.spec), testid: 'design-card', 'data-spec': best.spec },
+      h('img', { src: data.thumbnailUrl(best.spec), alt: `closed and open state of ${best.spec}`, loading: 'lazy', width: 200, height: 100 }),
+      h('span', { class: 'best' }, unclassified ? 'first design' : 'best example', ': ', h('code', {}, best.spec)),
+    ),
+    h('h3', {}, title),
+    h(
+      'p',
+      { class: 'counts', testid: 'motion-counts' },
+      unclassified
+        ? 'not one degree of freedom at their shape, saved since the last explore, or classes not computed'
+        : `${plural(g.designs, 'design')} · ${plural(g.topologies, 'topology').replace('topologys', 'topologies')} · ${plural(g.families.length, 'family').replace('familys', 'families')} · ${plural(g.cells.length, 'cell')}`,
+    ),
+    h(
+      'dl',
+      { class: 'ranges' },
+      h('dt', {}, 'area ratio'), h('dd', { testid: 'motion-area' }, spanText(g.max_area_ratio)),
+      h('dt', {}, 'max ε'), h('dd', {}, spanText(g.max_expansion)),
+      h('dt', {}, 'min ε'), h('dd', {}, spanText(g.min_expansion)),
+      h('dt', {}, 'ν'), h('dd', {}, spanText(g.poisson)),
+      h('dt', {}, 'behaviour'), h('dd', {}, behaviours),
+    ),
+    toggle,
+    variants,
+  );
+}
+
+/** The mechanisms view: one card per distinct motion, the unclassified designs last. */
+function renderMechanisms(answer) {
+  const groups = answer.unclassified ? [...answer.groups, answer.unclassified] : answer.groups;
+  $('total').textContent = String(answer.total);
+  $('total-label').textContent = answer.total === 1 ? 'design' : 'designs';
+  $('mechanism-count').textContent = ` in ${plural(answer.groups.length, 'distinct motion')}${
+    answer.unclassified ? ` and ${answer.unclassified.designs} without a motion class` : ''
+  }`;
+  const list = $('list');
+  if (!groups.length) {
+    list.replaceChildren(h('p', { class: 'empty' }, 'No design matches these filters.'));
+    return;
+  }
+  list.replaceChildren(
+    answer.computed ? null : h('p', { class: 'muted' }, 'This database has no motion classes yet: run `isogami explore` on it once to compute them.'),
+    h('ul', { class: 'mechanisms', testid: 'mechanisms' }, groups.map(motionCard)),
+  );
 }
 
 function grid(rows) {

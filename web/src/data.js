@@ -111,6 +111,14 @@ class ServerData {
     });
   }
 
+  /** The mechanisms view: matching designs grouped by motion class (filters and sort of
+   * `state`; GET /api/motions). */
+  motions(state) {
+    const p = filterParams(state);
+    if (state.sort) p.set('sort', `${state.sort.desc ? '-' : ''}${state.sort.key}`);
+    return getJson(`./api/motions?${p}`);
+  }
+
   /** The class of topologies that move like the stored design `spec` ({class: … | null}). */
   motion(spec) {
     return getJson(`./api/motion?spec=${encodeURIComponent(spec)}`);
@@ -129,6 +137,12 @@ class ServerData {
       headers: { 'content-type': 'application/json' },
       body: JSON.stringify({ design: spec, index, value }),
     });
+  }
+
+  /** Each shape parameter's valid range, the others fixed, at `kerf` (GET /api/shape/ranges). */
+  shapeRanges(spec, kerf, signal) {
+    const k = kerf === null || kerf === undefined ? '' : `&kerf=${encodeURIComponent(kerf)}`;
+    return getJson(`./api/shape/ranges?design=${encodeURIComponent(spec)}${k}`, { signal });
   }
 
   /** A finite region of a design: DOF, floppy tiles, completion, finite deployment
@@ -227,6 +241,22 @@ class StaticData {
 
   async scatter(state, x, y) {
     return q.scatter(await this.rows(), state, x, y);
+  }
+
+  /** Each classed topology's representative (sites written before it: none computed). */
+  motionClasses() {
+    return (this._motions ??= getJson('./data/motions.json').catch((e) => {
+      if (e.status === 404) return { computed: false, classes: {} };
+      throw e;
+    }));
+  }
+
+  async motions(state) {
+    return q.motionGroups(await this.rows(), await this.motionClasses(), state);
+  }
+
+  async motion(spec) {
+    return q.motionOf(await this.rows(), await this.motionClasses(), spec);
   }
 
   async design(spec) {

@@ -1,6 +1,9 @@
 // View state ↔ URL. The catalogue's query string is the API's query string (filters, ranges,
-// sort, limit, offset) plus the page's own keys (scatter axes, grid/table view), so a shared
-// link restores the view and the same text queries the API. The design page keeps its spec,
+// sort, limit, offset) plus the page's own keys (scatter axes and colour, grid/table view), so a shared
+// link restores the view and the same text queries the API; the default sort (largest area
+// ratio first) and view (mechanisms: one card per distinct motion) are left out of it. The
+// catalogue remembers its query string in the tab's sessionStorage, so that the design page's
+// "back to the catalogue" returns to the same filters, sort and view. The design page keeps its spec,
 // patch size, kerf, colouring and t. Pure functions over URLSearchParams, no DOM.
 
 import { FACETS, MEASURE_NAMES, SORT_KEYS } from './schema.js';
@@ -9,18 +12,23 @@ export const DEFAULT_LIMIT = 50;
 export const PAGE_SIZES = [10, 25, 50, 100, 200];
 export const DEFAULT_X = 'max_expansion';
 export const DEFAULT_Y = 'max_area_ratio';
+/** The catalogue's default order: largest area ratio first (the API's own default is spec). */
+export const DEFAULT_SORT = Object.freeze({ key: 'max_area_ratio', desc: true });
+/** The catalogue's views: one card per distinct motion (default), design grid, design table. */
+export const VIEWS = ['mechanisms', 'grid', 'table'];
 
 /** The empty catalogue view. */
 export function emptyCatalogueState() {
   return {
     filters: Object.fromEntries(FACETS.map((f) => [f.name, []])),
     ranges: [],
-    sort: null,
+    sort: { ...DEFAULT_SORT },
     limit: DEFAULT_LIMIT,
     offset: 0,
     x: DEFAULT_X,
     y: DEFAULT_Y,
-    view: 'grid',
+    view: 'mechanisms',
+    colour: 'behaviour',
   };
 }
 
@@ -58,7 +66,8 @@ export function parseCatalogueState(search) {
   if (Number.isInteger(offset) && offset >= 0) s.offset = offset;
   if (MEASURE_NAMES.has(p.get('x'))) s.x = p.get('x');
   if (MEASURE_NAMES.has(p.get('y'))) s.y = p.get('y');
-  if (p.get('view') === 'table') s.view = 'table';
+  if (VIEWS.includes(p.get('view'))) s.view = p.get('view');
+  if (p.get('colour') === 'family') s.colour = 'family';
   return s;
 }
 
@@ -86,12 +95,16 @@ export function pageParams(state) {
 /** The page's query string: the API's plus the view's own keys (defaults left out). */
 export function catalogueSearch(state) {
   const p = filterParams(state);
-  if (state.sort) p.set('sort', `${state.sort.desc ? '-' : ''}${state.sort.key}`);
+  const sort = state.sort ?? { key: 'spec', desc: false };
+  if (sort.key !== DEFAULT_SORT.key || sort.desc !== DEFAULT_SORT.desc) {
+    p.set('sort', `${sort.desc ? '-' : ''}${sort.key}`);
+  }
   if (state.limit !== DEFAULT_LIMIT) p.set('limit', String(state.limit));
   if (state.offset) p.set('offset', String(state.offset));
   if (state.x !== DEFAULT_X) p.set('x', state.x);
   if (state.y !== DEFAULT_Y) p.set('y', state.y);
-  if (state.view !== 'grid') p.set('view', state.view);
+  if (state.view !== 'mechanisms') p.set('view', state.view);
+  if (state.colour === 'family') p.set('colour', 'family');
   const text = p.toString();
   return text ? `?${text}` : '';
 }
@@ -136,4 +149,35 @@ export function designSearch(s) {
 /** Relative link to a design page. */
 export function designHref(spec, extra = {}) {
   return `./design.html${designSearch({ ...DESIGN_DEFAULTS, kerf: null, ...extra, spec })}`;
+}
+
+const CATALOGUE_KEY = 'isogami.catalogue';
+
+/** The tab's sessionStorage, or null where the browser refuses it (or outside a browser). */
+function tabStorage() {
+  try {
+    return globalThis.sessionStorage ?? null;
+  } catch {
+    return null;
+  }
+}
+
+/** Remembers the catalogue's query string (`storage`: the tab's sessionStorage by default). */
+export function rememberCatalogue(search, storage = tabStorage()) {
+  try {
+    storage?.setItem(CATALOGUE_KEY, search);
+  } catch {
+    // Storage refused (private mode, quota): the back link then opens the default view.
+  }
+}
+
+/** The link back to the catalogue with the query string it last had in this tab. */
+export function catalogueHref(storage = tabStorage()) {
+  let search = '';
+  try {
+    search = storage?.getItem(CATALOGUE_KEY) ?? '';
+  } catch {
+    search = '';
+  }
+  return `./index.html${search.startsWith('?') ? search : ''}`;
 }

@@ -1,7 +1,8 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  catalogueSearch, designSearch, pageParams, parseCatalogueState, parseDesignState,
+  catalogueHref, catalogueSearch, designSearch, pageParams, parseCatalogueState, parseDesignState,
+  rememberCatalogue,
 } from '../src/url.js';
 import { slug } from '../src/schema.js';
 
@@ -25,7 +26,8 @@ test('catalogue view round-trips through the URL', () => {
 test('malformed catalogue parameters are dropped, not passed on', () => {
   const s = parseCatalogueState('?range=nope:1:2&range=kerf:x:1&range=kerf::&sort=drop&limit=9999&offset=-3&x=bad');
   assert.deepEqual(s.ranges, []);
-  assert.equal(s.sort, null);
+  assert.deepEqual(s.sort, { key: 'max_area_ratio', desc: true }, 'the default order: largest area ratio first');
+  assert.equal(s.view, 'mechanisms');
   assert.equal(s.limit, 50);
   assert.equal(s.offset, 0);
   assert.equal(s.x, 'max_expansion');
@@ -48,4 +50,28 @@ test('slug: colons to _, commas to ~, anything else unsafe to _', () => {
   assert.equal(slug('IH28:0.1,-0.2:2x1:ab-ba-'), 'IH28_0.1~-0.2_2x1_ab-ba-');
   assert.equal(slug('IH76::2x2:bbbbaaaa'), 'IH76__2x2_bbbbaaaa');
   assert.equal(slug('../x y/~'), '.._x_y__');
+});
+
+test('default sort and view stay out of the URL; others round-trip', () => {
+  for (const search of ['?sort=spec', '?sort=max_area_ratio', '?view=grid', '?view=table', '?sort=-steps&view=grid']) {
+    const s = parseCatalogueState(search);
+    assert.equal(catalogueSearch(s), search, search);
+    assert.equal(pageParams(s).get('sort') !== null, true, 'the API is always told the order');
+  }
+  assert.equal(catalogueSearch(parseCatalogueState('?sort=-max_area_ratio&view=mechanisms')), '');
+  assert.equal(pageParams(parseCatalogueState('')).get('sort'), '-max_area_ratio');
+  assert.equal(parseCatalogueState('?view=cards').view, 'mechanisms');
+});
+
+test('the back link carries the catalogue query the tab last had', () => {
+  const store = new Map();
+  const storage = { getItem: (k) => store.get(k) ?? null, setItem: (k, v) => store.set(k, v) };
+  assert.equal(catalogueHref(storage), './index.html');
+  rememberCatalogue('?family=IH2&view=table', storage);
+  assert.equal(catalogueHref(storage), './index.html?family=IH2&view=table');
+  const broken = { getItem: () => { throw new Error('denied'); }, setItem: () => { throw new Error('denied'); } };
+  rememberCatalogue('?x=1', broken);
+  assert.equal(catalogueHref(broken), './index.html');
+  assert.equal(catalogueHref(null), './index.html');
+  assert.equal(catalogueHref(), './index.html', 'no sessionStorage outside a browser');
 });
