@@ -22,7 +22,7 @@ import {
 } from './patch.js';
 import { drawSheet } from './sheet.js';
 import { createEditor } from './editor.js';
-import { designSearch, parseDesignState } from './url.js';
+import { catalogueHref, designSearch, parseDesignState } from './url.js';
 import { download, fileStem, frameSvg, trajectoryCsv } from './export.js';
 import { facetLabel } from './schema.js';
 import { createExportPanel } from './export-panel.js';
@@ -44,6 +44,7 @@ let exportPanel = null;
 let finitePanel = null;
 
 async function main() {
+  $('back-link').href = catalogueHref(); // the filters, sort and view the catalogue last had
   data = await openData();
   document.body.dataset.mode = data.mode;
   state = parseDesignState(location.search);
@@ -193,7 +194,7 @@ function showView(v, { fromEditor }) {
   renderLegend();
   if (fromEditor) editor.showGeometry(v);
   else editor.sync(v, families);
-  motionPanel.show(v.spec, v.origin !== null && v.origin !== undefined);
+  motionPanel.show(v.spec, v.origin !== null && v.origin !== undefined, v.summary?.max_area_ratio ?? null);
   document.title = `${v.spec} · isogami`;
   setStatus(fromEditor ? `re-simulated: ${frames.length} frames, ${v.report.steps} steps` : '');
   document.body.dataset.deployments = String(Number(document.body.dataset.deployments || 0) + 1);
