@@ -75,6 +75,9 @@ test('the default view: one card per distinct motion, largest area ratio first, 
   const g = answer.groups[0];
   const area = (await first.locator('[data-testid="motion-area"]').textContent()).trim();
   assert.ok(area.length > 0 && !/e-|0000/.test(area), `a readable range: ${area}`);
+  const listText = await byTestId(page, 'list').textContent();
+  assert.doesNotMatch(listText, /\bnull\b|undefined|NaN/, 'no placeholder text in the cards');
+  assert.doesNotMatch(listText, /\d–-/, 'negative ranges are not written with a dash before a minus');
   // A card with several designs expands with the keyboard, and collapses again.
   const k = answer.groups.findIndex((x) => x.designs > 1);
   assert.ok(k >= 0, 'a class with several designs');

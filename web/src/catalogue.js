@@ -358,9 +358,12 @@ function renderPage(page) {
 /** A span of values as text: one value, or "lo–hi". */
 function spanText(s) {
   if (!s) return '–';
-  const lo = fmt(s.min);
-  const hi = fmt(s.max);
-  return lo === hi ? lo : `${lo}–${hi}`;
+  const minus = (t) => t.replace(/^-/, '−');
+  const lo = minus(fmt(s.min));
+  const hi = minus(fmt(s.max));
+  if (lo === hi) return lo;
+  // A dash between negative numbers reads as a minus sign: "−0.65 to −0.004".
+  return s.min < 0 ? `${lo} to ${hi}` : `${lo}–${hi}`;
 }
 
 /** "IH2, IH3, IH9 +4" for a card's heading. */
@@ -448,11 +451,11 @@ function motionCard(g) {
       h('dt', {}, 'area ratio'), h('dd', { testid: 'motion-area' }, spanText(g.max_area_ratio)),
       h('dt', {}, 'max ε'), h('dd', {}, spanText(g.max_expansion)),
       h('dt', {}, 'min ε'), h('dd', {}, spanText(g.min_expansion)),
-      h('dt', {}, 'ν'), h('dd', {}, spanText(g.poisson)),
+      h('dt', {}, 'Poisson-like ν'), h('dd', {}, spanText(g.poisson)),
       h('dt', {}, 'behaviour'), h('dd', {}, behaviours),
     ),
-    toggle,
-    variants,
+    g.designs > 1 ? toggle : null,
+    g.designs > 1 ? variants : null,
   );
 }
 
@@ -469,10 +472,10 @@ function renderMechanisms(answer) {
     list.replaceChildren(h('p', { class: 'empty' }, 'No design matches these filters.'));
     return;
   }
-  list.replaceChildren(
-    answer.computed ? null : h('p', { class: 'muted' }, 'This database has no motion classes yet: run `isogami explore` on it once to compute them.'),
-    h('ul', { class: 'mechanisms', testid: 'mechanisms' }, groups.map(motionCard)),
-  );
+  const note = answer.computed
+    ? []
+    : [h('p', { class: 'muted' }, 'This database has no motion classes yet: run `isogami explore` on it once to compute them.')];
+  list.replaceChildren(...note, h('ul', { class: 'mechanisms', testid: 'mechanisms' }, groups.map(motionCard)));
 }
 
 function grid(rows) {
