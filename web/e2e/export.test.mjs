@@ -335,3 +335,74 @@ test('a hinge too wide is explained in the panel and nothing is downloaded', asy
   assert.equal(downloads, 0, 'no file was saved');
   assert.deepEqual(problems(page, [/^400 GET \S+\/api\/export\?/]), []);
 });
+
+test('a laser file is the closed sheet: the state is disabled with the reason, the command has no --t, and formats that use it keep it', async () => {
+  const page = await newPage(browser);
+  const spec = completes.row.spec;
+  await openDesign(page, spec);
+  const command = () => byTestId(page, 'export-command').textContent();
+  assert.equal(await byTestId(page, 'export-format').inputValue(), 'svg');
+  const fieldsetDisabled = () => byTestId(page, 'export-state').evaluate((f) => f.disabled);
+  assert.equal(await fieldsetDisabled(), true, 'the state fieldset is disabled for SVG');
+  for (const s of ['closed', 'current', 'open']) assert.equal(await byTestId(page, `export-state-${s}`).isDisabled(), true);
+  assert.match(await byTestId(page, 'export-state-note').textContent(), /closed/);
+  assert.equal(await byTestId(page, 'export-state-note').isVisible(), true);
+  assert.doesNotMatch(await command(), / --t /, 'no state in the laser command');
+
+  await byTestId(page, 'export-format').selectOption('fold');
+  assert.equal(await fieldsetDisabled(), false, 'FOLD uses the state');
+  assert.equal(await byTestId(page, 'export-state-note').isVisible(), false);
+  await byTestId(page, 'export-state-open').check();
+  assert.match(await command(), / --t open /);
+  await byTestId(page, 'export-format').selectOption('dxf');
+  assert.doesNotMatch(await command(), / --t /, 'DXF: no state either');
+
+  // The download asks for no state, and the command shown writes the same bytes.
+  const asked = [];
+  page.on('request', (r) => r.url().includes('/api/export?') && asked.push(new URL(r.url()).searchParams));
+  const file = await downloadExport(page);
+  assert.equal(asked.length, 1);
+  assert.equal(asked[0].get('t'), null);
+  assert.ok((await runShown(await command(), file.name)).equals(file.bytes), 'the CLI wrote the same DXF');
+  assert.deepEqual(problems(page), []);
+});
+
+test('rows × columns beyond the server’s limits are refused beside the field before any request', async () => {
+  const page = await newPage(browser);
+  const spec = completes.row.spec;
+  await openDesign(page, spec);
+  const asked = [];
+  page.on('request', (r) => r.url().includes('/api/export?') && asked.push(r.url()));
+  const error = byTestId(page, 'export-patch-error');
+  assert.equal(await error.isVisible(), false);
+  await byTestId(page, 'export-rows').fill('999');
+  assert.equal(await error.isVisible(), true);
+  assert.match(await error.textContent(), new RegExp(`rows: a whole number from 1 to ${catalog.limits.max_patch}`));
+  assert.equal(await byTestId(page, 'export-download').isDisabled(), true, 'Download is disabled');
+  assert.equal(await byTestId(page, 'export-rows').getAttribute('aria-invalid'), 'true');
+  // Beside the field: just under the rows × columns row.
+  const field = await byTestId(page, 'export-rows').boundingBox();
+  const box = await error.boundingBox();
+  assert.ok(box.y >= field.y && box.y - (field.y + field.height) < 40, `the message is beside the field (${box.y} vs ${field.y})`);
+
+  // Within the library's limit but over the server's tile cap.
+  const tiles = (await getJson(`${server.base}/api/design?spec=${encodeURIComponent(spec)}`)).geometry.tiles.length;
+  const max = catalog.limits.max_patch;
+  if (max * max * tiles > catalog.limits.max_tiles) {
+    await byTestId(page, 'export-rows').fill(String(max));
+    await byTestId(page, 'export-cols').fill(String(max));
+    assert.match(await error.textContent(), new RegExp(`${max * max * tiles} tiles: the server exports at most ${catalog.limits.max_tiles}`));
+    assert.equal(await byTestId(page, 'export-download').isDisabled(), true);
+    // The server agrees: it refuses that rectangle.
+    const res = await fetch(`${server.base}/api/export?design=${encodeURIComponent(spec)}&format=svg&patch=${max}x${max}`);
+    assert.equal(res.status, 422);
+  }
+  const over = await fetch(`${server.base}/api/export?design=${encodeURIComponent(spec)}&format=svg&patch=999x4`);
+  assert.equal(over.status, 400, 'and the server refuses 999 rows, as the page said');
+  await byTestId(page, 'export-rows').fill('2');
+  await byTestId(page, 'export-cols').fill('3');
+  assert.equal(await error.isVisible(), false);
+  assert.equal(await byTestId(page, 'export-download').isDisabled(), false);
+  assert.deepEqual(asked, [], 'nothing was asked of the server');
+  assert.deepEqual(problems(page), []);
+});

@@ -72,7 +72,7 @@ async function main() {
   }
   exportPanel = createExportPanel($('export-panel'), {
     data,
-    current: () => (view ? { spec: view.spec, kerf: view.report.kerf, t: state.t } : null),
+    current: () => (view ? { spec: view.spec, kerf: view.report.kerf, t: state.t, tiles: view.geometry.tiles.length } : null),
     initial: { rows: state.rows, cols: state.cols },
   });
   finitePanel = createFinitePanel($('finite-panel'), {

@@ -6,10 +6,14 @@
 // design page tells it the current spec, kerf and t. Download fetches GET /api/export and
 // saves the answer under the server's file name; an error is shown in the panel and nothing
 // is saved. Under the form, the `isogami export …` command that writes the same file; on a
-// static site that command is the way to make the file.
+// static site that command is the way to make the file. Rows × columns are checked against the
+// catalogue's limits as they are typed (the message beside them, Download disabled); the state
+// is disabled, with the reason, for formats that do not use it (laser: the closed sheet).
 
 import { h } from './dom.js';
-import { attachmentName, cliCommand, exportFileName, exportParams, formatOf } from './export-request.js';
+import {
+  attachmentName, cliCommand, exportFileName, exportParams, formatOf, patchProblem, usesState,
+} from './export-request.js';
 
 /** Bytes as "12.3 kB". */
 function size(n) {
@@ -18,8 +22,9 @@ function size(n) {
   return `${(n / 1e6).toFixed(1)} MB`;
 }
 
-/** Draws the panel into `container`. `current()` gives {spec, kerf, t} of what is on screen
- * (null before a design is shown); `initial` the rows and columns to start with. */
+/** Draws the panel into `container`. `current()` gives {spec, kerf, t, tiles} of what is on
+ * screen (tiles: the cell's tile count; null before a design is shown); `initial` the rows and
+ * columns to start with. */
 export function createExportPanel(container, { data, current, initial }) {
   let catalog = null;
   let inflight = null;
@@ -54,6 +59,15 @@ export function createExportPanel(container, { data, current, initial }) {
     el.currentT.textContent = now ? Number(now.t).toFixed(3) : '–';
     const command = f ? cliCommand(f, catalog) : '';
     if (el.command.textContent !== command) el.command.textContent = command;
+    const stateful = usesState(catalog, el.format.value);
+    el.state.disabled = !stateful;
+    el.stateNote.hidden = stateful;
+    const problem = f ? patchProblem(f, catalog, now?.tiles) : null;
+    el.patchError.textContent = problem ? problem.message : '';
+    el.patchError.hidden = !problem;
+    el.rows.setAttribute('aria-invalid', String(problem?.field === 'rows' || problem?.field === 'patch'));
+    el.cols.setAttribute('aria-invalid', String(problem?.field === 'cols' || problem?.field === 'patch'));
+    el.button.disabled = !data.live || Boolean(problem) || Boolean(inflight);
   }
 
   function numberInput(id, attrs) {
@@ -107,7 +121,7 @@ export function createExportPanel(container, { data, current, initial }) {
 
   async function download() {
     const f = form();
-    if (!f) return;
+    if (!f || patchProblem(f, catalog, current()?.tiles)) return;
     if (inflight) inflight.abort();
     const controller = new AbortController();
     inflight = controller;
@@ -134,7 +148,7 @@ export function createExportPanel(container, { data, current, initial }) {
     } finally {
       if (inflight === controller) {
         inflight = null;
-        el.button.disabled = !data.live;
+        update();
       }
     }
   }
@@ -161,8 +175,9 @@ export function createExportPanel(container, { data, current, initial }) {
     );
     el.description = h('p', { class: 'help', id: 'export-format-help', testid: 'export-format-help' });
     el.format.setAttribute('aria-describedby', 'export-format-help');
-    el.rows = numberInput('export-rows', { testid: 'export-rows', min: 1, max, step: 1, value: initial.rows, required: true });
-    el.cols = numberInput('export-cols', { testid: 'export-cols', min: 1, max, step: 1, value: initial.cols, required: true });
+    el.rows = numberInput('export-rows', { testid: 'export-rows', min: 1, max, step: 1, value: initial.rows, required: true, 'aria-describedby': 'export-patch-error' });
+    el.cols = numberInput('export-cols', { testid: 'export-cols', min: 1, max, step: 1, value: initial.cols, required: true, 'aria-describedby': 'export-patch-error' });
+    el.patchError = h('p', { id: 'export-patch-error', class: 'field-error', testid: 'export-patch-error', 'aria-live': 'polite', hidden: true });
     el.scale = h(
       'select',
       { id: 'export-scale', testid: 'export-scale', onchange: update },
@@ -210,6 +225,7 @@ export function createExportPanel(container, { data, current, initial }) {
         h('label', { for: 'export-cols' }, 'columns'),
         el.cols,
       ),
+      el.patchError,
       h(
         'fieldset',
         { class: 'export-sheet' },
@@ -231,14 +247,19 @@ export function createExportPanel(container, { data, current, initial }) {
         el.mm,
         h('span', { class: 'unit' }, 'mm'),
       ),
-      h(
+      (el.state = h(
         'fieldset',
-        { class: 'export-state' },
+        { class: 'export-state', testid: 'export-state' },
         h('legend', {}, 'state'),
         radio('closed', 'closed (t = 0)'),
         radio('current', 'the slider’s t = ', el.currentT),
         radio('open', 'open (contact limit)'),
-      ),
+        (el.stateNote = h(
+          'p',
+          { class: 'help', testid: 'export-state-note', hidden: true },
+          'A laser cuts the flat sheet: SVG and DXF are always the closed state (t = 0), so the state does not apply.',
+        )),
+      )),
       ...groups,
       h('p', {}, el.button, ' ', el.status),
       el.error,

@@ -4,6 +4,10 @@
 // Pure functions over a form state and the export catalogue (GET /api/export/formats, or a
 // static site's data/site.json `export`); export-panel.js draws the form.
 //
+// The state is sent only for formats whose files change with it (the catalogue's `uses_state`:
+// a laser cuts the flat sheet, so SVG and DXF are always the closed state). `patchProblem`
+// checks rows × columns against the catalogue's limits before any request.
+//
 // Form state: { spec, kerf, format, rows, cols, sheet: 'completed'|'raw', scale: 'edge'|'width',
 // mm, state: 'closed'|'current'|'open', t, settings: {group: {key: text}} } where `settings` holds only
 // the fields the user set (an empty field means the library's default, or the preset's
@@ -17,6 +21,37 @@ import { slug } from './schema.js';
 /** The format named `name` in the catalogue. */
 export function formatOf(catalog, name) {
   return catalog.formats.find((f) => f.name === name) ?? catalog.formats[0];
+}
+
+/** Whether `format`'s files change with the state (t, open); a catalogue without the flag
+ * (an older static site) is taken to say yes. */
+export function usesState(catalog, format) {
+  return formatOf(catalog, format).uses_state !== false;
+}
+
+/** What is wrong with the form's rows × columns for the server, before any request: `null`, or
+ * `{field: 'rows'|'cols'|'patch', message}`. Each must be a whole number from 1 to the
+ * catalogue's `limits.max_patch` (the library's limit, the command line's too), and the
+ * rectangle of a `cellTiles`-tile cell at most `limits.max_tiles` tiles (the server's limit
+ * only: `serverOnly` is then true, since `isogami export` makes the file). */
+export function patchProblem(form, catalog, cellTiles) {
+  const max = catalog.limits.max_patch;
+  for (const [field, word] of [['rows', 'rows'], ['cols', 'columns']]) {
+    const v = form[field];
+    if (!Number.isInteger(v) || v < 1 || v > max) {
+      return { field, message: `${word}: a whole number from 1 to ${max}`, serverOnly: false };
+    }
+  }
+  const cap = catalog.limits.max_tiles;
+  const tiles = form.rows * form.cols * (cellTiles || 0);
+  if (cap && tiles > cap) {
+    return {
+      field: 'patch',
+      message: `${form.rows} × ${form.cols} cells of ${cellTiles} tiles is ${tiles} tiles: the server exports at most ${cap}; export a smaller patch, or run the command below (no limit)`,
+      serverOnly: true,
+    };
+  }
+  return null;
 }
 
 /** The settings groups `format` uses, in catalogue order. */
@@ -44,8 +79,10 @@ export function exportPairs(form, catalog) {
     ['format', form.format],
     ['patch', `${form.rows}x${form.cols}`],
     [form.scale === 'width' ? 'width_mm' : 'edge_mm', String(form.mm)],
-    ['t', form.state === 'open' ? 'open' : form.state === 'current' ? tText(form.t) : '0'],
   ];
+  if (usesState(catalog, form.format)) {
+    pairs.push(['t', form.state === 'open' ? 'open' : form.state === 'current' ? tText(form.t) : '0']);
+  }
   if (form.sheet === 'raw') pairs.push(['raw', 'true']);
   const kerf = Number(form.kerf);
   if (form.kerf !== null && form.kerf !== undefined && Math.abs(kerf - catalog.defaults.kerf) > 1e-12) {

@@ -5,15 +5,15 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  attachmentName, cliCommand, exportFileName, exportPairs, exportParams, fieldsOf, shellWord,
+  attachmentName, cliCommand, exportFileName, exportPairs, exportParams, fieldsOf, patchProblem, shellWord, usesState,
 } from '../src/export-request.js';
 import { shellSplit } from './shell.mjs';
 
 // A catalogue of the shape GET /api/export/formats serves.
 const catalog = {
   formats: [
-    { name: 'svg', description: 'laser', extension: 'svg', settings: ['laser'] },
-    { name: 'fold', description: 'FOLD', extension: 'fold', settings: [] },
+    { name: 'svg', description: 'laser', extension: 'svg', settings: ['laser'], uses_state: false },
+    { name: 'fold', description: 'FOLD', extension: 'fold', settings: [], uses_state: true },
     { name: 'kirigami-sim', description: 'files', extension: null, settings: [] },
   ],
   settings: [
@@ -29,7 +29,7 @@ const catalog = {
     },
   ],
   defaults: { rows: 6, cols: 6, edge_mm: 20, t: 0, kerf: 0.01, frames: 11 },
-  limits: { max_patch: 40, max_frames: 100 },
+  limits: { max_patch: 40, max_frames: 100, max_tiles: 1800 },
 };
 
 const form = (extra = {}) => ({
@@ -84,9 +84,10 @@ test('the CLI command carries exactly the query of the download', () => {
 
 test('the query holds the state, the scale and only the settings the format uses', () => {
   const get = (f, key) => new Map(exportPairs(f, catalog)).get(key);
-  assert.equal(get(form(), 't'), '0.123');
-  assert.equal(get(form({ state: 'open' }), 't'), 'open');
-  assert.equal(get(form({ state: 'closed' }), 't'), '0');
+  const fold = (extra) => form({ format: 'fold', ...extra });
+  assert.equal(get(fold(), 't'), '0.123');
+  assert.equal(get(fold({ state: 'open' }), 't'), 'open');
+  assert.equal(get(fold({ state: 'closed' }), 't'), '0');
   assert.equal(get(form(), 'patch'), '2x3');
   assert.equal(get(form(), 'edge_mm'), '15');
   assert.equal(get(form({ scale: 'width' }), 'width_mm'), '15');
@@ -150,4 +151,34 @@ test('shell words: bare when safe, quoted otherwise', () => {
   assert.equal(shellWord('~x'), "'~x'");
   assert.equal(shellWord('a~b'), 'a~b');
   assert.deepEqual(shellSplit(`a ${shellWord("it's")} b`), ['a', "it's", 'b']);
+});
+
+test('a laser file has no state: neither the query nor the command names a t', () => {
+  assert.equal(usesState(catalog, 'svg'), false);
+  assert.equal(usesState(catalog, 'fold'), true);
+  assert.equal(usesState(catalog, 'kirigami-sim'), true, 'a catalogue without the flag: the state counts');
+  for (const state of ['closed', 'current', 'open']) {
+    const laser = form({ state });
+    assert.equal(exportParams(laser, catalog).get('t'), null, state);
+    assert.ok(!shellSplit(cliCommand(laser, catalog)).includes('--t'), state);
+    assert.equal(cliCommand(laser, catalog), cliCommand(form({ state: 'closed' }), catalog), 'the same command whatever the radio says');
+  }
+  assert.equal(exportParams(form({ format: 'fold', state: 'open' }), catalog).get('t'), 'open');
+  assert.equal(exportParams(form({ format: 'fold', state: 'current' }), catalog).get('t'), '0.123');
+});
+
+test('rows × columns are checked against the catalogue limits before any request', () => {
+  assert.equal(patchProblem(form(), catalog, 4), null);
+  assert.equal(patchProblem(form({ rows: 40, cols: 1 }), catalog, 45), null, '1800 tiles is allowed');
+  const big = patchProblem(form({ rows: 999 }), catalog, 4);
+  assert.equal(big.field, 'rows');
+  assert.match(big.message, /1 to 40/);
+  assert.equal(patchProblem(form({ cols: 0 }), catalog, 4).field, 'cols');
+  assert.equal(patchProblem(form({ cols: 2.5 }), catalog, 4).field, 'cols');
+  assert.equal(patchProblem(form({ rows: Number('') }), catalog, 4).field, 'rows', 'an empty field');
+  const many = patchProblem(form({ rows: 40, cols: 40 }), catalog, 6);
+  assert.equal(many.field, 'patch');
+  assert.equal(many.serverOnly, true);
+  assert.match(many.message, /9600 tiles/);
+  assert.match(many.message, /at most 1800/);
 });

@@ -50,6 +50,7 @@ pub fn catalog() -> Value {
                 "folder": f.extension().is_none(),
                 "download_type": if f.extension().is_none() { ZIP } else { f.media_type() },
                 "settings": groups::groups_of(f),
+                "uses_state": f.uses_state(),
             })
         })
         .collect();

@@ -153,6 +153,13 @@ impl Format {
     pub fn uses_print_settings(self) -> bool {
         self.settings_group() == SettingsGroup::Print
     }
+
+    /// Whether the patch request's state (t, open) changes the file. A laser cuts the flat
+    /// sheet, so SVG and DXF are always drawn from the closed state, whatever state is asked
+    /// for; front ends say so instead of offering a choice that does nothing.
+    pub fn uses_state(self) -> bool {
+        !matches!(self, Format::Svg | Format::Dxf)
+    }
 }
 
 impl fmt::Display for Format {
@@ -208,6 +215,38 @@ mod tests {
         assert_eq!(Format::Stl.settings_group().name(), "print");
         assert_eq!("3MF".parse::<Format>().unwrap(), Format::ThreeMf);
         assert_eq!(Format::ThreeMf.extension(), Some("3mf"));
+    }
+
+    /// `uses_state` is what the files do: exported closed and open, exactly the formats that
+    /// do not use the state give the same bytes (issue 24: the page offered t = 0, 0.5 and
+    /// open for laser files, which came out byte-identical).
+    #[test]
+    fn a_format_uses_the_state_exactly_when_its_files_change_with_it() {
+        use crate::export::{export_design, ExportOptions, ExportFiles, PatchRequest, State};
+        let design = crate::api::resolve_design("rotating-squares").unwrap();
+        let bytes = |format: Format, state: State| {
+            let request = PatchRequest {
+                rows: 2,
+                cols: 2,
+                state,
+                ..PatchRequest::default()
+            };
+            let options = ExportOptions {
+                creator: "test".into(),
+                ..ExportOptions::default()
+            };
+            match export_design(&design, &request, format, &options, &mut |_| true)
+                .unwrap()
+                .1
+            {
+                ExportFiles::One(b) => b,
+                ExportFiles::Folder(files) => files.into_iter().flat_map(|(_, b)| b).collect(),
+            }
+        };
+        for f in Format::ALL {
+            let same = bytes(f, State::T(0.0)) == bytes(f, State::Open);
+            assert_eq!(same, !f.uses_state(), "{f}");
+        }
     }
 
     #[test]
