@@ -161,7 +161,8 @@ test('downloads hold the trajectory: CSV one row per frame per tile, SVG of the 
   assert.equal(csv.length - 1, frames * tiles);
   assert.deepEqual(csv[0].slice(0, 4), ['frame', 'step', 't', 'tile']);
   const svg = (await downloadText(page, () => byTestId(page, 'download-svg').click())).text;
-  assert.equal((svg.match(/<polygon /g) || []).length, 2 * 3 * tiles);
+  // Tiles (the linkage loops are polygons too, without data-tile).
+  assert.equal((svg.match(/<polygon data-tile=/g) || []).length, 2 * 3 * tiles);
   assert.ok(!/NaN|undefined/.test(svg));
   const gif = await page.request.get(`${server.base}/api/gif?spec=${encodeURIComponent(spec)}`);
   assert.equal(gif.headers()['content-type'], 'image/gif');

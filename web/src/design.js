@@ -3,9 +3,12 @@
 // linkage or rotation; the unit cell and lattice vectors and the linkage loops on demand;
 // min/max principal expansion versus t and the polar stretch profile following t; every
 // measure; the spec with a copy button; downloads; and, over `isogami serve`, live design
-// (editor.js): each change is deployed on the server (debounced, the previous request
-// aborted) and explained in place when it fails. A design not in the database is deployed
-// live; the view state is kept in the URL. Beside the periodic figures, the finite-sheet panel
+// (editor.js): each change is deployed on the server while the control moves (live-queue.js:
+// at most one request per interval, the latest value winning, the request in flight aborted)
+// and a refusal is explained next to the control that caused it, while every panel still
+// showing the last valid design is marked stale (dimmed, a badge, `data-stale`) until a valid
+// design is shown again. A design not in the database is deployed live; the view state is
+// kept in the URL. On wide screens the sheet stays in view (sticky) beside the controls. Beside the periodic figures, the finite-sheet panel
 // (finite-panel.js): what a sheet cut to a region does, animated by the same t and Play.
 
 import { openData, ApiError } from './data.js';
@@ -22,6 +25,7 @@ import {
 } from './patch.js';
 import { drawSheet } from './sheet.js';
 import { createEditor } from './editor.js';
+import { LatestThrottle } from './live-queue.js';
 import { catalogueHref, designSearch, parseDesignState } from './url.js';
 import { download, fileStem, frameSvg, trajectoryCsv } from './export.js';
 import { facetLabel } from './schema.js';
@@ -39,7 +43,8 @@ let families = [];
 let bounds = null;
 let editor = null;
 let playing = false;
-let inflight = null;
+let live = null; // LatestThrottle of live deployments
+let rangesRequest = null; // AbortController of the running GET /api/shape/ranges
 let exportPanel = null;
 let finitePanel = null;
 
@@ -88,7 +93,7 @@ async function main() {
       ? { classify: (spec, signal) => data.shape(spec, signal), follow: (spec, i, v) => data.followShape(spec, i, v) }
       : null,
     reason: 'Live design needs `isogami serve`: this is a static copy of the catalogue. Run `isogami serve --db FILE` to tune designs.',
-    onChange: (spec, kerf) => requestDeploy(spec, kerf),
+    onChange: (spec, kerf, source) => requestDeploy(spec, kerf, source),
   });
   await load();
 }
@@ -140,46 +145,102 @@ function setStatus(text) {
   $('status').textContent = text;
 }
 
-const deploySoon = debounce((spec, kerf) => deployNow(spec, kerf), 100);
-
-function requestDeploy(spec, kerf) {
-  setStatus('re-simulating…');
-  deploySoon(spec, kerf);
+/** Live deployments of edited designs: sent while the control moves, latest value wins. */
+function liveQueue() {
+  if (live) return live;
+  live = new LatestThrottle(({ spec, kerf }, signal) => data.deploy(deployBody(spec, kerf), signal), {
+    onResult: (v, asked, ms) => {
+      showView(v, { fromEditor: true, source: asked.source });
+      // Input → drawn, for the live-design benchmark (e2e/bench-live.mjs).
+      (window.isogamiLive ??= []).push({ ms, spec: v.spec });
+      if (!live.busy()) document.body.classList.remove('simulating');
+    },
+    onError: (e, asked) => {
+      setStatus('');
+      refuse(e, asked.source);
+      if (!live.busy()) document.body.classList.remove('simulating');
+    },
+  });
+  return live;
 }
 
-async function deployNow(spec, kerf) {
-  if (inflight) inflight.abort();
-  const controller = new AbortController();
-  inflight = controller;
+function requestDeploy(spec, kerf, source) {
+  setStatus('re-simulating…');
   document.body.classList.add('simulating');
-  try {
-    const v = await data.deploy(deployBody(spec, kerf), controller.signal);
-    if (inflight !== controller) return;
-    showView(v, { fromEditor: true });
-  } catch (e) {
-    if (e.name === 'AbortError' || inflight !== controller) return;
-    setStatus('');
-    showNotice($('notice'), { message: e.message, hint: e.hint, kind: e.kind });
-  } finally {
-    if (inflight === controller) {
-      inflight = null;
-      document.body.classList.remove('simulating');
+  liveQueue().push({ spec, kerf, source });
+}
+
+/** A refused edit: its reason next to the control, and every panel marked stale. */
+function refuse(e, source) {
+  const notice = { message: e.message, hint: e.hint, kind: e.kind };
+  if (source) editor.showNotice(source, notice);
+  else showNotice($('notice'), notice);
+  markStale(true, e.kind);
+}
+
+/** Panels that show the current design; marked stale while an edit is refused. */
+const STALE_PANELS = ['.viewer', '.charts', '.measures', '.finite', '.export', '.downloads', '.spec-line'];
+
+function markStale(stale, kind = '') {
+  const badge = $('stale-badge');
+  if (stale) {
+    document.body.dataset.stale = 'true';
+    badge.hidden = false;
+    badge.textContent = `stale: the edit was refused${kind ? ` (${kind.replace(/_/g, ' ')})` : ''}; every panel shows the last valid design, ${view ? view.spec : ''}`;
+  } else {
+    delete document.body.dataset.stale;
+    badge.hidden = true;
+    badge.textContent = '';
+  }
+  for (const sel of STALE_PANELS) {
+    for (const el of document.querySelectorAll(sel)) {
+      if (stale) {
+        el.dataset.stale = 'true';
+        el.setAttribute('aria-describedby', 'stale-badge');
+      } else {
+        delete el.dataset.stale;
+        el.removeAttribute('aria-describedby');
+      }
     }
   }
+  $('save').disabled = stale || !data.live || !view || view.origin !== null;
 }
 
+/** Asks for each shape parameter's valid range at the design shown (server mode). */
+const rangesSoon = debounce(async (spec, kerf) => {
+  if (!data.live || !data.shapeRanges) return;
+  if (rangesRequest) rangesRequest.abort();
+  const controller = new AbortController();
+  rangesRequest = controller;
+  try {
+    const answer = await data.shapeRanges(spec, kerf, controller.signal);
+    if (rangesRequest !== controller || !view || view.spec !== spec) return;
+    editor.setRanges(answer);
+  } catch {
+    // No ranges: the sliders keep their default span (the server still refuses bad shapes).
+  }
+}, 120);
+
 /** Shows a DesignView: canvas, plots, measures, editor; its notice (multi-DOF, locked) if any. */
-function showView(v, { fromEditor }) {
+function showView(v, { fromEditor, source = null }) {
   view = v;
   state.spec = v.spec;
   state.kerf = fromEditor ? v.report.kerf : state.kerf;
-  if (v.notice) showNotice($('notice'), { message: v.notice.message, hint: v.notice.hint, kind: v.notice.kind });
+  markStale(false);
+  // A remark on an edited design (several DOF, locked) goes next to the control that made it.
+  const notice = v.notice ? { message: v.notice.message, hint: v.notice.hint, kind: v.notice.kind } : null;
+  if (fromEditor && source) {
+    clearNotice($('notice'));
+    if (notice) editor.showNotice(source, notice);
+    else editor.clearNotices();
+  } else if (notice) showNotice($('notice'), notice);
   else clearNotice($('notice'));
   $('spec').textContent = v.spec;
   const origin = v.origin ?? 'live';
   $('origin').textContent = origin === 'live' ? 'live (not in the database)' : `${origin} design`;
   $('origin').dataset.origin = origin;
   $('save').disabled = !data.live || v.origin !== null;
+  rangesSoon(v.spec, v.report.kerf);
   $('download-gif').hidden = !data.live || v.origin === null;
   bounds = motionBounds(v, state.rows, state.cols);
   const frames = v.report.frames;
@@ -344,6 +405,8 @@ function renderSummary() {
   const l = view.linkages;
   const hist = l ? Object.entries(l.degree_histogram).map(([d, n]) => `${n}×deg ${d}`).join(', ') : '–';
   const s = view.summary;
+  // The report's own range (live deployments too); the catalogue row's for reports stored before it.
+  const poisson = r.poisson_range ?? (s && s.poisson_min !== null ? [s.poisson_min, s.poisson_max] : null);
   $('summary').replaceChildren(
     h('caption', {}, 'Whole deployment'),
     h(
@@ -361,7 +424,7 @@ function renderSummary() {
       row('min expansion', fmt(r.min_expansion)),
       row('max area ratio', fmt(r.max_area_ratio)),
       row('max tile rotation', fmt(r.max_tile_rotation), 'rad'),
-      row('Poisson-like ratio', s && s.poisson_min !== null ? `${fmt(s.poisson_min)} … ${fmt(s.poisson_max)}` : '–'),
+      row('Poisson-like ratio', poisson ? `${fmt(poisson[0])} … ${fmt(poisson[1])}` : '–'),
       row('kerf', fmt(r.kerf), '× L'),
       row('mean edge length L', fmt(r.length_scale), 'tiling units'),
       row('steps / attempts', `${r.steps} / ${r.attempts}`),

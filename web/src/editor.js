@@ -1,9 +1,15 @@
-// The live design panel: a slider per shape parameter of the family (default ± max(0.5,
-// |default|)), a kerf slider (logarithmic, 1e-4…0.2 of the mean edge length) and a joint
-// editor drawn as the closed unit cell, where clicking an edge (or Enter/Space on it) cycles
-// its joint none → A → B → both (welded) → none. Every change composes a spec string
-// FAMILY:PARAMS:CELL:JOINTS and calls `onChange(spec, kerf)`; the design page deploys it.
-// In static mode the controls are shown disabled with the reason.
+// The live design panel: a slider per shape parameter of the family, labelled with what the
+// parameter does to the tile (the library's `param_effects`, from /api/families) and limited
+// to the parameter's valid range at the current shape (the library's `param_ranges`, GET
+// /api/shape/ranges, given by the page through `setRanges`; default ± max(0.5, |default|)
+// until it arrives), with the well-shaped part shaded; a kerf slider (logarithmic, 1e-4…0.2
+// of the mean edge length) and a joint editor drawn as the closed unit cell, where clicking
+// an edge (or Enter/Space on it) cycles its joint none → A → B → both (welded) → none, with a
+// legend of its marks and pins spread apart where corners coincide. Every change composes a
+// spec string FAMILY:PARAMS:CELL:JOINTS and calls `onChange(spec, kerf, source)` (source:
+// 'shape', 'kerf' or 'joints'); the design page deploys it and shows a refusal next to the
+// control that caused it (`showNotice(source, …)`). In static mode the controls are shown
+// disabled with the reason.
 //
 // Shape-aware sliders (with `shape`, server mode): the design's shape class is shown over the
 // sliders. A special design keeps one degree of freedom only on some shapes, so moving one
@@ -12,7 +18,7 @@
 // "move freely" box restores the plain behaviour (which breaks such a design's motion).
 
 import * as d3 from 'd3';
-import { fmt, h } from './dom.js';
+import { fmt, h, showNotice as showNoticeIn, clearNotice } from './dom.js';
 import { FollowQueue, pinnedSet, shapeStatusText, shouldFollow } from './shape.js';
 
 const CYCLE = { '-': 'a', a: 'b', b: 'x', x: '-' };
@@ -25,15 +31,82 @@ export function composeSpec({ family, params, cell, joints }) {
   return `${family}:${params.map((p) => String(p)).join(',')}:${cell[0]}x${cell[1]}:${joints}`;
 }
 
-/** Slider range of a parameter with default `d`. */
+/** Slider range of a parameter with default `d` (before its valid range is known). */
 export function paramRange(d) {
   const half = Math.max(0.5, Math.abs(d));
   return [d - half, d + half];
 }
 
+/** A slider value rounded to 4 decimals, kept inside [min, max] (rounding must not leave
+ * the valid range); at an end, exactly that end. */
+export function sliderValue(raw, min, max) {
+  const x = Number(raw);
+  if (x >= max) return max; // at an end: exactly the end of the valid range
+  if (x <= min) return min;
+  const v = Number(x.toFixed(4));
+  return Math.min(max, Math.max(min, v));
+}
+
+/**
+ * Pin positions on the joint editor: each pin sits on its edge, `r`·2.2 from its end, and
+ * pins that would overlap (edges meeting at a small angle at one corner) are pushed further
+ * along their edges (at most 45 % of the edge) until no two are closer than 2.1·r.
+ * `pins`: [{end: [x, y], other: [x, y]}] (the pinned end and the edge's other end).
+ */
+export function spreadPins(pins, r) {
+  const len = pins.map((p) => Math.hypot(p.other[0] - p.end[0], p.other[1] - p.end[1]));
+  const dist = pins.map((_, i) => Math.min(2.2 * r, 0.45 * len[i]));
+  const at = (i) => {
+    const p = pins[i];
+    const u = len[i] > 0 ? dist[i] / len[i] : 0;
+    return [p.end[0] + u * (p.other[0] - p.end[0]), p.end[1] + u * (p.other[1] - p.end[1])];
+  };
+  for (let round = 0; round < 200; round += 1) {
+    let moved = false;
+    for (let i = 0; i < pins.length; i += 1) {
+      for (let j = i + 1; j < pins.length; j += 1) {
+        const a = at(i);
+        const b = at(j);
+        if (Math.hypot(a[0] - b[0], a[1] - b[1]) >= 2.1 * r) continue;
+        // Stagger: the pin already further out moves on (the other keeps its place), or
+        // the other one when that one is at its limit.
+        const order = dist[j] >= dist[i] ? [j, i] : [i, j];
+        for (const k of order) {
+          const next = Math.min(dist[k] + 0.5 * r, 0.45 * len[k]);
+          if (next > dist[k]) {
+            dist[k] = next;
+            moved = true;
+            break;
+          }
+        }
+      }
+    }
+    if (!moved) break;
+  }
+  return pins.map((_, i) => at(i));
+}
+
 /** Kerf from the log slider's position, rounded to 3 significant digits. */
 export function kerfFromSlider(s) {
   return Number((10 ** s).toPrecision(3));
+}
+
+/** The joint editor's legend: what its lines, dots and letters mean. */
+function jointLegend() {
+  const sample = (cls, pins) => {
+    const svg = d3.create('svg').attr('viewBox', '0 0 40 12').attr('width', 40).attr('height', 12).attr('aria-hidden', 'true');
+    svg.append('line').attr('class', cls).attr('x1', 3).attr('y1', 6).attr('x2', 37).attr('y2', 6).attr('stroke-width', 2.5);
+    for (const x of pins) svg.append('circle').attr('class', 'pin').attr('cx', x).attr('cy', 6).attr('r', 3.2);
+    return svg.node();
+  };
+  return h(
+    'ul',
+    { class: 'joint-legend', testid: 'joint-legend' },
+    h('li', {}, sample('seg cut', []), 'grey: cut, no joint'),
+    h('li', {}, sample('seg joined', [9]), 'black with a red pin: a hinge at that end (A or B)'),
+    h('li', {}, sample('seg joined', [9, 31]), 'two pins: both ends, welded'),
+    h('li', {}, h('span', { class: 'end-key' }, 'A B'), 'hover or focus an edge to see its ends A and B'),
+  );
 }
 
 export function createEditor(container, { live, onChange, reason, shape = null }) {
@@ -48,8 +121,10 @@ export function createEditor(container, { live, onChange, reason, shape = null }
   let free = false; // move sliders freely, ignoring the shape constraints
   let inputs = [];
   let outputs = [];
+  let bands = [];
+  let ranges = null; // GET /api/shape/ranges answer for the design being edited
 
-  const fire = () => onChange(composeSpec(design), kerf);
+  const fire = (source) => onChange(composeSpec(design), kerf, source);
 
   const shapeStatus = h('p', { class: 'help shape-status', testid: 'shape-status', 'aria-live': 'polite' });
   const freeBox = h('input', {
@@ -76,12 +151,13 @@ export function createEditor(container, { live, onChange, reason, shape = null }
       showParams();
       const moved = answer.adjusted.filter((x) => Math.abs(x) > 1e-9).length;
       shapeStatus.textContent = `${shapeStatusText(shapeInfo)} (${moved} parameter${moved === 1 ? '' : 's'} moved)`;
-      fire();
+      fire('shape');
     },
     onError: (e) => {
       // Back to the last design that moves; say why.
       showParams();
       shapeStatus.textContent = `${e.message}${e.hint ? ` — ${e.hint}` : ''}`;
+      showNoticeIn(notices.shape, { message: e.message, hint: e.hint, kind: e.kind });
     },
   });
 
@@ -141,16 +217,26 @@ export function createEditor(container, { live, onChange, reason, shape = null }
   const kerfBox = h('div', { class: 'slider' });
   const cellBox = h('div', { class: 'joint-editor', testid: 'joint-editor' });
   const jointsText = h('code', { class: 'joints', testid: 'joints' });
+  // One notice box per control group: a refusal is shown next to what caused it.
+  const notices = {
+    shape: h('div', { class: 'notice-box local', testid: 'notice-shape', 'aria-live': 'assertive', hidden: true }),
+    kerf: h('div', { class: 'notice-box local', testid: 'notice-kerf', 'aria-live': 'assertive', hidden: true }),
+    joints: h('div', { class: 'notice-box local', testid: 'notice-joints', 'aria-live': 'assertive', hidden: true }),
+  };
   container.replaceChildren(
     ...(live ? [] : [h('p', { class: 'notice notice-static', testid: 'live-unavailable' }, reason)]),
     h('h3', {}, 'Shape parameters'),
     shapeStatus,
     freeLabel,
     sliders,
+    notices.shape,
     h('h3', {}, 'Kerf'),
     kerfBox,
+    notices.kerf,
     h('h3', {}, 'Joints ', jointsText),
     h('p', { class: 'help' }, 'Click an edge of the cell (or focus it and press Enter) to cycle: none → A → B → both → none.'),
+    jointLegend(),
+    notices.joints,
     cellBox,
   );
 
@@ -158,13 +244,16 @@ export function createEditor(container, { live, onChange, reason, shape = null }
     const defaults = info ? info.default_params : design.params;
     inputs = [];
     outputs = [];
+    bands = [];
     sliders.replaceChildren(
       ...design.params.map((value, k) => {
         const [lo, hi] = paramRange(defaults[k] ?? value);
         const min = Math.min(lo, value);
         const max = Math.max(hi, value);
         const id = `param-v${k}`;
+        const doc = info?.param_effects?.[k]?.description ?? '';
         const out = h('output', { for: id, testid: `param-v${k}-value`, title: String(value) }, fmt(value));
+        const band = h('div', { class: 'range-band', testid: `param-v${k}-band`, 'aria-hidden': 'true' }, h('span', { class: 'well' }));
         const input = h('input', {
           type: 'range',
           id,
@@ -174,8 +263,9 @@ export function createEditor(container, { live, onChange, reason, shape = null }
           value: String(value),
           disabled: !live,
           testid: `param-v${k}`,
+          'aria-describedby': doc ? `${id}-doc` : null,
           oninput: (e) => {
-            const target = Number(Number(e.target.value).toFixed(4));
+            const target = sliderValue(e.target.value, Number(e.target.min), Number(e.target.max));
             out.textContent = fmt(target);
             out.title = String(target);
             if (shouldFollow(shapeInfo, { free })) {
@@ -183,15 +273,25 @@ export function createEditor(container, { live, onChange, reason, shape = null }
               return;
             }
             design.params[k] = target;
-            fire();
+            fire('shape');
             classifySoon();
           },
         });
         inputs.push(input);
         outputs.push(out);
-        return h('div', { class: 'slider' }, h('label', { for: id }, `v${k}`), input, out);
+        bands.push(band);
+        return h(
+          'div',
+          { class: 'slider param' },
+          h('label', { for: id }, `v${k}`),
+          h('div', { class: 'track' }, input, band),
+          out,
+          doc ? h('p', { class: 'param-doc', id: `${id}-doc`, testid: `param-v${k}-doc` }, `v${k} ${doc}`) : null,
+          h('p', { class: 'param-range', testid: `param-v${k}-range` }),
+        );
       }),
     );
+    showRanges();
     if (!design.params.length) sliders.append(h('p', { class: 'help' }, 'This family has no shape parameters.'));
     const out = h('output', { for: 'kerf', testid: 'kerf-value' }, String(kerf));
     kerfBox.replaceChildren(
@@ -208,11 +308,44 @@ export function createEditor(container, { live, onChange, reason, shape = null }
         oninput: (e) => {
           kerf = kerfFromSlider(Number(e.target.value));
           out.textContent = String(kerf);
-          fire();
+          fire('kerf');
         },
       }),
       out,
     );
+  }
+
+  /** Slider limits, the shaded well-shaped band and the range text from `ranges`. */
+  function showRanges() {
+    if (!ranges || !design || ranges.ranges.length !== design.params.length) return;
+    for (const r of ranges.ranges) {
+      const input = inputs[r.index];
+      if (!input) continue;
+      input.min = String(r.lo);
+      input.max = String(r.hi);
+      input.step = String((r.hi - r.lo) / 400);
+      input.value = String(design.params[r.index]);
+      input.dataset.lo = String(r.lo);
+      input.dataset.hi = String(r.hi);
+      const well = bands[r.index].firstChild;
+      const span = r.hi - r.lo;
+      if (r.well_shaped && span > 0) {
+        const [a, b] = r.well_shaped;
+        well.style.left = `${(100 * (a - r.lo)) / span}%`;
+        well.style.width = `${(100 * (b - a)) / span}%`;
+        well.hidden = false;
+        bands[r.index].dataset.well = `${a},${b}`;
+      } else {
+        well.hidden = true;
+        delete bands[r.index].dataset.well;
+      }
+      const text = sliders.querySelector(`[data-testid="param-v${r.index}-range"]`);
+      if (text) {
+        const end = (x, open) => (open ? `${fmt(x)}+` : fmt(x));
+        text.textContent = `valid ${end(r.lo, r.lo_open)} … ${end(r.hi, r.hi_open)} (the others fixed)` +
+          (r.well_shaped ? `; well-shaped ${fmt(r.well_shaped[0])} … ${fmt(r.well_shaped[1])} (shaded)` : '; the tile is not well-shaped here');
+      }
+    }
   }
 
   let classifyTimer = null;
@@ -267,14 +400,32 @@ export function createEditor(container, { live, onChange, reason, shape = null }
       .attr('y1', (e) => e.a[1])
       .attr('x2', (e) => e.b[0])
       .attr('y2', (e) => e.b[1]);
-    edges.each(function pins(e) {
-      const c = design.joints[e.i];
-      const ends = c === 'a' ? [e.a] : c === 'b' ? [e.b] : c === 'x' ? [e.a, e.b] : [];
-      for (const p of ends) {
-        const pull = 0.12; // pin drawn slightly inside the edge so that coincident corners stay apart
-        const q = [p[0] + pull * ((e.a[0] + e.b[0]) / 2 - p[0]), p[1] + pull * ((e.a[1] + e.b[1]) / 2 - p[1])];
-        d3.select(this).append('circle').attr('class', 'pin').attr('r', width * 0.022).attr('cx', q[0]).attr('cy', q[1]);
+    // End markers A and B, shown on the hovered or focused edge.
+    const r = width * 0.018;
+    edges.each(function ends(e) {
+      for (const [name, p, q] of [['A', e.a, e.b], ['B', e.b, e.a]]) {
+        const u = 0.22;
+        const x = p[0] + u * (q[0] - p[0]);
+        const y = p[1] + u * (q[1] - p[1]);
+        d3.select(this).append('text').attr('class', 'end-label')
+          .attr('transform', `translate(${x},${y}) scale(1,-1)`)
+          .attr('font-size', width * 0.05).attr('text-anchor', 'middle').attr('dy', '0.35em').text(name);
       }
+    });
+    // Pins: on their edge near the pinned end, spread where several meet at one corner.
+    const wanted = [];
+    geometry.edges.forEach((e, i) => {
+      const c = design.joints[i];
+      if (c === 'a' || c === 'x') wanted.push({ i, end: e.a, other: e.b });
+      if (c === 'b' || c === 'x') wanted.push({ i, end: e.b, other: e.a });
+    });
+    const spots = spreadPins(wanted, r);
+    const pinLayer = g.append('g').attr('class', 'pins').attr('pointer-events', 'none');
+    wanted.forEach((p, k) => {
+      pinLayer.append('line').attr('class', 'pin-lead').attr('stroke-width', width * 0.006)
+        .attr('x1', p.end[0]).attr('y1', p.end[1]).attr('x2', spots[k][0]).attr('y2', spots[k][1]);
+      pinLayer.append('circle').attr('class', 'pin').attr('data-edge', p.i)
+        .attr('r', r).attr('cx', spots[k][0]).attr('cy', spots[k][1]);
     });
     const cycle = (e) => {
       if (!live) return;
@@ -285,7 +436,7 @@ export function createEditor(container, { live, onChange, reason, shape = null }
       classifySoon();
       const again = cellBox.querySelector(`[data-testid="edge-${e.i}"]`);
       if (again) again.focus();
-      fire();
+      fire('joints');
     };
     edges.on('click', (event, e) => cycle(e));
     edges.on('keydown', (event, e) => {
@@ -315,6 +466,7 @@ export function createEditor(container, { live, onChange, reason, shape = null }
       const joints = g.edges.map((e) => e.joint).join('');
       design = { family: g.family, params: [...g.params], cell: [...g.cell], joints };
       kerf = Number(view.report.kerf.toPrecision(3));
+      ranges = null;
       takeGeometry(view);
       renderSliders();
       renderCell();
@@ -328,6 +480,22 @@ export function createEditor(container, { live, onChange, reason, shape = null }
     showGeometry(view) {
       takeGeometry(view);
       renderCell();
+    },
+    /** Takes each parameter's valid range (GET /api/shape/ranges) of the design shown. */
+    setRanges(answer) {
+      ranges = answer;
+      showRanges();
+    },
+    /** Shows a refusal next to the control group that caused it ('shape', 'kerf', 'joints'). */
+    showNotice(source, notice) {
+      for (const [k, box] of Object.entries(notices)) {
+        if (k === source) showNoticeIn(box, notice);
+        else clearNotice(box);
+      }
+    },
+    /** Clears the notices next to the controls. */
+    clearNotices() {
+      for (const box of Object.values(notices)) clearNotice(box);
     },
     /** The shape classification shown (GET /api/shape), or null. */
     shapeClass() {
