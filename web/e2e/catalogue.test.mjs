@@ -91,7 +91,7 @@ test('hovering a scatter point shows the design; clicking opens its design page'
   const canvas = byTestId(page, 'scatter-canvas');
   await canvas.waitFor();
   // A drawn stack of one design (stacks of several list theirs: scatter.test.mjs).
-  await page.waitForFunction(() => document.getElementById('scatter').scatterDrawn);
+  await page.waitForFunction(() => document.getElementById('scatter').scatterDrawn?.designs > 0);
   const spot = await page.evaluate(() => document.getElementById('scatter').scatterDrawn.stacks.find((s) => s.count === 1));
   assert.ok(spot, 'the scatter has a single design');
   const box = await canvas.boundingBox();
