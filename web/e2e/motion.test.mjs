@@ -1,4 +1,4 @@
-// "Same motion elsewhere" on the design page (issue 13, item 5) in real headless Chromium over
+// "Same motion elsewhere" on the design page (issue 13 item 5, issue 24 item 6) in real headless Chromium over
 // `isogami serve`: a stored design whose motion appears in other cells or families lists them,
 // each link opens a design of that topology whose panel lists the first one back; a design
 // found only once shows no panel.
@@ -8,6 +8,7 @@ import assert from 'node:assert/strict';
 import {
   allApiRows, byTestId, getJson, launchBrowser, newPage, openDesign as openHarnessDesign, problems, startServer,
 } from './harness.mjs';
+import { SHOWN, variantRows } from '../src/motion-panel.js';
 
 let server;
 let browser;
@@ -41,19 +42,22 @@ test('a shared motion lists its other cells and families, and the links lead bac
   const section = byTestId(page, 'motion-section');
   await section.waitFor({ state: 'visible' });
   const items = page.locator('[data-testid="motion-variant"]');
-  const others = shared.klass.variants.filter((v) => v.topology !== shared.topology);
-  assert.equal(await items.count(), others.length);
-  for (let i = 0; i < others.length; i += 1) {
-    assert.match(await items.nth(i).textContent(), new RegExp(`^${others[i].family} ${others[i].cell}`));
+  // Sorted by family number, cell, then area ratio; long lists collapsed behind "show all".
+  const others = variantRows(shared.klass, shared.topology);
+  assert.equal(await items.count(), Math.min(others.length, SHOWN));
+  for (let i = 0; i < Math.min(others.length, SHOWN); i += 1) {
+    assert.match(await items.nth(i).textContent(), new RegExp(`^${others[i].label}`));
   }
   // Follow the first link: a stored design of that topology, whose panel names the first back.
   await Promise.all([page.waitForNavigation(), items.first().locator('a').click()]);
   await page.waitForFunction(() => Number(document.body.dataset.deployments || 0) >= 1);
-  assert.equal(await byTestId(page, 'spec').textContent(), others[0].example);
+  assert.equal(await byTestId(page, 'spec').textContent(), others[0].spec);
   await byTestId(page, 'motion-section').waitFor({ state: 'visible' });
-  const back = await page.locator('[data-testid="motion-variant"]').allTextContents();
   const me = shared.klass.variants.find((v) => v.topology === shared.topology);
-  assert.ok(back.some((t) => t.startsWith(`${me.family} ${me.cell}`)), back.join(' | '));
+  const label = `${me.family} ${me.cell.replace('x', '×')}`;
+  if (await byTestId(page, 'motion-show-all').count()) await byTestId(page, 'motion-show-all').click();
+  const all = await page.locator('[data-testid="motion-variant"]').allTextContents();
+  assert.ok(all.some((t) => t.startsWith(label)), all.join(' | '));
   assert.deepEqual(problems(page), []);
 });
 
