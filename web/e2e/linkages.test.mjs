@@ -4,6 +4,9 @@
 // linkages are not coloured as one of them, and the frame SVG download draws the same loops.
 // Reproducer: IH16:0.21650635094600001:1x1:-a-a-aaaa, three 4-bar linkages through every tile
 // (before, the sheet showed one colour: every tile "linkage 0", loops only on demand).
+// The same page's numbers (item 8): values that are zero up to rounding (IH16's closed state
+// has ε = ±2.2e-16) print 0, and a sheet that ends smaller than it started (IH90::1x1:aaa opens
+// to ε = 1, then closes past its start to ε = −0.004 at the contact limit) says so in words.
 
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -83,6 +86,10 @@ test('the IH16 reproducer draws its three loops in three colours, as its legend 
     assert.equal(item.swatch, `rgb(${rgb(loopColour).join(', ')})`, 'and its swatch shows it');
     assert.match(item.text, /4-bar/);
   }
+  // At t = 0 the measures are 0, not rounding noise like 2.220e-16.
+  const atT = await byTestId(page, 'measures-at-t').textContent();
+  assert.doesNotMatch(atT, /\de-(1[3-9]|[2-9]\d)/, `no rounding noise printed: ${atT}`);
+  assert.match(atT, /min \/ max expansion\s*0 \/ 0/);
   const fills = await byTestId(page, 'legend-fills').textContent();
   assert.match(fills, /shared by several linkages/, 'the legend says what a grey tile means');
   assert.doesNotMatch(fills, /one linkage only/, 'no tile is in only one linkage here');
@@ -122,5 +129,20 @@ test('every design with linkages draws each of them; unticking hides them', asyn
   await byTestId(page, 'show-links').uncheck();
   assert.deepEqual(await drawnLoops(page), [], 'no loops once unticked');
   await page.waitForFunction(() => new URL(location.href).searchParams.get('links') === '0');
+  assert.deepEqual(problems(page), []);
+});
+
+test('a sheet that ends smaller than closed says by how much and where', async () => {
+  const page = await newPage(browser);
+  const spec = 'IH90::1x1:aaa';
+  await openDesign(page, spec);
+  const view = await getJson(`${server.base}/api/design?spec=${encodeURIComponent(spec)}`);
+  const r = view.report;
+  assert.ok(r.max_expansion > 0.99 && r.min_expansion < -0.001, 'the reproducer opens to 1 and ends contracted');
+  const last = r.frames[r.frames.length - 1];
+  assert.ok(last.measures.min_expansion <= r.min_expansion + 1e-9 && last.measures.area_ratio < 1, 'real: the last state is smaller than the closed sheet');
+  const summary = await byTestId(page, 'measures').textContent();
+  const pct = Number((-100 * r.min_expansion).toPrecision(2));
+  assert.ok(summary.includes(`(contracts ${pct} % at t = 1)`), summary);
   assert.deepEqual(problems(page), []);
 });

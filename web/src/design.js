@@ -12,7 +12,7 @@
 // (finite-panel.js): what a sheet cut to a region does, animated by the same t and Play.
 
 import { openData, ApiError } from './data.js';
-import { h, fmt, showNotice, clearNotice, debounce } from './dom.js';
+import { h, fmt, fmtExpansion, showNotice, clearNotice, debounce } from './dom.js';
 import { createLinePlot, createPolarPlot } from './plots.js';
 import {
   frameAt,
@@ -400,6 +400,17 @@ function row(label, value, unit = '') {
   return h('tr', {}, h('th', { scope: 'row' }, label), h('td', { class: 'num' }, value), h('td', { class: 'unit' }, unit));
 }
 
+/** The smallest principal expansion over the motion; when the sheet contracts (ε < 0 beyond
+ * rounding: IH90::1x1:aaa opens to ε = 1, then closes past its start to −0.004 at the contact
+ * limit), by how much and at which t (the frame where it is smallest). */
+function minExpansionText(r) {
+  const text = fmtExpansion(r.min_expansion);
+  if (!text.includes('contracts')) return text;
+  let at = null;
+  for (const f of r.frames) if (at === null || f.measures.min_expansion < at.measures.min_expansion) at = f;
+  return at ? text.replace(/\)$/, ` at t = ${fmt(at.t)})`) : text;
+}
+
 function renderSummary() {
   const r = view.report;
   const l = view.linkages;
@@ -421,7 +432,7 @@ function renderSummary() {
       row('method', r.method),
       row('end reason', typeof r.end_reason === 'object' ? r.end_reason.kind.replace(/_/g, ' ') : String(r.end_reason)),
       row('max expansion', fmt(r.max_expansion)),
-      row('min expansion', fmt(r.min_expansion)),
+      row('min expansion', minExpansionText(r)),
       row('max area ratio', fmt(r.max_area_ratio)),
       row('max tile rotation', fmt(r.max_tile_rotation), 'rad'),
       row('Poisson-like ratio', poisson ? `${fmt(poisson[0])} … ${fmt(poisson[1])}` : '–'),

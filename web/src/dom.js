@@ -1,5 +1,6 @@
-// Small DOM helpers shared by the pages: element creation, number formatting, the in-place
-// notice that explains an error with what to do, and a debounce.
+// Small DOM helpers shared by the pages: element creation, number formatting (0 for what is
+// zero up to rounding; a negative expansion in words), the in-place notice that explains an
+// error with what to do, and a debounce.
 
 /** Creates an element: h('button', {class: 'x', onclick: f}, 'text', child…). */
 export function h(tag, attrs = {}, ...children) {
@@ -19,14 +20,30 @@ export function h(tag, attrs = {}, ...children) {
   return el;
 }
 
-/** A number for a table: 4 significant digits, integers as they are, missing as "–". */
-export function fmt(v) {
+/** Below this many units in the last place of `scale`, a number is zero up to rounding. */
+const ROUNDING_ULPS = 16;
+
+/** A number for a table: 4 significant digits, integers as they are, missing as "–". A value
+ * that is zero up to rounding — |v| ≤ 16 ulp of `scale`, the size of the quantities it was
+ * computed from (1 for the page's non-dimensional measures: F, expansions, radians, × L) —
+ * prints 0, so 4.441e-16 (2 ulp of 1) is 0 while 1e-9 still prints; pass scale 0 for exact. */
+export function fmt(v, scale = 1) {
   if (v === null || v === undefined) return '–';
   if (typeof v !== 'number') return String(v);
   if (Number.isInteger(v)) return String(v);
   const a = Math.abs(v);
-  if (a !== 0 && (a < 1e-3 || a >= 1e5)) return v.toExponential(3);
+  if (a <= ROUNDING_ULPS * Number.EPSILON * Math.abs(scale)) return '0';
+  if (a < 1e-3 || a >= 1e5) return v.toExponential(3);
   return String(Number(v.toPrecision(4)));
+}
+
+/** A principal expansion ε (stretch − 1) with what it means when the sheet gets smaller:
+ * "−0.004365 (contracts 0.44 %)"; an expansion ≥ 0, or 0 up to rounding, is the number alone. */
+export function fmtExpansion(e) {
+  const text = fmt(e);
+  if (typeof e !== 'number' || !(e < 0) || text === '0') return text;
+  const pct = Number((-100 * e).toPrecision(2));
+  return `${text} (contracts ${pct} %)`;
 }
 
 /** Shows an error or notice in place: a visible `.notice` with the message and the hint. */
