@@ -252,6 +252,9 @@ test('tick labels never overlap: default axes, other measures, a tiny range zoom
     return c1 - c0 < w / 4000;
   }, d.xDomain[1] - d.xDomain[0]);
   assert.deepEqual(await overlappingTicks(page), []);
+  const zoomed = await page.evaluate(() => document.getElementById('scatter').scatterDrawn);
+  assert.ok(zoomed.focused, 'the zoom kept the focused stack in view and focused');
+  assert.ok(zoomed.stacks.length >= 1);
   const labels = await page.$$eval('[data-testid="scatter-x-axis"] .tick text', (t) => t.map((x) => x.textContent));
   assert.ok(labels.every((l) => l.length <= 9), `short labels: ${labels}`);
   await screenshot(browser, page, 'scatter-zoomed');

@@ -113,9 +113,20 @@ export function createScatter(container, options) {
       });
     });
 
+  /** The stacks at grid steps (qx, qy); when the grid changes (a zoom), the hovered, focused
+   * and pinned stacks become the new stacks holding their first design. */
   function stacksFor(qx, qy) {
     if (stackCache.qx !== qx || stackCache.qy !== qy || stackCache.points !== points) {
-      stackCache = { qx, qy, points, stacks: stackPoints(points, qx, qy) };
+      const stacks = stackPoints(points, qx, qy);
+      if (stackCache.points === points) {
+        const home = new Map();
+        for (const st of stacks) for (const p of st.points) home.set(p, st);
+        const follow = (st) => (st ? home.get(st.points[0]) ?? null : null);
+        hovered = follow(hovered);
+        focused = follow(focused);
+        pinned = follow(pinned);
+      }
+      stackCache = { qx, qy, points, stacks };
     }
     return stackCache.stacks;
   }
@@ -367,7 +378,7 @@ export function createScatter(container, options) {
     const w = tip.offsetWidth || 230;
     const left = d.px + d.r + 10 + w > view.width ? d.px - d.r - 10 - w : d.px + d.r + 10;
     tip.style.left = `${Math.max(0, left)}px`;
-    tip.style.top = `${Math.max(0, Math.min(d.py - 20, view.hgt - 60))}px`;
+    tip.style.top = `${Math.max(0, Math.min(d.py - 20, view.hgt - tip.offsetHeight))}px`;
   }
 
   function hideTip() {
