@@ -149,19 +149,37 @@ function setStatus(text) {
 function liveQueue() {
   if (live) return live;
   live = new LatestThrottle(({ spec, kerf }, signal) => data.deploy(deployBody(spec, kerf), signal), {
-    onResult: (v, asked, ms) => {
+    onResult: (v, asked, ms, requestMs) => {
+      const t0 = performance.now();
       showView(v, { fromEditor: true, source: asked.source });
-      // Input → drawn, for the live-design benchmark (e2e/bench-live.mjs).
-      (window.isogamiLive ??= []).push({ ms, spec: v.spec });
-      if (!live.busy()) document.body.classList.remove('simulating');
+      const drawn = performance.now();
+      // Input → drawn (and its parts), for the live-design benchmark (e2e/bench-live.mjs).
+      (window.isogamiLive ??= []).push({ ms: ms + (drawn - t0), requestMs, drawMs: drawn - t0, spec: v.spec });
+      settled();
     },
     onError: (e, asked) => {
       setStatus('');
       refuse(e, asked.source);
-      if (!live.busy()) document.body.classList.remove('simulating');
+      settled();
     },
   });
   return live;
+}
+
+/** Once a drag's last answer is in: the panels that ask the server for more (the finite
+ * sheet, the sliders' ranges) catch up, having waited so as not to compete with the drag's
+ * deployments for the server. */
+let followUps = false;
+function settled() {
+  if (live.busy()) return;
+  document.body.classList.remove('simulating');
+  if (followUps && view) {
+    followUps = false;
+    editor.showGeometry(view);
+    motionPanel.show(view.spec, view.origin !== null && view.origin !== undefined, view.summary?.max_area_ratio ?? null);
+    finitePanel.show();
+    rangesSoon(view.spec, view.report.kerf);
+  }
 }
 
 function requestDeploy(spec, kerf, source) {
@@ -240,7 +258,9 @@ function showView(v, { fromEditor, source = null }) {
   $('origin').textContent = origin === 'live' ? 'live (not in the database)' : `${origin} design`;
   $('origin').dataset.origin = origin;
   $('save').disabled = !data.live || v.origin !== null;
-  rangesSoon(v.spec, v.report.kerf);
+  const dragging = fromEditor && live && live.busy();
+  if (dragging) followUps = true;
+  else rangesSoon(v.spec, v.report.kerf);
   $('download-gif').hidden = !data.live || v.origin === null;
   bounds = motionBounds(v, state.rows, state.cols);
   const frames = v.report.frames;
@@ -253,13 +273,14 @@ function showView(v, { fromEditor, source = null }) {
   plots.polar.setMaxRadius(rMax);
   renderSummary();
   renderLegend();
-  if (fromEditor) editor.showGeometry(v);
-  else editor.sync(v, families);
-  motionPanel.show(v.spec, v.origin !== null && v.origin !== undefined, v.summary?.max_area_ratio ?? null);
+  // During a drag the joint editor's cell is redrawn once the drag's last answer is in.
+  if (!fromEditor) editor.sync(v, families);
+  else if (!dragging) editor.showGeometry(v);
+  if (!dragging) motionPanel.show(v.spec, v.origin !== null && v.origin !== undefined, v.summary?.max_area_ratio ?? null);
   document.title = `${v.spec} · isogami`;
   setStatus(fromEditor ? `re-simulated: ${frames.length} frames, ${v.report.steps} steps` : '');
   document.body.dataset.deployments = String(Number(document.body.dataset.deployments || 0) + 1);
-  finitePanel.show();
+  if (!dragging) finitePanel.show();
   renderFrame();
 }
 

@@ -1,6 +1,8 @@
 // Live design's request throttle (issue 24 item 7): while a slider is dragged the page asks
-// the server for a deployment at most once per interval, always for the latest value (older
-// values waiting are dropped), and a new request aborts the one in flight. The interval
+// the server for one deployment at a time, always for the latest value (older values waiting
+// are dropped): a value is sent at once when nothing is in flight, else as soon as the
+// answer in flight comes, or — when that takes longer than the interval — at the end of the
+// interval, aborting the request in flight. The interval
 // adapts to the server: at least `minInterval` ms and 1.5 × the typical answer time, where an
 // aborted request counts as at least as slow as it had been when aborted — so a slow design
 // stretches the interval until its answers get through instead of being aborted forever.
@@ -8,8 +10,9 @@
 
 export class LatestThrottle {
   /**
-   * `send(value, signal)` returns a promise of the answer; `onResult(answer, value, ms)` is
-   * called for the answer of the latest sent value only (ms: from when the value was pushed),
+   * `send(value, signal)` returns a promise of the answer; `onResult(answer, value, ms,
+   * requestMs)` is called for the answer of the latest sent value only (ms: from when the
+   * value was pushed; requestMs: from when it was sent),
    * `onError(error, value)` for its failure (never for an aborted request).
    */
   constructor(send, { onResult, onError, minInterval = 40, now = () => performance.now(), setTimer = (f, ms) => setTimeout(f, ms), clearTimer = (t) => clearTimeout(t) }) {
@@ -43,7 +46,9 @@ export class LatestThrottle {
   push(value) {
     this.pending = { value, at: this.now() };
     if (this.timer !== null) return;
-    const wait = this.lastSent + this.interval() - this.now();
+    // Nothing in flight: at once. Otherwise when the answer comes (see fire), or at the end
+    // of the interval, aborting a request that is slower than the interval.
+    const wait = this.inflight ? this.lastSent + this.interval() - this.now() : 0;
     if (wait <= 0) this.fire();
     else this.timer = this.setTimer(() => this.fire(), wait);
   }
@@ -87,7 +92,12 @@ export class LatestThrottle {
         this.inflight = null;
         const done = this.now();
         this.typical = this.typical === 0 ? done - t : 0.7 * this.typical + 0.3 * (done - t);
-        this.onResult(result, value, done - at);
+        this.onResult(result, value, done - at, done - t);
+        // A value that waited for this answer goes now.
+        if (this.pending && this.timer !== null) {
+          this.clearTimer(this.timer);
+          this.fire();
+        }
       },
       (e) => {
         if (this.inflight !== mine) return;

@@ -132,3 +132,17 @@ test('a refusal reaches onError; an aborted request does not', async () => {
   await advance(100);
   assert.equal(errors.length, 1, 'cancelled: no error');
 });
+
+test('a value that waits for the answer in flight is sent as soon as that answer comes', async () => {
+  const { q, requests, shown, advance } = rig({ minInterval: 40 });
+  q.push(1);
+  await advance(5);
+  q.push(2); // 1 in flight: 2 waits
+  assert.equal(requests.length, 1);
+  await advance(5);
+  requests[0].ok('answer 1'); // at 10 ms, long before the interval ends
+  await advance(0);
+  assert.deepEqual(shown.map((s) => s.answer), ['answer 1']);
+  assert.deepEqual(requests.map((r) => r.value), [1, 2], '2 sent when 1 answered, not at 40 ms');
+  assert.ok(!requests[0].signal.aborted);
+});
