@@ -106,6 +106,11 @@ test('a run shows its progress and leaders, ends with the CLI’s result, and op
   assert.equal(await byTestId(page, 'results-verdict').textContent(), `Best design: ${results[0].verdict.summary}`);
   assert.match(results[0].verdict.summary, /^no value to meet; area asks for the most/);
   assert.ok(await byTestId(page, 'save-all').isHidden(), 'no saving on a read-only server');
+  // End reasons in words, as the library says them, never the internal key.
+  const table = await page.$eval('[data-testid="results"]', (t) => t.textContent).catch(() => '');
+  const rowsText = (await byTestId(page, 'result').allTextContents()).join(' ') + table;
+  assert.doesNotMatch(rowsText, /contact_limit|[a-z]_[a-z]/, 'no internal names in the results');
+  for (const r of results) assert.ok(rowsText.includes(r.after.measures.end_label), r.after.measures.end_label);
   const words = shellSplit(command);
   const { stdout } = await promisify(execFile)(env().bin, words.slice(1), { cwd: dirname(env().db), maxBuffer: 64 << 20 });
   const cli = JSON.parse(stdout);
@@ -124,6 +129,36 @@ test('a run shows its progress and leaders, ends with the CLI’s result, and op
   assert.ok(canvasColours(await canvasPixels(page, '[data-testid="sheet"]')) > 2, 'the sheet is drawn');
   // A refined design is not in the database: the design page asks, then deploys it live.
   assert.deepEqual(problems(page, [/^404 GET \S+\/api\/design\?spec=/]), []);
+});
+
+test('the best objective of a value goal is drawn on a log scale with its legend above the lines', async () => {
+  const page = await newPage(browser);
+  await openPanel(page);
+  await byTestId(page, 'target').fill('area(1.6)');
+  await byTestId(page, 'budget').fill('30');
+  await byTestId(page, 'target').press('Enter');
+  await page.waitForFunction(() => document.body.dataset.inverseState && document.body.dataset.inverseState !== 'running', null, { timeout: 300000 });
+  const id = await page.evaluate(() => document.body.dataset.jobId);
+  const job = await getJson(`${server.base}/api/inverse/${id}`);
+  const values = job.history.map(([, v]) => v);
+  assert.ok(values.length >= 2, 'a history of best objectives');
+  const svg = page.locator('[data-testid="history-plot"] svg');
+  const positive = values.every((v) => v > 0);
+  assert.equal(await svg.getAttribute('data-scale'), positive ? 'log' : 'linear', `history ${values.slice(0, 5)}…`);
+  if (positive) {
+    assert.match(await svg.getAttribute('aria-label'), /log scale/);
+    // Tick labels are decades, readable (no run of digits).
+    const ticks = (await page.$$eval('[data-testid="history-plot"] .y-axis .tick text', (ts) => ts.map((t) => t.textContent))).filter(Boolean);
+    assert.ok(ticks.length >= 1, `labelled ticks ${ticks}`);
+    for (const t of ticks) assert.match(t, /^(\d+(\.\d+)?|\d(\.\d+)?e[-+]\d+)$/, t);
+  }
+  // The legend sits above the plot area (the top of the y axis), so no line runs under it.
+  const legend = await page.locator('[data-testid="legend-best"]').boundingBox();
+  const axis = await page.locator('[data-testid="history-plot"] .y-axis path.domain').boundingBox();
+  assert.ok(legend.y + legend.height <= axis.y + 1, `legend bottom ${legend.y + legend.height} above the plot area ${axis.y}`);
+  const line = await page.locator('[data-testid="series-best"]').boundingBox();
+  assert.ok(legend.y + legend.height <= line.y + 1, 'and above the line');
+  assert.deepEqual(problems(page), []);
 });
 
 test('a bad target shows the server’s message and starts nothing; the examples are all readable', async () => {

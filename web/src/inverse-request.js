@@ -124,6 +124,12 @@ export function cellText(cell) {
   return Array.isArray(cell) ? cell.join('×') : String(cell).replace('x', '×');
 }
 
+/** Why a deployment ended, in words: the library's `end_label` ("contact limit"); a result
+ * saved before it had one gets its key with spaces. */
+export function endWords(m) {
+  return m.end_label ?? String(m.end_reason ?? '').replace(/_/g, ' ');
+}
+
 /** Rows of the results table from a finished job's result (`isogami inverse --json`). */
 export function resultRows(result) {
   return (result?.results ?? []).map((r) => {
@@ -139,7 +145,7 @@ export function resultRows(result) {
       area: m.max_area_ratio,
       expansions: pair([m.min_expansion, m.max_expansion]),
       poisson: pair(m.poisson),
-      end: `${m.end_reason} at ${pair(m.end_expansions)}`,
+      end: `${endWords(m)} at ${pair(m.end_expansions)}`,
       evaluations: r.evaluations,
     };
   });

@@ -68,6 +68,7 @@ async function main() {
     xAuto: true,
     steps: true,
     marker: false,
+    yLog: true,
   });
   try {
     settings = await data.inverseSettings();

@@ -1,6 +1,8 @@
 // Plots drawn with d3: the line plot of min/max principal expansion versus t with a marker at
-// the current t, and the polar profile of the stretch U at the current t (the catalogue's
-// scatter is in scatter.js). Each returns a small object with update methods; none fetches data.
+// the current t (also the inverse page's best objective, on a log scale when it is positive),
+// with its legend above the plot area so it never covers a line, and the polar profile of the
+// stretch U at the current t (the catalogue's scatter is in scatter.js). Each returns a small
+// object with update methods; none fetches data.
 
 import * as d3 from 'd3';
 
@@ -18,7 +20,8 @@ function padDomain([lo, hi]) {
   return [lo - pad, hi + pad];
 }
 
-/** The x label under the plot and the y label turned along its left side. */
+/** The x label under the plot and the y label turned along its left side (beside the plot
+ * area, which starts below the legend row). */
 function axisLabels(svg, width, h, xLabel, yLabel) {
   svg
     .append('text')
@@ -30,18 +33,37 @@ function axisLabels(svg, width, h, xLabel, yLabel) {
   svg
     .append('text')
     .attr('class', 'axis-label')
-    .attr('transform', `translate(14,${(MARGIN.top + h - MARGIN.bottom) / 2}) rotate(-90)`)
+    .attr('transform', `translate(14,${(MARGIN.top + LEGEND_ROW + h - MARGIN.bottom) / 2}) rotate(-90)`)
     .attr('text-anchor', 'middle')
     .text(yLabel);
 }
 
+/** Whether a y axis over `values` is drawn on a log scale: asked for, and every value > 0 (an
+ * objective that can be negative — a "largest area" goal — stays linear). */
+export function useLogScale(values, yLog) {
+  return Boolean(yLog) && values.length > 0 && values.every((v) => v > 0 && Number.isFinite(v));
+}
+
+/** Log-scale domain of positive values: whole decades around them (one decade at least). */
+export function logDomain(values) {
+  const lo = Math.min(...values);
+  const hi = Math.max(...values);
+  const a = 10 ** Math.floor(Math.log10(lo));
+  const b = 10 ** Math.ceil(Math.log10(hi));
+  return [a, b > a ? b : a * 10];
+}
+
+/** Height of the legend row above the plot area. */
+const LEGEND_ROW = 18;
+
 /**
  * Line plot of several series over t ∈ [0, 1] with a vertical marker. `series`:
- * `[{name, className, points: [[t, y], …]}]`. Options for other uses: `xAuto` (x from 0 to
- * the largest x of the points instead of [0, 1]), `steps` (draw each value until the next
- * point), `marker: false` (no marker).
+ * `[{name, className, points: [[t, y], …]}]`; their names are a legend row above the plot area.
+ * Options for other uses: `xAuto` (x from 0 to the largest x of the points instead of
+ * [0, 1]), `steps` (draw each value until the next point), `marker: false` (no marker),
+ * `yLog` (a log y axis when every value is positive; the svg's `data-scale` says which).
  */
-export function createLinePlot(container, { xLabel, yLabel, height = 220, xAuto = false, steps = false, marker: withMarker = true }) {
+export function createLinePlot(container, { xLabel, yLabel, height = 220, xAuto = false, steps = false, marker: withMarker = true, yLog = false }) {
   container.classList.add('plot');
   const svg = d3.select(container).append('svg').attr('role', 'img');
   let series = [];
@@ -54,38 +76,68 @@ export function createLinePlot(container, { xLabel, yLabel, height = 220, xAuto 
     const xMax = xAuto ? Math.max(1, ...xs) : 1;
     const sx = d3.scaleLinear().domain([0, xMax]).range([MARGIN.left, width - MARGIN.right]);
     if (xAuto) sx.nice();
-    const sy = d3
-      .scaleLinear()
-      .domain(padDomain(d3.extent(all.length ? all : [0, 1])))
-      .range([h - MARGIN.bottom, MARGIN.top])
-      .nice();
+    const top = MARGIN.top + (series.length ? LEGEND_ROW : 0);
+    const log = useLogScale(all, yLog);
+    const sy = log
+      ? d3.scaleLog().domain(logDomain(all)).range([h - MARGIN.bottom, top])
+      : d3
+          .scaleLinear()
+          .domain(padDomain(d3.extent(all.length ? all : [0, 1])))
+          .range([h - MARGIN.bottom, top])
+          .nice();
     svg.attr('width', width).attr('height', h).attr('viewBox', `0 0 ${width} ${h}`);
-    svg.attr('aria-label', `${yLabel} against ${xLabel}`);
+    svg.attr('aria-label', `${yLabel}${log ? ' (log scale)' : ''} against ${xLabel}`);
+    svg.attr('data-scale', log ? 'log' : 'linear');
     svg.selectAll('*').remove();
     svg
       .append('g')
       .attr('transform', `translate(0,${h - MARGIN.bottom})`)
       .call(d3.axisBottom(sx).ticks(5));
-    svg.append('g').attr('transform', `translate(${MARGIN.left},0)`).call(d3.axisLeft(sy).ticks(5));
-    axisLabels(svg, width, h, xLabel, yLabel);
+    const yAxis = d3.axisLeft(sy);
+    if (log) {
+      // Ticks on decades only (at most about six), labels short: 0.001 … 1000 as they are,
+      // 1e-6 beyond.
+      const [lo, hi] = sy.domain().map((v) => Math.round(Math.log10(v)));
+      const every = Math.max(1, Math.ceil((hi - lo) / 5));
+      const decades = d3.range(lo, hi + 1).filter((e) => (e - lo) % every === 0);
+      yAxis.tickValues(decades.map((e) => 10 ** e)).tickFormat((v) => {
+        const e = Math.round(Math.log10(v));
+        return e >= -3 && e <= 3 ? d3.format('~g')(10 ** e) : `1e${e}`;
+      });
+    } else yAxis.ticks(5);
+    svg.append('g').attr('class', 'y-axis').attr('transform', `translate(${MARGIN.left},0)`).call(yAxis);
+    axisLabels(svg, width, h, xLabel, log ? `${yLabel} (log)` : yLabel);
     const line = d3
       .line()
       .curve(steps ? d3.curveStepAfter : d3.curveLinear)
       .x((p) => sx(p[0]))
       .y((p) => sy(p[1]));
-    series.forEach((s, i) => {
+    let x = MARGIN.left;
+    series.forEach((s) => {
       svg
         .append('path')
         .attr('class', `series ${s.className}`)
         .attr('data-testid', `series-${s.className}`)
         .attr('d', line(s.points));
+      // The legend row, above the plot area: a sample of the line, then the name.
+      const y = MARGIN.top + LEGEND_ROW / 2 - 2;
       svg
+        .append('line')
+        .attr('class', `series ${s.className}`)
+        .attr('x1', x)
+        .attr('x2', x + 18)
+        .attr('y1', y)
+        .attr('y2', y);
+      const text = svg
         .append('text')
         .attr('class', `legend ${s.className}`)
-        .attr('x', MARGIN.left + 8)
-        .attr('y', MARGIN.top + 12 + 14 * i)
+        .attr('data-testid', `legend-${s.className}`)
+        .attr('x', x + 22)
+        .attr('y', y + 4)
         .attr('text-anchor', 'start')
         .text(s.name);
+      const w = typeof text.node().getComputedTextLength === 'function' ? text.node().getComputedTextLength() : 7 * s.name.length;
+      x += 22 + (w || 7 * s.name.length) + 16;
     });
     if (!withMarker) return;
     svg
@@ -94,7 +146,7 @@ export function createLinePlot(container, { xLabel, yLabel, height = 220, xAuto 
       .attr('data-testid', 'plot-marker')
       .attr('x1', sx(marker))
       .attr('x2', sx(marker))
-      .attr('y1', MARGIN.top)
+      .attr('y1', top)
       .attr('y2', h - MARGIN.bottom);
   }
 

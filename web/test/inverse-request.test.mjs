@@ -91,7 +91,7 @@ const scored = (spec, objective, extra = {}) => ({
   objective,
   measures: {
     max_area_ratio: 1.5, max_expansion: 0.3, min_expansion: 0.1, poisson: [-1.02, -0.98], end_reason: 'contact_limit',
-    end_expansions: [0.1, 0.25], ...extra,
+    end_label: 'contact limit', end_expansions: [0.1, 0.25], ...extra,
   },
 });
 
@@ -132,7 +132,9 @@ test('table rows: leaders in their order, results with before, after and measure
   assert.equal(rows[0].expansions, '[0.1, 0.3]');
   assert.equal(rows[0].poisson, '[-1.02, -0.98]');
   assert.equal(rows[1].poisson, '–');
-  assert.equal(rows[0].end, 'contact_limit at [0.1, 0.25]');
+  assert.equal(rows[0].end, 'contact limit at [0.1, 0.25]', 'the library’s words, not the key');
+  const older = resultRows({ results: [{ ...result.results[0], after: scored('B', -1.5, { end_label: undefined, end_reason: 'max_steps' }) }] });
+  assert.equal(older[0].end, 'max steps at [0.1, 0.25]', 'a result without end_label: the key in words');
   assert.equal(pair([1 / 3, 2]), '[0.3333, 2]');
   assert.equal(cellText('3x2'), '3×2');
 });

@@ -106,7 +106,10 @@ fn check_view(view: &Value, what: &str) {
                 .unwrap()
                 .iter()
                 .any(|n| n[0].as_u64() == Some(tile as u64));
-            assert!(through, "{what}: tile {tile} lists linkage {l}, which misses it");
+            assert!(
+                through,
+                "{what}: tile {tile} lists linkage {l}, which misses it"
+            );
         }
     }
 }

@@ -222,7 +222,7 @@ mod tests {
     /// open for laser files, which came out byte-identical).
     #[test]
     fn a_format_uses_the_state_exactly_when_its_files_change_with_it() {
-        use crate::export::{export_design, ExportOptions, ExportFiles, PatchRequest, State};
+        use crate::export::{export_design, ExportFiles, ExportOptions, PatchRequest, State};
         let design = crate::api::resolve_design("rotating-squares").unwrap();
         let bytes = |format: Format, state: State| {
             let request = PatchRequest {

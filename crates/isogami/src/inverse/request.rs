@@ -250,6 +250,9 @@ pub struct Measures {
     pub behaviour: Option<BehaviourClass>,
     /// Why the deployment ended (`contact_limit`, ...).
     pub end_reason: String,
+    /// The same in words (`contact limit`, `locked by contact`, ...), as `isogami deploy`
+    /// prints it: what front ends show.
+    pub end_label: String,
     /// Principal expansions (min, max) at the end of the deployment.
     pub end_expansions: [Real; 2],
     /// Direction of the largest expansion at the end, degrees.
@@ -276,6 +279,7 @@ impl Measures {
             poisson: report.poisson_range().map(|(a, b)| [a, b]),
             behaviour: report.behaviour,
             end_reason,
+            end_label: report.end_reason.to_string(),
             end_expansions: end
                 .as_ref()
                 .map_or([0.0; 2], |m| [m.min_expansion, m.max_expansion]),
@@ -383,4 +387,31 @@ pub struct InverseResult {
     pub seconds: Real,
     /// The k designs, best refined objective first.
     pub results: Vec<RefinedDesign>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::api::{deploy, resolve_design, DeployRequest};
+    use crate::deploy::EndReason;
+
+    /// The end reason comes as its key and in the words `isogami deploy` prints (issue 24: the
+    /// inverse page showed `contact_limit`).
+    #[test]
+    fn measures_carry_the_end_reason_in_words() {
+        let design = resolve_design("rotating-squares").unwrap();
+        let mut report = deploy(&design, &DeployRequest::default(), &mut |_| true)
+            .unwrap()
+            .report;
+        let m = Measures::of(&report);
+        assert_eq!(m.end_reason, "contact_limit");
+        assert_eq!(m.end_label, EndReason::ContactLimit.to_string());
+        assert!(!m.end_label.contains('_'));
+        report.end_reason = EndReason::MaxSteps;
+        let m = Measures::of(&report);
+        assert_eq!(
+            (m.end_reason.as_str(), m.end_label.as_str()),
+            ("max_steps", "step limit reached")
+        );
+    }
 }
