@@ -94,6 +94,14 @@ test('at 390 px wide the design page is no wider than the window', async () => {
   }));
   assert.ok(widths.doc <= 390, `scrollWidth ${widths.doc}: ${widths.wide.join(', ')}`);
   await screenshot(browser, page, 'editing-390');
+  // Mid-edit at 390 px: the sliders in view, one moved.
+  await byTestId(page, 'param-v0').scrollIntoViewIfNeeded();
+  const n = await deployments(page);
+  await byTestId(page, 'param-v0').focus();
+  await page.keyboard.press('ArrowLeft');
+  await page.waitForFunction((m) => Number(document.body.dataset.deployments) > m, n);
+  await page.evaluate(() => document.querySelector('.live').scrollIntoView());
+  await page.screenshot({ path: new URL('./artifacts/editing-390-mid-edit.png', import.meta.url).pathname });
   assert.deepEqual(problems(page), []);
   await page.close();
 });

@@ -341,9 +341,10 @@ export function createEditor(container, { live, onChange, reason, shape = null }
       }
       const text = sliders.querySelector(`[data-testid="param-v${r.index}-range"]`);
       if (text) {
-        const end = (x, open) => (open ? `${fmt(x)}+` : fmt(x));
-        text.textContent = `valid ${end(r.lo, r.lo_open)} … ${end(r.hi, r.hi_open)} (the others fixed)` +
-          (r.well_shaped ? `; well-shaped ${fmt(r.well_shaped[0])} … ${fmt(r.well_shaped[1])} (shaded)` : '; the tile is not well-shaped here');
+        const open = [r.lo_open ? 'below' : null, r.hi_open ? 'above' : null].filter(Boolean).join(' and ');
+        text.textContent = `valid ${fmt(r.lo)} … ${fmt(r.hi)} with the others fixed` +
+          (open ? ` (valid ${open} too: searched no further)` : '') +
+          (r.well_shaped ? `; well-shaped ${fmt(r.well_shaped[0])} … ${fmt(r.well_shaped[1])} (shaded green)` : '; the tile is not well-shaped here');
       }
     }
   }
