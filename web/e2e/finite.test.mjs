@@ -113,9 +113,12 @@ test('a one-DOF design: 1 DOF ✓ raw and completed, and the finite sheet moves 
   assert.equal(a.raw_mobility.dof, 1);
   assert.equal(a.completion.mobility.dof, 1);
   assert.ok(answer.deployment.frames.length >= 2);
-  // The panel says what it is, beside the periodic figures, on screen without scrolling.
+  // The panel says what it is, beside the periodic figures: scrolled to, it is on screen
+  // together with the periodic sheet (which stays in view, sticky, since issue 24 put the
+  // live-design controls first beside it).
   assert.match(await byTestId(page, 'finite-note').textContent(), /infinite periodic sheet/);
   assert.match(await byTestId(page, 'finite-note').textContent(), /cut to a region/);
+  await byTestId(page, 'finite-section').evaluate((el) => el.scrollIntoView({ block: 'start' }));
   for (const id of ['finite-dof', 'finite-canvas', 'sheet']) {
     const box = await byTestId(page, id).boundingBox();
     assert.ok(box && box.y >= 0 && box.y + box.height / 2 <= 900, `${id} is on screen at 1440×900 (${JSON.stringify(box)})`);
