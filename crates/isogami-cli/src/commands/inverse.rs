@@ -110,7 +110,7 @@ fn row(text: &mut String, label: &str, s: &Scored) {
     outln!(
         text,
         "          end {}: expansions [{:.4}, {:.4}] along {:.1}°",
-        m.end_reason,
+        m.end_label,
         m.end_expansions[0],
         m.end_expansions[1],
         m.end_angle_deg
