@@ -273,7 +273,10 @@ test('tick labels never overlap: default axes, other measures, a tiny range zoom
 
 test('the keyboard reaches the scatter, moves between stacks, announces and opens them', async () => {
   const { page, d } = await openCatalogue();
-  await byTestId(page, 'scatter-stage').focus();
+  // Tab from the colour select lands on the plot (the zoom buttons have keys instead).
+  await byTestId(page, 'scatter-colour').focus();
+  await page.keyboard.press('Tab');
+  assert.equal(await page.evaluate(() => document.activeElement.dataset.testid), 'scatter-stage');
   await page.keyboard.press('ArrowRight');
   let state = await page.evaluate(() => document.getElementById('scatter').scatterDrawn);
   assert.ok(state.focused, 'the first arrow focuses a stack');

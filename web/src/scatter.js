@@ -61,6 +61,9 @@ export function createScatter(container, options) {
     h('button', { type: 'button', testid: 'scatter-zoom-out', 'aria-label': 'zoom out', onclick: () => zoomBy(0.5) }, '−'),
     h('button', { type: 'button', testid: 'scatter-zoom-reset', onclick: () => resetZoom() }, 'reset zoom'),
   );
+  // Out of the Tab order: in the focused plot the keys +, − and 0 do the same (its label says
+  // so), and the catalogue's cards stay a few Tabs away.
+  for (const b of zoomButtons.querySelectorAll('button')) b.tabIndex = -1;
   const legend = h('div', { class: 'scatter-legend', testid: 'scatter-legend' });
   stage.tabIndex = 0;
   stage.setAttribute('role', 'application');
@@ -165,8 +168,12 @@ export function createScatter(container, options) {
     zoom.extent([[x0, y1], [x1, y0]]).translateExtent([[x0, y1], [x1, y0]]);
     svgEl.attr('width', width).attr('height', hgt).attr('viewBox', `0 0 ${width} ${hgt}`);
     drawAxes(width, hgt, sx, sy, extentX, extentY);
-    brush.extent([[x0, y1], [x1, y0]]);
-    brushG.call(brush);
+    const brushArea = `${x0},${y1},${x1},${y0}`;
+    if (brushG.attr('data-area') !== brushArea) {
+      // Only when the plot area changes: a hover redraw must not touch a brush being dragged.
+      brush.extent([[x0, y1], [x1, y0]]);
+      brushG.attr('data-area', brushArea).call(brush);
+    }
 
     const ratio = window.devicePixelRatio || 1;
     canvas.width = Math.round(width * ratio);
@@ -199,7 +206,7 @@ export function createScatter(container, options) {
     if (countEl) countEl.textContent = summary;
     stage.setAttribute(
       'aria-label',
-      `${labels.y} against ${labels.x}: ${summary}. Arrow keys move between stacks, Enter opens a design or lists a stack, plus and minus zoom, Escape closes the list.`,
+      `${labels.y} against ${labels.x}: ${summary}. Arrow keys move between stacks, Enter opens a design or lists a stack, plus and minus zoom, 0 resets the zoom, Escape closes the list.`,
     );
     container.dataset.stacks = String(drawn.length);
     container.dataset.designs = String(inView);
