@@ -124,6 +124,12 @@ test('shape sliders say what the parameter does and are limited to the library v
     if (r.well_shaped) assert.deepEqual(well.split(',').map(Number), r.well_shaped);
     assert.match(await byTestId(page, `param-v${k}-range`).textContent(), /^valid /);
   }
+  // The corners the words name are labelled on tile 0 of the joint editor.
+  const corners = await page.$$eval('[data-testid="tile0-corners"] text', (ts) => ts.map((t) => t.textContent));
+  assert.deepEqual(corners, corners.map((_, k) => String(k)), 'corners 0…n-1');
+  for (const e of family.param_effects) {
+    for (const c of [...e.opens, ...e.closes, ...e.lengthens, ...e.shortens]) assert.ok(c < corners.length, `v${e.index} names ${c}`);
+  }
   // The slider's ends deploy (no ill-shaped refusal at either end).
   const n = await deployments(page);
   const slider = byTestId(page, 'param-v1');
@@ -186,7 +192,22 @@ test('a refused joint edit is explained beside the joint editor and marks every 
       await page.keyboard.press('Enter');
     }
   }
-  await page.waitForFunction(() => document.body.dataset.stale === undefined, null, { timeout: 30000 });
+  // Wait for the original design's answer (intermediate joint strings may be answered, valid
+  // or refused, on the way).
+  await page.waitForFunction(
+    (joints) => document.querySelector('[data-testid="spec"]').textContent.endsWith(`:${joints}`)
+      && !document.body.classList.contains('simulating'),
+    original,
+    { timeout: 30000 },
+  ).catch(async (e) => {
+    const state = await page.evaluate(() => ({
+      spec: document.querySelector('[data-testid="spec"]').textContent,
+      joints: document.querySelector('[data-testid="joints"]').textContent,
+      classes: document.body.className,
+    }));
+    throw new Error(`${e.message}: ${JSON.stringify(state)} ${page.errors.join('; ')}`);
+  });
+  assert.equal(await page.evaluate(() => document.body.dataset.stale), undefined);
   assert.equal(await page.locator('.measures').getAttribute('data-stale'), null);
   assert.ok(await badge.isHidden());
   assert.ok(await byTestId(page, 'notice-joints').isHidden(), 'the notice is gone');

@@ -106,6 +106,7 @@ function jointLegend() {
     h('li', {}, sample('seg joined', [9]), 'black with a red pin: a hinge at that end (A or B)'),
     h('li', {}, sample('seg joined', [9, 31]), 'two pins: both ends, welded'),
     h('li', {}, h('span', { class: 'end-key' }, 'A B'), 'hover or focus an edge to see its ends A and B'),
+    h('li', {}, h('span', { class: 'corner-key' }, '0 1 2'), "tile 0's corners, as the shape sliders name them (edge k runs from corner k to k + 1)"),
   );
 }
 
@@ -401,6 +402,17 @@ export function createEditor(container, { live, onChange, reason, shape = null }
       .attr('y1', (e) => e.a[1])
       .attr('x2', (e) => e.b[0])
       .attr('y2', (e) => e.b[1]);
+    // Tile 0's corners numbered as the shape sliders' descriptions name them.
+    const t0 = tilesClosed[0] ?? [];
+    const [cx, cy] = t0.reduce((acc, p) => [acc[0] + p[0] / t0.length, acc[1] + p[1] / t0.length], [0, 0]);
+    const corners = g.append('g').attr('class', 'corners').attr('data-testid', 'tile0-corners').attr('pointer-events', 'none');
+    t0.forEach((p, k) => {
+      const x = p[0] + 0.16 * (cx - p[0]);
+      const y = p[1] + 0.16 * (cy - p[1]);
+      corners.append('text').attr('class', 'corner-label')
+        .attr('transform', `translate(${x},${y}) scale(1,-1)`)
+        .attr('font-size', width * 0.04).attr('text-anchor', 'middle').attr('dy', '0.35em').text(String(k));
+    });
     // End markers A and B, shown on the hovered or focused edge.
     const r = width * 0.018;
     edges.each(function ends(e) {
@@ -446,7 +458,10 @@ export function createEditor(container, { live, onChange, reason, shape = null }
         cycle(e);
       }
     });
+    // Keep the keyboard focus on its edge when an answer redraws the cell.
+    const focused = cellBox.contains(document.activeElement) ? document.activeElement.dataset?.testid : null;
     cellBox.replaceChildren(svg.node());
+    if (focused) cellBox.querySelector(`[data-testid="${focused}"]`)?.focus();
   }
 
   function takeGeometry(view) {

@@ -4,8 +4,9 @@
 //! compared — its interior angles and its edge lengths relative to the mean edge — so the
 //! words hold whatever the family's coordinates or the tile's placement: "v1: opens the
 //! angles at corners 0 and 2, closes 1; lengthens edge 1 against 0 and 2". Corners and edges
-//! are numbered as `isogami families` and the prototile's vertex order number them (edge k
-//! runs from corner k to corner k + 1).
+//! are numbered as tile 0 of every cell of the family numbers its vertices (the prototile's
+//! order, reversed when the family's first aspect mirrors it, as `cell` places it; edge k runs
+//! from corner k to corner k + 1), so a page can label tile 0's corners and the words apply.
 
 use super::family::Family;
 use super::shape::Tiling;
@@ -36,6 +37,22 @@ const SIGNIFICANT: Real = 0.05;
 /// Smallest change (degrees per unit parameter scale, or relative length per unit scale)
 /// that counts at all: below it the parameter does nothing to the tile's shape.
 const FLOOR: Real = 1e-6;
+
+/// Tile 0 of a cell at this tiling: the prototile under the first aspect, its vertex order
+/// reversed when that makes it counter-clockwise (as `cell::build` places it).
+fn tile0(t: &Tiling) -> Vec<Vec2> {
+    let poly: Vec<Vec2> = t
+        .prototile()
+        .iter()
+        .map(|p| t.aspects()[0].apply(p))
+        .collect();
+    let n = poly.len();
+    if signed_area(&poly) < 0.0 {
+        (0..n).map(|i| poly[(n - i) % n]).collect()
+    } else {
+        poly
+    }
+}
 
 /// Interior angles (degrees) and edge lengths relative to the mean edge of a polygon.
 fn intrinsic(poly: &[Vec2]) -> (Vec<Real>, Vec<Real>) {
@@ -155,9 +172,7 @@ pub fn param_effects(family: Family) -> Vec<ParamEffect> {
             let at = |x: Real| {
                 let mut p = defaults.clone();
                 p[k] = x;
-                Tiling::new(family, &p)
-                    .ok()
-                    .map(|t| intrinsic(t.prototile()))
+                Tiling::new(family, &p).ok().map(|t| intrinsic(&tile0(&t)))
             };
             let (da, dl) = match (at(defaults[k] + h), at(defaults[k] - h)) {
                 (Some((a1, l1)), Some((a0, l0))) => (
@@ -197,7 +212,7 @@ mod tests {
             assert_eq!(effects.len(), f.param_count(), "{f}");
             for e in &effects {
                 assert!(!e.description.is_empty(), "{f} v{}", e.index);
-                let n = Tiling::default_for(f).prototile().len();
+                let n = tile0(&Tiling::default_for(f)).len();
                 for &c in e
                     .opens
                     .iter()
@@ -217,12 +232,12 @@ mod tests {
     fn the_words_match_a_finite_move() {
         for f in Family::all() {
             let defaults = f.default_params();
-            let (a0, l0) = intrinsic(Tiling::default_for(f).prototile());
+            let (a0, l0) = intrinsic(&tile0(&Tiling::default_for(f)));
             for e in param_effects(f) {
                 let mut p = defaults.clone();
                 p[e.index] += 1e-3 * defaults[e.index].abs().max(0.25);
                 let Ok(t) = Tiling::new(f, &p) else { continue };
-                let (a1, l1) = intrinsic(t.prototile());
+                let (a1, l1) = intrinsic(&tile0(&t));
                 for &c in &e.opens {
                     assert!(a1[c] > a0[c], "{f} v{}: corner {c} should open", e.index);
                 }
@@ -253,5 +268,23 @@ mod tests {
             sentence(&[], &[], &[], &[]),
             "scales or moves the tile without changing its shape"
         );
+    }
+
+    /// The numbering is the cell's: tile 0 of a built cell has the same vertices in the same
+    /// order, up to a translation.
+    #[test]
+    fn corners_are_numbered_as_tile_0_of_a_cell() {
+        use crate::cell::{CellDims, UnitCell};
+        for f in Family::all() {
+            let t = Tiling::default_for(f);
+            let mine = tile0(&t);
+            let cell = UnitCell::new(&t, CellDims::new(1, 1).unwrap()).unwrap();
+            let theirs = &cell.tiles[0].polygon;
+            assert_eq!(mine.len(), theirs.len(), "{f}");
+            let shift = theirs[0] - mine[0];
+            for (a, b) in mine.iter().zip(theirs) {
+                assert!((a + shift - b).norm() < 1e-9, "{f}: {a:?} vs {b:?}");
+            }
+        }
     }
 }
