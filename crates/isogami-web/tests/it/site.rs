@@ -101,8 +101,10 @@ async fn the_site_holds_what_the_api_serves() {
             s.spec
         );
     }
-    // Nothing else: markers, assets, two data files and two files per design.
-    assert_eq!(written.len(), 1 + ASSETS.len() + 2 + 2 * all.len());
+    // Nothing else: markers, assets, three data files (site, designs, motions) and two files
+    // per design.
+    assert!(written.contains_key(&PathBuf::from("data/motions.json")));
+    assert_eq!(written.len(), 1 + ASSETS.len() + 3 + 2 * all.len());
 }
 
 #[test]
