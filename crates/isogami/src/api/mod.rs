@@ -40,7 +40,7 @@ use crate::settings_error::{Requirement, SettingsError};
 pub use crate::topology::Design;
 use serde::Serialize;
 
-mod finite;
+pub(crate) mod finite;
 mod sheet;
 mod sheet_deploy;
 mod sheet_pull;
