@@ -6,18 +6,22 @@
 //! - [`target`]: the target outline, as a radius in every direction;
 //! - [`problem`]: the residuals (pins, mean opening, fit, smoothness, shape bounds) and their
 //!   exact sparse Jacobian;
+//! - [`deploy`]: the check the other way — the graded closed tiling followed as a mechanism of
+//!   its own from the optimised state back to closed: pins closed, one DOF, no overlap;
 //! - [`solve`]: Levenberg–Marquardt on the sparse normal equations (faer's Cholesky), then a
 //!   projection that closes every pin exactly with the closed shapes held.
 //!
 //! The start is the design's own finite sheet (completed to one degree of freedom, issue 15)
 //! at its opened state, the target scaled to the area that sheet covers open.
 
+pub mod deploy;
 pub mod error;
 pub mod model;
 pub mod problem;
 pub mod solve;
 pub mod target;
 
+pub use deploy::{check_path, PathCheck, PathState};
 pub use error::GradedError;
 pub use model::{GradedJoint, GradedSheet, GradedTile, OpenedPose};
 pub use problem::{Problem, Weights};
@@ -26,7 +30,7 @@ pub use target::{parse_outline, Outline};
 
 use crate::api::{resolve_design, SheetRequest};
 use crate::finite::{Region, SheetTile};
-use crate::geometry::signed_area;
+use crate::geometry::{convex_hull, signed_area};
 use crate::math::{Real, Vec2};
 use crate::stop::KeepGoing;
 use std::collections::HashMap;
@@ -42,8 +46,13 @@ pub struct GradedRequest {
     pub cols: usize,
     /// The target outline of the opened sheet.
     pub outline: Outline,
-    /// The opened state, as the periodic deployment's t (1: its contact limit).
-    pub t: Real,
+    /// The opened state, as the periodic deployment's t (1: its contact limit); None: the
+    /// state where the periodic sheet covers the most area (the contact limit for a sheet that
+    /// opens until contact; rotating squares turn back and close again after it).
+    pub t: Option<Real>,
+    /// Opened states the pins must close in, the opened one included (at least 1): more
+    /// states part of the way make shapes that move all the way.
+    pub states: usize,
     /// Complete the region to a one-DOF sheet first (issue 15).
     pub complete: bool,
     /// Residual weights.
@@ -59,7 +68,8 @@ impl Default for GradedRequest {
             rows: 4,
             cols: 4,
             outline: Outline::Disc,
-            t: 1.0,
+            t: None,
+            states: 4,
             complete: true,
             weights: Weights::default(),
             solve: SolveSettings::default(),
@@ -85,10 +95,15 @@ pub fn setup(request: &GradedRequest) -> Result<(GradedSheet, Problem), crate::E
         ))
         .into());
     }
-    if !(request.t.is_finite() && request.t > 0.0 && request.t <= 1.0) {
+    if let Some(t) = request.t {
+        if !(t.is_finite() && t > 0.0 && t <= 1.0) {
+            return Err(bad(format!("t = {t} must be in (0, 1] (an opened state)")));
+        }
+    }
+    if !(1..=MAX_STATES).contains(&request.states) {
         return Err(bad(format!(
-            "t = {} must be in (0, 1] (an opened state)",
-            request.t
+            "{} states: from 1 to {MAX_STATES}",
+            request.states
         )));
     }
     let outline = request.outline.clone().validated()?;
@@ -101,26 +116,46 @@ pub fn setup(request: &GradedRequest) -> Result<(GradedSheet, Problem), crate::E
         },
         // Degrees of freedom are counted at a generic opened state (a fully opened state can
         // be a singular one: rotating squares at their largest area gain a mode).
-        t: request.t.min(SheetRequest::default().t),
+        t: SheetRequest::default().t,
         complete: request.complete,
         ..SheetRequest::default()
     };
     let (mech, path, analysis) =
         crate::api::finite::deployed_sheet(&design, &sheet_request, &mut |_| true)?;
     let traj = &path.trajectory;
-    let k = (0..traj.steps.len())
-        .min_by(|&a, &b| {
-            (traj.t(a) - request.t)
-                .abs()
-                .total_cmp(&(traj.t(b) - request.t).abs())
-        })
-        .expect("a deployment has states");
+    let area = |q: &crate::math::DVec| {
+        let (u, w) = mech.lattice(q);
+        crate::math::cross(&u, &w)
+    };
+    let k = match request.t {
+        Some(t) => (0..traj.steps.len())
+            .min_by(|&a, &b| (traj.t(a) - t).abs().total_cmp(&(traj.t(b) - t).abs())),
+        None => (0..traj.steps.len())
+            .max_by(|&a, &b| area(&traj.steps[a].q).total_cmp(&area(&traj.steps[b].q))),
+    }
+    .expect("a deployment has states");
     if k == 0 {
         return Err(GradedError::Design("the design does not open".into()).into());
     }
-    let q = traj.steps[k].q.clone();
     let sheet = analysis.sheet();
-    let graded = GradedSheet::ungraded(&design.to_string(), &cell, &mech, sheet, &q)?;
+    let spec = design.to_string();
+    let mut graded = GradedSheet::ungraded(&spec, &cell, &mech, sheet, &traj.steps[k].q)?;
+    // The states part of the way: the periodic states whose mean opening is nearest to
+    // fractions of the opened one's (see `state_fraction`).
+    let signs = joint_signs(&graded);
+    let opened_opening = mean_opening(&graded.opened, &graded, &signs);
+    for s in 1..request.states {
+        let want = opened_opening * state_fraction(s, request.states);
+        let mut best: Option<(Real, Vec<OpenedPose>)> = None;
+        for step in &traj.steps[..=k] {
+            let poses = GradedSheet::ungraded(&spec, &cell, &mech, sheet, &step.q)?.opened;
+            let miss = (mean_opening(&poses, &graded, &signs) - want).abs();
+            if best.as_ref().is_none_or(|(m, _)| miss < *m) {
+                best = Some((miss, poses));
+            }
+        }
+        graded.path.push(best.expect("a deployment has states").1);
+    }
     let problem = problem_of(&graded, outline, request.weights);
     Ok((graded, problem))
 }
@@ -130,20 +165,13 @@ pub fn problem_of(graded: &GradedSheet, outline: Outline, weights: Weights) -> P
     let tiles: Vec<Vec<usize>> = graded.tiles.iter().map(|t| t.nodes.clone()).collect();
     let joints: Vec<(usize, usize, usize)> =
         graded.joints.iter().map(|j| (j.a, j.b, j.node)).collect();
-    let rel: Vec<Real> = joints
+    let joint_signs = joint_signs(graded);
+    let openings: Vec<Real> = graded
+        .path
         .iter()
-        .map(|&(a, b, _)| graded.opened[b].theta - graded.opened[a].theta)
+        .chain(std::iter::once(&graded.opened))
+        .map(|poses| mean_opening(poses, graded, &joint_signs))
         .collect();
-    let joint_signs: Vec<Real> = rel
-        .iter()
-        .map(|&r| if r.abs() > 1e-9 { r.signum() } else { 0.0 })
-        .collect();
-    let opening = rel
-        .iter()
-        .zip(&joint_signs)
-        .map(|(r, s)| r * s)
-        .sum::<Real>()
-        / joints.len().max(1) as Real;
     // The outline: per boundary tile, its boundary corner farthest out at the start.
     let boundary = graded.boundary_corners();
     let mut best: HashMap<usize, (usize, Real)> = HashMap::new();
@@ -168,7 +196,7 @@ pub fn problem_of(graded: &GradedSheet, outline: Outline, weights: Weights) -> P
         .iter()
         .map(|&(i, n)| graded.opened_corner(i, n))
         .collect();
-    let scale = (hull_area(&points) / outline.area()).sqrt();
+    let scale = (signed_area(&convex_hull(&points)) / outline.area()).sqrt();
     let index: HashMap<SheetTile, usize> = graded
         .tiles
         .iter()
@@ -226,7 +254,7 @@ pub fn problem_of(graded: &GradedSheet, outline: Outline, weights: Weights) -> P
         tiles,
         joints,
         joint_signs,
-        opening,
+        openings,
         tips,
         inside,
         outline,
@@ -240,33 +268,40 @@ pub fn problem_of(graded: &GradedSheet, outline: Outline, weights: Weights) -> P
     }
 }
 
-/// Area of the convex hull of `points`.
-fn hull_area(points: &[Vec2]) -> Real {
-    let mut p: Vec<Vec2> = points.to_vec();
-    p.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    if p.len() < 3 {
-        return 0.0;
-    }
-    let turn = |o: Vec2, a: Vec2, b: Vec2| crate::math::cross(&(a - o), &(b - o));
-    let mut hull: Vec<Vec2> = Vec::new();
-    for pass in 0..2 {
-        let start = hull.len();
-        let iter: Box<dyn Iterator<Item = &Vec2>> = if pass == 0 {
-            Box::new(p.iter())
-        } else {
-            Box::new(p.iter().rev())
-        };
-        for &q in iter {
-            while hull.len() >= start + 2
-                && turn(hull[hull.len() - 2], hull[hull.len() - 1], q) <= 0.0
-            {
-                hull.pop();
+/// The opening of state `s` of `states` as a fraction of the opened one's: denser towards
+/// the closed state, where the path leaves the singular closed tiling.
+fn state_fraction(s: usize, states: usize) -> Real {
+    (s as Real / states as Real).powi(2)
+}
+
+/// Most states a request may ask for.
+pub const MAX_STATES: usize = 16;
+
+/// Sign of every pin's relative rotation in the opened state (0 where it does not turn).
+fn joint_signs(graded: &GradedSheet) -> Vec<Real> {
+    graded
+        .joints
+        .iter()
+        .map(|j| {
+            let r = graded.opened[j.b].theta - graded.opened[j.a].theta;
+            if r.abs() > 1e-9 {
+                r.signum()
+            } else {
+                0.0
             }
-            hull.push(q);
-        }
-        hull.pop();
-    }
-    signed_area(&hull)
+        })
+        .collect()
+}
+
+/// Mean signed relative rotation across the pins of one state's poses.
+fn mean_opening(poses: &[OpenedPose], graded: &GradedSheet, signs: &[Real]) -> Real {
+    graded
+        .joints
+        .iter()
+        .zip(signs)
+        .map(|(j, s)| s * (poses[j.b].theta - poses[j.a].theta))
+        .sum::<Real>()
+        / graded.joints.len().max(1) as Real
 }
 
 /// Grades a design's finite sheet towards a target: the optimised sheet and its report.

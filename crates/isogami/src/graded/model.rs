@@ -65,6 +65,10 @@ pub struct GradedSheet {
     pub joints: Vec<GradedJoint>,
     /// The opened state, one pose per tile.
     pub opened: Vec<OpenedPose>,
+    /// States part of the way open (the optimisation asks the pins to close in them too),
+    /// least open first; each one pose per tile.
+    #[serde(default)]
+    pub path: Vec<Vec<OpenedPose>>,
 }
 
 impl GradedSheet {
@@ -181,6 +185,7 @@ impl GradedSheet {
             tiles,
             joints,
             opened,
+            path: Vec::new(),
         };
         graded.centre_opened();
         Ok(graded)
@@ -304,12 +309,20 @@ impl GradedSheet {
         {
             return bad(format!("node {k} is not finite"));
         }
-        if let Some(k) = self
-            .opened
-            .iter()
-            .position(|p| !(p.x.is_finite() && p.y.is_finite() && p.theta.is_finite()))
-        {
-            return bad(format!("the opened pose of tile {k} is not finite"));
+        for poses in self.path.iter().chain(std::iter::once(&self.opened)) {
+            if poses.len() != self.tiles.len() {
+                return bad(format!(
+                    "a state has {} poses for {} tiles",
+                    poses.len(),
+                    self.tiles.len()
+                ));
+            }
+            if let Some(k) = poses
+                .iter()
+                .position(|p| !(p.x.is_finite() && p.y.is_finite() && p.theta.is_finite()))
+            {
+                return bad(format!("the pose of tile {k} is not finite"));
+            }
         }
         for (i, t) in self.tiles.iter().enumerate() {
             if t.nodes.len() < 3 {

@@ -8,6 +8,12 @@
 //! - **opening**: the mean relative rotation across the pins (signed like the periodic
 //!   sheet's) equals the periodic sheet's at the chosen state, so the opened state is as far
 //!   along the motion as the design's own (1 row);
+//!
+//! Pins and opening hold in every *state*: the opened state and states part of the way
+//! there (their openings evenly spaced), all sharing the one set of closed shapes. A single
+//! opened state is not enough: a generic graded sheet that closes its pins there is rigid
+//! (an isolated configuration); asking for the states between makes its shapes ones that
+//! move. The remaining groups concern the last (opened) state or the closed shapes:
 //! - **fit**: every outline point of the opened boundary lies on the target (radial error),
 //!   and no other boundary corner lies outside it (one-sided);
 //! - **smoothness**: lattice neighbours (the same tile of the cell in adjacent cells) keep
@@ -40,6 +46,8 @@ pub struct Weights {
     pub corner_fraction: Real,
     /// Fraction of its starting length every edge keeps.
     pub edge_fraction: Real,
+    /// Fraction of a state's mean opening every pin opens at least.
+    pub pin_fraction: Real,
 }
 
 impl Default for Weights {
@@ -53,6 +61,7 @@ impl Default for Weights {
             bounds: 30.0,
             corner_fraction: 0.3,
             edge_fraction: 0.3,
+            pin_fraction: 0.2,
         }
     }
 }
@@ -66,8 +75,8 @@ pub struct Problem {
     pub joints: Vec<(usize, usize, usize)>,
     /// Sign of each pin's relative rotation at the start.
     pub joint_signs: Vec<Real>,
-    /// The mean signed relative rotation to keep.
-    pub opening: Real,
+    /// The mean signed relative rotation of each state, the opened state last.
+    pub openings: Vec<Real>,
     /// Outline points (tile, node) fitted to the target.
     pub tips: Vec<(usize, usize)>,
     /// Other boundary corners (tile, node), kept inside.
@@ -119,40 +128,55 @@ fn node_col(n: usize) -> usize {
 impl Problem {
     /// Number of unknowns for `nodes` nodes.
     pub fn unknowns(&self, nodes: usize) -> usize {
-        2 * nodes + 3 * self.tiles.len()
+        2 * nodes + 3 * self.tiles.len() * self.openings.len()
     }
 
-    /// Column of tile `i`'s opened x (y and θ follow).
-    fn pose_col(&self, nodes: usize, i: usize) -> usize {
-        2 * nodes + 3 * i
+    /// Column of tile `i`'s x in state `s` (y and θ follow).
+    fn pose_col(&self, nodes: usize, s: usize, i: usize) -> usize {
+        2 * nodes + 3 * (self.tiles.len() * s + i)
     }
 
-    /// The unknowns of a sheet.
+    /// The unknowns of a sheet: its nodes, then every state's poses (the sheet's `path`,
+    /// then its opened state).
     pub fn pack(sheet: &GradedSheet) -> DVec {
         let n = sheet.nodes.len();
-        let mut z = DVec::zeros(2 * n + 3 * sheet.tiles.len());
+        let states: Vec<&Vec<super::model::OpenedPose>> = sheet
+            .path
+            .iter()
+            .chain(std::iter::once(&sheet.opened))
+            .collect();
+        let mut z = DVec::zeros(2 * n + 3 * sheet.tiles.len() * states.len());
         for (k, p) in sheet.nodes.iter().enumerate() {
             z[2 * k] = p[0];
             z[2 * k + 1] = p[1];
         }
-        for (i, pose) in sheet.opened.iter().enumerate() {
-            z[2 * n + 3 * i] = pose.x;
-            z[2 * n + 3 * i + 1] = pose.y;
-            z[2 * n + 3 * i + 2] = pose.theta;
+        let mut at = 2 * n;
+        for poses in states {
+            for pose in poses {
+                z[at] = pose.x;
+                z[at + 1] = pose.y;
+                z[at + 2] = pose.theta;
+                at += 3;
+            }
         }
         z
     }
 
-    /// Writes unknowns back into a sheet.
+    /// Writes unknowns back into a sheet (as many states as it has).
     pub fn unpack(sheet: &mut GradedSheet, z: &DVec) {
         let n = sheet.nodes.len();
         for (k, p) in sheet.nodes.iter_mut().enumerate() {
             *p = [z[2 * k], z[2 * k + 1]];
         }
-        for (i, pose) in sheet.opened.iter_mut().enumerate() {
-            pose.x = z[2 * n + 3 * i];
-            pose.y = z[2 * n + 3 * i + 1];
-            pose.theta = z[2 * n + 3 * i + 2];
+        let mut at = 2 * n;
+        let GradedSheet { path, opened, .. } = sheet;
+        for poses in path.iter_mut().chain(std::iter::once(opened)) {
+            for pose in poses.iter_mut() {
+                pose.x = z[at];
+                pose.y = z[at + 1];
+                pose.theta = z[at + 2];
+                at += 3;
+            }
         }
     }
 
@@ -162,11 +186,12 @@ impl Problem {
         &self,
         z: &DVec,
         nodes: usize,
+        state: usize,
         i: usize,
         n: usize,
     ) -> (Vec2, [Vec<(usize, Real)>; 2]) {
         let f = self.tiles[i][0];
-        let pc = self.pose_col(nodes, i);
+        let pc = self.pose_col(nodes, state, i);
         let th = z[pc + 2];
         let r = rotation(th);
         let x = |k: usize| Vec2::new(z[node_col(k)], z[node_col(k) + 1]);
@@ -191,40 +216,62 @@ impl Problem {
 
     /// Every residual and its Jacobian rows at `z`.
     pub fn rows(&self, z: &DVec) -> Rows {
-        let nodes = (z.len() - 3 * self.tiles.len()) / 2;
+        let states = self.openings.len();
+        let nodes = (z.len() - 3 * self.tiles.len() * states) / 2;
+        let last = states - 1;
         let w = self.weights;
         let mut out = Rows::default();
         let x = |k: usize| Vec2::new(z[node_col(k)], z[node_col(k) + 1]);
-        // Pins.
-        for &(a, b, n) in &self.joints {
-            let (pa, ja) = self.corner(z, nodes, a, n);
-            let (pb, jb) = self.corner(z, nodes, b, n);
-            for row in 0..2 {
-                let mut e: Vec<(usize, Real)> =
-                    ja[row].iter().map(|&(c, v)| (c, w.joints * v)).collect();
-                e.extend(jb[row].iter().map(|&(c, v)| (c, -w.joints * v)));
-                out.push(w.joints * (pa[row] - pb[row]), e);
+        for (state, &opening) in self.openings.iter().enumerate() {
+            // Pins.
+            for &(a, b, n) in &self.joints {
+                let (pa, ja) = self.corner(z, nodes, state, a, n);
+                let (pb, jb) = self.corner(z, nodes, state, b, n);
+                for row in 0..2 {
+                    let mut e: Vec<(usize, Real)> =
+                        ja[row].iter().map(|&(c, v)| (c, w.joints * v)).collect();
+                    e.extend(jb[row].iter().map(|&(c, v)| (c, -w.joints * v)));
+                    out.push(w.joints * (pa[row] - pb[row]), e);
+                }
             }
-        }
-        // Mean opening.
-        if !self.joints.is_empty() {
-            let m = self.joints.len() as Real;
-            let mut value = -self.opening;
-            let mut e = Vec::with_capacity(2 * self.joints.len());
+            // Mean opening.
+            if !self.joints.is_empty() {
+                let m = self.joints.len() as Real;
+                let mut value = -opening;
+                let mut e = Vec::with_capacity(2 * self.joints.len());
+                for (&(a, b, _), &s) in self.joints.iter().zip(&self.joint_signs) {
+                    let ca = self.pose_col(nodes, state, a) + 2;
+                    let cb = self.pose_col(nodes, state, b) + 2;
+                    value += s * (z[cb] - z[ca]) / m;
+                    e.push((cb, w.opening * s / m));
+                    e.push((ca, -w.opening * s / m));
+                }
+                out.push(w.opening * value, e);
+            }
+            // Every pin opens the way the periodic sheet's does, by at least a fraction of the
+            // state's mean (one-sided): a pin turning back would push its two tiles into each
+            // other.
             for (&(a, b, _), &s) in self.joints.iter().zip(&self.joint_signs) {
-                let (ca, cb) = (self.pose_col(nodes, a) + 2, self.pose_col(nodes, b) + 2);
-                value += s * (z[cb] - z[ca]) / m;
-                e.push((cb, w.opening * s / m));
-                e.push((ca, -w.opening * s / m));
+                if s == 0.0 {
+                    continue;
+                }
+                let ca = self.pose_col(nodes, state, a) + 2;
+                let cb = self.pose_col(nodes, state, b) + 2;
+                let value = w.pin_fraction * opening - s * (z[cb] - z[ca]);
+                if value > 0.0 {
+                    out.push(
+                        w.bounds * value,
+                        vec![(cb, -w.bounds * s), (ca, w.bounds * s)],
+                    );
+                }
             }
-            out.push(w.opening * value, e);
         }
         if !self.full {
             return out;
         }
         // Target fit: radial error |p| − s·ρ(p).
         let fit = |i: usize, n: usize, one_sided: bool, out: &mut Rows| {
-            let (p, jp) = self.corner(z, nodes, i, n);
+            let (p, jp) = self.corner(z, nodes, last, i, n);
             let r = p.norm().max(1e-300);
             let (rho, drho) = self.outline.radius(p);
             let value = r - self.scale * rho;
