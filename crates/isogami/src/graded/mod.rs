@@ -69,7 +69,7 @@ impl Default for GradedRequest {
             cols: 4,
             outline: Outline::Disc,
             t: None,
-            states: 4,
+            states: 8,
             complete: true,
             weights: Weights::default(),
             solve: SolveSettings::default(),

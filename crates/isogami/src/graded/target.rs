@@ -111,9 +111,8 @@ impl Outline {
                     let (a, b) = (poly[k], poly[(k + 1) % n]);
                     // The ray from the origin along dir meets edge a→b where
                     // ρ = cross(a, b) / cross(dir, b − a).
-                    let ca = cross(&a, &dir);
-                    let cb = cross(&b, &dir);
-                    if ca <= 0.0 && cb >= 0.0 || ca == 0.0 {
+                    // The ray lies between a and b: counter-clockwise of a, clockwise of b.
+                    if cross(&a, &dir) >= 0.0 && cross(&dir, &b) >= 0.0 {
                         let e = b - a;
                         let den = cross(&dir, &e);
                         if den.abs() < 1e-300 {
@@ -233,7 +232,9 @@ mod tests {
         for k in 0..36 {
             let phi = k as Real * PI / 18.0 + 0.01;
             let dir = Vec2::new(phi.cos(), phi.sin());
-            let q = dir * o.radius(dir).0;
+            let rho = o.radius(dir).0;
+            assert!(rho > 0.0, "{rho} at {phi}");
+            let q = dir * rho;
             assert!((q.x.abs().max(q.y.abs()) - 1.0).abs() < 1e-12, "{q:?}");
         }
     }
