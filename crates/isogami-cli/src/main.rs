@@ -47,6 +47,9 @@ enum Command {
     /// A finite region of a design: degrees of freedom with a free boundary, the floppy
     /// tiles, and its completion to a sheet that opens with the design's one motion.
     Sheet(commands::sheet::Args),
+    /// A graded sheet: a finite sheet whose tiles each get their own shape so that it opens
+    /// into a target outline (disc, ellipse, polygon), checked to open along one motion.
+    Graded(commands::graded::Args),
     /// Translate specs written before issue 21 (shape-dependent edge labels) into the current
     /// labels: the same physical joints, canonical numbers.
     MigrateSpec(commands::migrate_spec::Args),
@@ -82,6 +85,7 @@ fn main() -> ExitCode {
         Command::Inverse(a) => commands::inverse::run(a),
         Command::Shape(a) => commands::shape::run(a),
         Command::Sheet(a) => commands::sheet::run(a),
+        Command::Graded(a) => commands::graded::run(a),
         Command::MigrateSpec(a) => commands::migrate_spec::run(a),
         Command::Serve(a) => commands::serve::serve(a),
         Command::Site(a) => commands::serve::site(a),

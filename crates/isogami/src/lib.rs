@@ -22,6 +22,7 @@ pub mod explore;
 pub mod export;
 pub mod finite;
 pub mod geometry;
+pub mod graded;
 pub mod inverse;
 pub mod kinematics;
 pub mod linkage;

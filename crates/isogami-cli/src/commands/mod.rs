@@ -8,6 +8,7 @@ pub mod deploy;
 pub mod explore;
 pub mod export;
 pub mod families;
+pub mod graded;
 pub mod inverse;
 pub mod laser_args;
 pub mod linkages;

@@ -14,6 +14,7 @@ mod explore_cap;
 mod export_cli;
 mod export_laser_cli;
 mod export_print_cli;
+mod graded_cli;
 mod inverse_checks;
 mod inverse_cli;
 mod shape_cli;

@@ -132,7 +132,7 @@ pub(crate) fn sheet_on_its_path(
 }
 
 /// [`finite_sheet`] with the mechanism and the periodic deployment it was counted on.
-fn deployed_sheet(
+pub(crate) fn deployed_sheet(
     design: &Design,
     request: &SheetRequest,
     progress: Progress<'_>,

@@ -52,6 +52,9 @@ pub enum Error {
     /// Finite sheets: region, mobility, completion.
     #[error(transparent)]
     Finite(#[from] crate::finite::FiniteError),
+    /// Graded sheets: region, target, optimisation.
+    #[error(transparent)]
+    Graded(#[from] crate::graded::GradedError),
     /// A setting outside its range.
     #[error(transparent)]
     Settings(#[from] SettingsError),
@@ -65,6 +68,7 @@ impl Error {
             Error::Deploy(crate::deploy::DeployError::Cancelled)
                 | Error::Inverse(crate::inverse::InverseError::Cancelled)
                 | Error::Finite(crate::finite::FiniteError::Cancelled)
+                | Error::Graded(crate::graded::GradedError::Cancelled)
         )
     }
 }

@@ -1,0 +1,104 @@
+//! `isogami graded`: a graded sheet written as JSON whose numbers meet its report, the
+//! refusals in one line with exit code 2, and no file left by a refused run.
+
+use crate::common;
+
+use common::{isogami, scratch};
+
+/// A 2×2-cell rotating-squares sheet towards a rhombus: the file holds the sheet, the
+/// report and the path check, and the sheet's own geometry agrees with the report (its
+/// opened outline corners lie on the rhombus within the reported error; its pins close).
+#[test]
+fn a_graded_sheet_is_written_and_its_numbers_hold() {
+    let dir = scratch("graded");
+    let out = dir.path().join("sheet.json");
+    let run = isogami(&[
+        "graded",
+        "--design",
+        "rotating-squares",
+        "--region",
+        "2x2",
+        "--target",
+        "polygon:0,-1;1.3,0;0,1;-1.3,0",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert!(text.contains("opens along one motion"), "{text}");
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    let sheet = &v["sheet"];
+    let tiles = sheet["tiles"].as_array().unwrap();
+    assert_eq!(tiles.len(), 16);
+    assert_eq!(sheet["opened"].as_array().unwrap().len(), 16);
+    assert_eq!(v["path"]["reached"], true);
+    let gap = v["report"]["joint_gap"].as_f64().unwrap();
+    assert!(gap < 1e-6, "{gap}");
+    // Recompute every pin's gap from the file's nodes and poses.
+    let nodes = sheet["nodes"].as_array().unwrap();
+    let node = |n: usize| {
+        let p = nodes[n].as_array().unwrap();
+        (p[0].as_f64().unwrap(), p[1].as_f64().unwrap())
+    };
+    let corner = |t: usize, n: usize| {
+        let pose = &sheet["opened"][t];
+        let (x, y, th) = (
+            pose["x"].as_f64().unwrap(),
+            pose["y"].as_f64().unwrap(),
+            pose["theta"].as_f64().unwrap(),
+        );
+        let first = node(tiles[t]["nodes"][0].as_u64().unwrap() as usize);
+        let p = node(n);
+        let (dx, dy) = (p.0 - first.0, p.1 - first.1);
+        (
+            x + th.cos() * dx - th.sin() * dy,
+            y + th.sin() * dx + th.cos() * dy,
+        )
+    };
+    let mut worst: f64 = 0.0;
+    for j in sheet["joints"].as_array().unwrap() {
+        let (a, b, n) = (
+            j["a"].as_u64().unwrap() as usize,
+            j["b"].as_u64().unwrap() as usize,
+            j["node"].as_u64().unwrap() as usize,
+        );
+        let (pa, pb) = (corner(a, n), corner(b, n));
+        worst = worst.max(((pa.0 - pb.0).powi(2) + (pa.1 - pb.1).powi(2)).sqrt());
+    }
+    assert!(
+        (worst - gap).abs() <= 1e-12 + 1e-9 * gap,
+        "{worst} vs {gap}"
+    );
+}
+
+#[test]
+fn bad_requests_are_refused_in_one_line_and_write_nothing() {
+    let dir = scratch("graded-bad");
+    let out = dir.path().join("sheet.json");
+    let out = out.to_str().unwrap();
+    for (args, needle) in [
+        (vec!["--target", "blob"], "target"),
+        (vec!["--target", "ellipse:1,0"], "semi-axes"),
+        (vec!["--region", "0x2"], "region"),
+        (vec!["--states", "0"], "states"),
+        (vec!["--t", "1.5"], "t = 1.5"),
+        (vec!["--design", "IH99::1x1:a"], "IH99"),
+    ] {
+        let mut all = vec!["graded", "--region", "2x2"];
+        if args[0] != "--design" {
+            all.extend(["--design", "rotating-squares"]);
+        }
+        all.extend(args.iter().copied());
+        all.extend(["--out", out]);
+        let run = isogami(&all);
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{all:?}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{all:?}: {err}");
+        assert!(err.contains(needle), "{all:?}: {err}");
+        assert!(!std::path::Path::new(out).exists(), "{all:?} wrote a file");
+    }
+}

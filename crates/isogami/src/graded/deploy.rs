@@ -1,0 +1,184 @@
+//! The graded sheet checked the other way: does its closed tiling really open, as a
+//! mechanism of its own, into the optimised opened state?
+//!
+//! The path is followed from the opened state back to the closed one: the mean relative
+//! rotation across the pins (the [`Problem`]'s opening) is stepped down to zero, and at every
+//! step the pins are closed again over the tile poses alone, the closed shapes held. At every
+//! state the check counts the degrees of freedom (the rank of the pins' Jacobian, rigid
+//! motions taken out) and looks for two opened tiles whose interiors overlap. The path
+//! reaches the closed tiling when, at zero opening, every tile has turned back by the same
+//! angle (the sheet is the closed tiling moved rigidly).
+
+use super::model::GradedSheet;
+use super::problem::Problem;
+use crate::geometry::interiors_overlap;
+use crate::math::{DMat, DVec, Real};
+use crate::stop::KeepGoing;
+use serde::Serialize;
+
+/// Largest pose count whose degrees of freedom are counted (a dense SVD).
+pub const DOF_MAX_TILES: usize = 700;
+
+/// One state of the path.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PathState {
+    /// Its opening as a fraction of the optimised state's (1: optimised, 0: closed).
+    pub opening: Real,
+    /// Largest pin gap after closing the pins (length scales).
+    pub joint_gap: Real,
+    /// Degrees of freedom (None: not counted, the sheet is too big for the dense count).
+    pub dof: Option<usize>,
+    /// The two smallest singular values of the pins' Jacobian past the rigid motions,
+    /// relative to the largest (the mechanism's mode, then the next).
+    pub smallest: Option<[Real; 2]>,
+    /// A pair of tiles whose opened interiors overlap, if any.
+    pub overlap: Option<(usize, usize)>,
+}
+
+/// The path from the optimised state to the closed tiling.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PathCheck {
+    /// The states, optimised first.
+    pub states: Vec<PathState>,
+    /// Largest difference between two tiles' rotations at zero opening (radians): zero when
+    /// the path reaches the closed tiling.
+    pub closed_spread: Real,
+    /// Every state has closed pins, one DOF where counted, no overlap, and the path ends in
+    /// the closed tiling.
+    pub reached: bool,
+}
+
+/// Pins are closed when their gap is below this (length scales: 20 nm on a 20 mm tile).
+pub const PIN_TOLERANCE: Real = 1e-6;
+
+/// Overlaps shallower than this are ignored (length scales): pins closed to
+/// [`PIN_TOLERANCE`] let two pinned tiles' edges cross by about that much beside the pin.
+pub const OVERLAP_TOLERANCE: Real = 1e-5;
+
+/// Singular values of the pins' Jacobian below this fraction of the largest count as zero.
+/// A graded sheet is a mechanism to the precision its pins close to (~1e-7 L): its mode's
+/// singular value sits near 1e-6 of the largest, the next one near 1e-2 (measured on graded
+/// rotating squares along their whole path), so the threshold sits between the two.
+pub const RANK_TOLERANCE: Real = 1e-4;
+
+/// Follows the path of `sheet` in `steps` steps (at least 2).
+pub fn check_path(
+    sheet: &GradedSheet,
+    problem: &Problem,
+    steps: usize,
+    keep_going: KeepGoing<'_>,
+) -> Result<PathCheck, crate::Error> {
+    let steps = steps.max(2);
+    let mut problem = problem.clone();
+    problem.full = false;
+    let target = *problem.openings.last().expect("a problem has a state");
+    let mut work = sheet.clone();
+    work.path.clear();
+    let mut z = Problem::pack(&work);
+    let nodes = sheet.nodes.len();
+    let mut states = Vec::with_capacity(steps + 1);
+    let mut previous: Option<DVec> = None;
+    for k in 0..=steps {
+        let fraction = 1.0 - k as Real / steps as Real;
+        problem.openings = vec![target * fraction];
+        // Secant predictor: the next state is guessed along the last step, so the correction
+        // stays on the branch being followed.
+        let here = z.clone();
+        if let Some(before) = &previous {
+            z = &z + (&z - before);
+        }
+        super::solve::project(&problem, &mut z, 2 * nodes, 100, keep_going)?;
+        previous = Some(here);
+        Problem::unpack(&mut work, &z);
+        let counted = dof(&work);
+        states.push(PathState {
+            opening: fraction,
+            joint_gap: work.joint_gap(),
+            dof: counted.map(|c| c.0),
+            smallest: counted.map(|c| c.1),
+            overlap: overlap(&work),
+        });
+    }
+    let thetas: Vec<Real> = work.opened.iter().map(|p| p.theta).collect();
+    let (lo, hi) = thetas
+        .iter()
+        .fold((Real::MAX, Real::MIN), |(l, h), &t| (l.min(t), h.max(t)));
+    let closed_spread = hi - lo;
+    let reached = closed_spread < 1e-6
+        && states.iter().all(|s| {
+            s.joint_gap < PIN_TOLERANCE
+                && s.overlap.is_none()
+                && (s.opening == 0.0 || s.dof.is_none_or(|d| d == 1))
+        });
+    Ok(PathCheck {
+        states,
+        closed_spread,
+        reached,
+    })
+}
+
+/// Degrees of freedom of a state (3 per tile, less the rank of the pins' Jacobian, less
+/// the 3 rigid motions) and the two smallest singular values past the rigid motions (the
+/// mechanism's mode and the next), relative to the largest; None above [`DOF_MAX_TILES`].
+pub fn dof(sheet: &GradedSheet) -> Option<(usize, [Real; 2])> {
+    let t = sheet.tiles.len();
+    if t > DOF_MAX_TILES {
+        return None;
+    }
+    let mut j = DMat::zeros(2 * sheet.joints.len(), 3 * t);
+    for (r, joint) in sheet.joints.iter().enumerate() {
+        for (tile, sign) in [(joint.a, 1.0), (joint.b, -1.0)] {
+            let p = sheet.opened_corner(tile, joint.node);
+            let pose = sheet.opened[tile];
+            // ∂p/∂(x, y) = I; ∂p/∂θ = perp(p − first node's opened position)
+            let d = p - crate::math::Vec2::new(pose.x, pose.y);
+            j[(2 * r, 3 * tile)] += sign;
+            j[(2 * r + 1, 3 * tile + 1)] += sign;
+            j[(2 * r, 3 * tile + 2)] += sign * -d.y;
+            j[(2 * r + 1, 3 * tile + 2)] += sign * d.x;
+        }
+    }
+    // Singular values of JᵀJ's square roots: 3T of them, zeros included.
+    let spectrum = crate::math::symmetric_eigen(j.transpose() * &j)?;
+    let mut sv: Vec<Real> = spectrum.values.iter().map(|v| v.max(0.0).sqrt()).collect();
+    sv.sort_by(|a, b| b.total_cmp(a));
+    let max = sv.first().copied().unwrap_or(0.0).max(1e-300);
+    let rank = sv.iter().filter(|&&s| s > RANK_TOLERANCE * max).count();
+    let n = sv.len();
+    // Past the 3 rigid motions (exact zeros): the smallest two.
+    let small = if n >= 5 {
+        [sv[n - 4] / max, sv[n - 5] / max]
+    } else {
+        [0.0, 0.0]
+    };
+    Some(((3 * t).saturating_sub(rank + 3), small))
+}
+
+/// A pair of tiles whose opened interiors overlap (pinned neighbours touch only at their
+/// pin), if any.
+pub fn overlap(sheet: &GradedSheet) -> Option<(usize, usize)> {
+    let polys: Vec<_> = (0..sheet.tiles.len())
+        .map(|i| sheet.opened_polygon(i))
+        .collect();
+    let boxes: Vec<_> = polys
+        .iter()
+        .map(|p| {
+            p.iter().fold(
+                (Real::MAX, Real::MAX, Real::MIN, Real::MIN),
+                |(a, b, c, d), v| (a.min(v.x), b.min(v.y), c.max(v.x), d.max(v.y)),
+            )
+        })
+        .collect();
+    for i in 0..polys.len() {
+        for k in i + 1..polys.len() {
+            let (a, b) = (boxes[i], boxes[k]);
+            if a.2 < b.0 || b.2 < a.0 || a.3 < b.1 || b.3 < a.1 {
+                continue;
+            }
+            if interiors_overlap(&polys[i], &polys[k], OVERLAP_TOLERANCE) {
+                return Some((i, k));
+            }
+        }
+    }
+    None
+}

@@ -1,0 +1,322 @@
+//! Graded sheets (issue 25): a finite sheet whose tiles each have their own shape, chosen so
+//! that the sheet opens into a target outline.
+//!
+//! - [`model`]: the graded sheet — closed nodes shared by the tiles (found combinatorially),
+//!   the design's pins, one opened pose per tile; plain serialisable data;
+//! - [`target`]: the target outline, as a radius in every direction;
+//! - [`problem`]: the residuals (pins, mean opening, fit, smoothness, shape bounds) and their
+//!   exact sparse Jacobian;
+//! - [`deploy`]: the check the other way — the graded closed tiling followed as a mechanism of
+//!   its own from the optimised state back to closed: pins closed, one DOF, no overlap;
+//! - [`solve`]: Levenberg–Marquardt on the sparse normal equations (faer's Cholesky), then a
+//!   projection that closes every pin exactly with the closed shapes held.
+//!
+//! The start is the design's own finite sheet (completed to one degree of freedom, issue 15)
+//! at its opened state, the target scaled to the area that sheet covers open.
+
+pub mod deploy;
+pub mod error;
+pub mod model;
+pub mod problem;
+pub mod solve;
+pub mod target;
+
+pub use deploy::{check_path, PathCheck, PathState};
+pub use error::GradedError;
+pub use model::{GradedJoint, GradedSheet, GradedTile, OpenedPose};
+pub use problem::{Problem, Weights};
+pub use solve::{optimise, GradedReport, SolveSettings};
+pub use target::{parse_outline, Outline};
+
+use crate::api::{resolve_design, SheetRequest};
+use crate::finite::{Region, SheetTile};
+use crate::geometry::{convex_hull, signed_area};
+use crate::math::{Real, Vec2};
+use crate::stop::KeepGoing;
+use std::collections::HashMap;
+
+/// What to grade and towards what.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GradedRequest {
+    /// The design (spec or name).
+    pub design: String,
+    /// Cells along w.
+    pub rows: usize,
+    /// Cells along u.
+    pub cols: usize,
+    /// The target outline of the opened sheet.
+    pub outline: Outline,
+    /// The opened state, as the periodic deployment's t (1: its contact limit); None: the
+    /// state where the periodic sheet covers the most area (the contact limit for a sheet that
+    /// opens until contact; rotating squares turn back and close again after it).
+    pub t: Option<Real>,
+    /// Opened states the pins must close in, the opened one included (at least 1): more
+    /// states part of the way make shapes that move all the way.
+    pub states: usize,
+    /// Complete the region to a one-DOF sheet first (issue 15).
+    pub complete: bool,
+    /// Residual weights.
+    pub weights: Weights,
+    /// Solver settings.
+    pub solve: SolveSettings,
+}
+
+impl Default for GradedRequest {
+    fn default() -> Self {
+        GradedRequest {
+            design: "rotating-squares".into(),
+            rows: 4,
+            cols: 4,
+            outline: Outline::Disc,
+            t: None,
+            states: 8,
+            complete: true,
+            weights: Weights::default(),
+            solve: SolveSettings::default(),
+        }
+    }
+}
+
+/// Largest region side, in cells.
+pub const MAX_GRADED_CELLS: usize = 64;
+
+/// The ungraded start and the problem of a request.
+pub fn setup(request: &GradedRequest) -> Result<(GradedSheet, Problem), crate::Error> {
+    let bad = |m: String| -> crate::Error { GradedError::BadSetting(m).into() };
+    if request.rows == 0 || request.cols == 0 {
+        return Err(
+            GradedError::BadRegion("a region has at least one cell each way".into()).into(),
+        );
+    }
+    if request.rows > MAX_GRADED_CELLS || request.cols > MAX_GRADED_CELLS {
+        return Err(GradedError::BadRegion(format!(
+            "{}x{} cells: at most {MAX_GRADED_CELLS} each way",
+            request.rows, request.cols
+        ))
+        .into());
+    }
+    if let Some(t) = request.t {
+        if !(t.is_finite() && t > 0.0 && t <= 1.0) {
+            return Err(bad(format!("t = {t} must be in (0, 1] (an opened state)")));
+        }
+    }
+    if !(1..=MAX_STATES).contains(&request.states) {
+        return Err(bad(format!(
+            "{} states: from 1 to {MAX_STATES}",
+            request.states
+        )));
+    }
+    let outline = request.outline.clone().validated()?;
+    let design = resolve_design(&request.design)?;
+    let cell = design.cell()?;
+    let sheet_request = SheetRequest {
+        region: Region::Cells {
+            rows: request.rows,
+            cols: request.cols,
+        },
+        // Degrees of freedom are counted at a generic opened state (a fully opened state can
+        // be a singular one: rotating squares at their largest area gain a mode).
+        t: SheetRequest::default().t,
+        complete: request.complete,
+        ..SheetRequest::default()
+    };
+    let (mech, path, analysis) =
+        crate::api::finite::deployed_sheet(&design, &sheet_request, &mut |_| true)?;
+    let traj = &path.trajectory;
+    let area = |q: &crate::math::DVec| {
+        let (u, w) = mech.lattice(q);
+        crate::math::cross(&u, &w)
+    };
+    let k = match request.t {
+        Some(t) => (0..traj.steps.len())
+            .min_by(|&a, &b| (traj.t(a) - t).abs().total_cmp(&(traj.t(b) - t).abs())),
+        None => (0..traj.steps.len())
+            .max_by(|&a, &b| area(&traj.steps[a].q).total_cmp(&area(&traj.steps[b].q))),
+    }
+    .expect("a deployment has states");
+    if k == 0 {
+        return Err(GradedError::Design("the design does not open".into()).into());
+    }
+    let sheet = analysis.sheet();
+    let spec = design.to_string();
+    let mut graded = GradedSheet::ungraded(&spec, &cell, &mech, sheet, &traj.steps[k].q)?;
+    // The states part of the way: the periodic states whose mean opening is nearest to
+    // fractions of the opened one's (see `state_fraction`).
+    let signs = joint_signs(&graded);
+    let opened_opening = mean_opening(&graded.opened, &graded, &signs);
+    for s in 1..request.states {
+        let want = opened_opening * state_fraction(s, request.states);
+        let mut best: Option<(Real, Vec<OpenedPose>)> = None;
+        for step in &traj.steps[..=k] {
+            let poses = GradedSheet::ungraded(&spec, &cell, &mech, sheet, &step.q)?.opened;
+            let miss = (mean_opening(&poses, &graded, &signs) - want).abs();
+            if best.as_ref().is_none_or(|(m, _)| miss < *m) {
+                best = Some((miss, poses));
+            }
+        }
+        graded.path.push(best.expect("a deployment has states").1);
+    }
+    let problem = problem_of(&graded, outline, request.weights);
+    Ok((graded, problem))
+}
+
+/// The problem of an ungraded start.
+pub fn problem_of(graded: &GradedSheet, outline: Outline, weights: Weights) -> Problem {
+    let tiles: Vec<Vec<usize>> = graded.tiles.iter().map(|t| t.nodes.clone()).collect();
+    let joints: Vec<(usize, usize, usize)> =
+        graded.joints.iter().map(|j| (j.a, j.b, j.node)).collect();
+    let joint_signs = joint_signs(graded);
+    let openings: Vec<Real> = graded
+        .path
+        .iter()
+        .chain(std::iter::once(&graded.opened))
+        .map(|poses| mean_opening(poses, graded, &joint_signs))
+        .collect();
+    // The outline: per boundary tile, its boundary corner farthest out at the start.
+    let boundary = graded.boundary_corners();
+    let mut best: HashMap<usize, (usize, Real)> = HashMap::new();
+    for &(i, v) in &boundary {
+        let r = graded.opened_polygon(i)[v].norm();
+        let slot = best.entry(i).or_insert((v, r));
+        if r > slot.1 {
+            *slot = (v, r);
+        }
+    }
+    let mut tips = Vec::new();
+    let mut inside = Vec::new();
+    for &(i, v) in &boundary {
+        let node = graded.tiles[i].nodes[v];
+        if best[&i].0 == v {
+            tips.push((i, node));
+        } else {
+            inside.push((i, node));
+        }
+    }
+    let points: Vec<Vec2> = tips
+        .iter()
+        .map(|&(i, n)| graded.opened_corner(i, n))
+        .collect();
+    let scale = (signed_area(&convex_hull(&points)) / outline.area()).sqrt();
+    let index: HashMap<SheetTile, usize> = graded
+        .tiles
+        .iter()
+        .enumerate()
+        .map(|(i, t)| {
+            (
+                SheetTile {
+                    cell: t.cell,
+                    tile: t.tile,
+                },
+                i,
+            )
+        })
+        .collect();
+    let mut neighbours = Vec::new();
+    for (i, t) in graded.tiles.iter().enumerate() {
+        for d in [[1, 0], [0, 1]] {
+            let other = SheetTile {
+                cell: [t.cell[0] + d[0], t.cell[1] + d[1]],
+                tile: t.tile,
+            };
+            if let Some(&j) = index.get(&other) {
+                if graded.tiles[j].nodes.len() == t.nodes.len() {
+                    neighbours.push((i, j));
+                }
+            }
+        }
+    }
+    let start: Vec<Vec2> = (0..graded.nodes.len()).map(|n| graded.node(n)).collect();
+    let corner_start = tiles
+        .iter()
+        .map(|t| {
+            let m = t.len();
+            (0..m)
+                .map(|v| {
+                    model::corner_cross(
+                        start[t[(v + m - 1) % m]],
+                        start[t[v]],
+                        start[t[(v + 1) % m]],
+                    )
+                })
+                .collect()
+        })
+        .collect();
+    let edge_start = tiles
+        .iter()
+        .map(|t| {
+            let m = t.len();
+            (0..m)
+                .map(|v| (start[t[(v + 1) % m]] - start[t[v]]).norm())
+                .collect()
+        })
+        .collect();
+    Problem {
+        tiles,
+        joints,
+        joint_signs,
+        openings,
+        tips,
+        inside,
+        outline,
+        scale,
+        neighbours,
+        start,
+        corner_start,
+        edge_start,
+        weights,
+        full: true,
+    }
+}
+
+/// The opening of state `s` of `states` as a fraction of the opened one's: denser towards
+/// the closed state, where the path leaves the singular closed tiling.
+fn state_fraction(s: usize, states: usize) -> Real {
+    (s as Real / states as Real).powi(2)
+}
+
+/// Most states a request may ask for.
+pub const MAX_STATES: usize = 16;
+
+/// Sign of every pin's relative rotation in the opened state (0 where it does not turn).
+fn joint_signs(graded: &GradedSheet) -> Vec<Real> {
+    graded
+        .joints
+        .iter()
+        .map(|j| {
+            let r = graded.opened[j.b].theta - graded.opened[j.a].theta;
+            if r.abs() > 1e-9 {
+                r.signum()
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}
+
+/// Mean signed relative rotation across the pins of one state's poses.
+fn mean_opening(poses: &[OpenedPose], graded: &GradedSheet, signs: &[Real]) -> Real {
+    graded
+        .joints
+        .iter()
+        .zip(signs)
+        .map(|(j, s)| s * (poses[j.b].theta - poses[j.a].theta))
+        .sum::<Real>()
+        / graded.joints.len().max(1) as Real
+}
+
+/// Grades a design's finite sheet towards a target: the optimised sheet and its report.
+pub fn grade(
+    request: &GradedRequest,
+    progress: &mut dyn FnMut(usize, Real) -> bool,
+    keep_going: KeepGoing<'_>,
+) -> Result<(GradedSheet, GradedReport), crate::Error> {
+    let (mut sheet, mut problem) = setup(request)?;
+    let report = optimise(
+        &mut sheet,
+        &mut problem,
+        &request.solve,
+        progress,
+        keep_going,
+    )?;
+    Ok((sheet, report))
+}

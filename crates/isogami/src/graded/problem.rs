@@ -1,0 +1,426 @@
+//! The least-squares problem of a graded sheet: residuals and their exact sparse Jacobian.
+//!
+//! Unknowns: the closed positions of the nodes (2 per node), then the opened pose of every
+//! tile (x, y, θ: the opened position of its first node and its rotation). Residual groups,
+//! each with its weight:
+//!
+//! - **joints**: the two opened positions of every pinned node coincide (2 rows per pin);
+//! - **opening**: the mean relative rotation across the pins (signed like the periodic
+//!   sheet's) equals the periodic sheet's at the chosen state, so the opened state is as far
+//!   along the motion as the design's own (1 row);
+//!
+//! Pins and opening hold in every *state*: the opened state and states part of the way
+//! there (their openings evenly spaced), all sharing the one set of closed shapes. A single
+//! opened state is not enough: a generic graded sheet that closes its pins there is rigid
+//! (an isolated configuration); asking for the states between makes its shapes ones that
+//! move. The remaining groups concern the last (opened) state or the closed shapes:
+//! - **fit**: every outline point of the opened boundary lies on the target (radial error),
+//!   and no other boundary corner lies outside it (one-sided);
+//! - **smoothness**: lattice neighbours (the same tile of the cell in adjacent cells) keep
+//!   similar shapes (their edge vectors from the first corner agree);
+//! - **prior**: a weak pull of the closed nodes to their start (fixes the gauge);
+//! - **shape bounds** (one-sided): every corner keeps at least a fraction of its starting
+//!   turn (convex stays convex, reflex stays reflex) and every edge a fraction of its
+//!   starting length.
+
+use super::model::{corner_cross, GradedSheet};
+use super::target::Outline;
+use crate::math::{perp, rotation, DVec, Real, Vec2};
+
+/// Relative weights of the residual groups and the shape bounds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Weights {
+    /// Pins.
+    pub joints: Real,
+    /// Mean opening.
+    pub opening: Real,
+    /// Target fit.
+    pub fit: Real,
+    /// Shape smoothness between lattice neighbours.
+    pub smooth: Real,
+    /// Pull to the start.
+    pub prior: Real,
+    /// Shape bounds.
+    pub bounds: Real,
+    /// Fraction of its starting turn every corner keeps.
+    pub corner_fraction: Real,
+    /// Fraction of its starting length every edge keeps.
+    pub edge_fraction: Real,
+    /// Fraction of a state's mean opening every pin opens at least.
+    pub pin_fraction: Real,
+}
+
+impl Default for Weights {
+    fn default() -> Self {
+        Weights {
+            joints: 30.0,
+            opening: 30.0,
+            fit: 3.0,
+            smooth: 0.3,
+            prior: 1e-3,
+            bounds: 30.0,
+            corner_fraction: 0.3,
+            edge_fraction: 0.3,
+            pin_fraction: 0.2,
+        }
+    }
+}
+
+/// Everything fixed while the unknowns move.
+#[derive(Debug, Clone)]
+pub struct Problem {
+    /// Tile corners, as node indices.
+    pub tiles: Vec<Vec<usize>>,
+    /// Pins: (tile a, tile b, node).
+    pub joints: Vec<(usize, usize, usize)>,
+    /// Sign of each pin's relative rotation at the start.
+    pub joint_signs: Vec<Real>,
+    /// The mean signed relative rotation of each state, the opened state last.
+    pub openings: Vec<Real>,
+    /// Outline points (tile, node) fitted to the target.
+    pub tips: Vec<(usize, usize)>,
+    /// Other boundary corners (tile, node), kept inside.
+    pub inside: Vec<(usize, usize)>,
+    /// The target and its scale.
+    pub outline: Outline,
+    /// Scale of the outline (its radius at scale 1 times this).
+    pub scale: Real,
+    /// Lattice-neighbour tile pairs with the same corner count.
+    pub neighbours: Vec<(usize, usize)>,
+    /// Starting node positions (prior).
+    pub start: Vec<Vec2>,
+    /// Starting corner turns, per tile per corner.
+    pub corner_start: Vec<Vec<Real>>,
+    /// Starting edge lengths, per tile per edge.
+    pub edge_start: Vec<Vec<Real>>,
+    /// Weights.
+    pub weights: Weights,
+    /// When false, only the joints and the opening count (the closing projection).
+    pub full: bool,
+}
+
+/// One residual row: its value and the non-zero entries of its Jacobian row.
+#[derive(Debug, Clone, Default)]
+pub struct Rows {
+    /// Residual values.
+    pub values: Vec<Real>,
+    /// Jacobian rows: (column, value).
+    pub entries: Vec<Vec<(usize, Real)>>,
+}
+
+impl Rows {
+    fn push(&mut self, value: Real, entries: Vec<(usize, Real)>) {
+        self.values.push(value);
+        self.entries.push(entries);
+    }
+
+    /// ½‖r‖².
+    pub fn cost(&self) -> Real {
+        0.5 * self.values.iter().map(|v| v * v).sum::<Real>()
+    }
+}
+
+/// Column of node `n`'s x.
+fn node_col(n: usize) -> usize {
+    2 * n
+}
+
+impl Problem {
+    /// Number of unknowns for `nodes` nodes.
+    pub fn unknowns(&self, nodes: usize) -> usize {
+        2 * nodes + 3 * self.tiles.len() * self.openings.len()
+    }
+
+    /// Column of tile `i`'s x in state `s` (y and θ follow).
+    fn pose_col(&self, nodes: usize, s: usize, i: usize) -> usize {
+        2 * nodes + 3 * (self.tiles.len() * s + i)
+    }
+
+    /// The unknowns of a sheet: its nodes, then every state's poses (the sheet's `path`,
+    /// then its opened state).
+    pub fn pack(sheet: &GradedSheet) -> DVec {
+        let n = sheet.nodes.len();
+        let states: Vec<&Vec<super::model::OpenedPose>> = sheet
+            .path
+            .iter()
+            .chain(std::iter::once(&sheet.opened))
+            .collect();
+        let mut z = DVec::zeros(2 * n + 3 * sheet.tiles.len() * states.len());
+        for (k, p) in sheet.nodes.iter().enumerate() {
+            z[2 * k] = p[0];
+            z[2 * k + 1] = p[1];
+        }
+        let mut at = 2 * n;
+        for poses in states {
+            for pose in poses {
+                z[at] = pose.x;
+                z[at + 1] = pose.y;
+                z[at + 2] = pose.theta;
+                at += 3;
+            }
+        }
+        z
+    }
+
+    /// Writes unknowns back into a sheet (as many states as it has).
+    pub fn unpack(sheet: &mut GradedSheet, z: &DVec) {
+        let n = sheet.nodes.len();
+        for (k, p) in sheet.nodes.iter_mut().enumerate() {
+            *p = [z[2 * k], z[2 * k + 1]];
+        }
+        let mut at = 2 * n;
+        let GradedSheet { path, opened, .. } = sheet;
+        for poses in path.iter_mut().chain(std::iter::once(opened)) {
+            for pose in poses.iter_mut() {
+                pose.x = z[at];
+                pose.y = z[at + 1];
+                pose.theta = z[at + 2];
+                at += 3;
+            }
+        }
+    }
+
+    /// Opened position of node `n` as a corner of tile `i`, and its derivative entries
+    /// (2 rows, each a list of (column, value)).
+    fn corner(
+        &self,
+        z: &DVec,
+        nodes: usize,
+        state: usize,
+        i: usize,
+        n: usize,
+    ) -> (Vec2, [Vec<(usize, Real)>; 2]) {
+        let f = self.tiles[i][0];
+        let pc = self.pose_col(nodes, state, i);
+        let th = z[pc + 2];
+        let r = rotation(th);
+        let x = |k: usize| Vec2::new(z[node_col(k)], z[node_col(k) + 1]);
+        let d = x(n) - x(f);
+        let rd = r * d;
+        let p = Vec2::new(z[pc], z[pc + 1]) + rd;
+        let dth = perp(&rd);
+        let mut rows: [Vec<(usize, Real)>; 2] = [Vec::with_capacity(7), Vec::with_capacity(7)];
+        for (row, entries) in rows.iter_mut().enumerate() {
+            entries.push((pc + row, 1.0));
+            entries.push((pc + 2, dth[row]));
+            if n != f {
+                // ∂p/∂X_n = R, ∂p/∂X_f = −R
+                entries.push((node_col(n), r[(row, 0)]));
+                entries.push((node_col(n) + 1, r[(row, 1)]));
+                entries.push((node_col(f), -r[(row, 0)]));
+                entries.push((node_col(f) + 1, -r[(row, 1)]));
+            }
+        }
+        (p, rows)
+    }
+
+    /// Every residual and its Jacobian rows at `z`.
+    pub fn rows(&self, z: &DVec) -> Rows {
+        let states = self.openings.len();
+        let nodes = (z.len() - 3 * self.tiles.len() * states) / 2;
+        let last = states - 1;
+        let w = self.weights;
+        let mut out = Rows::default();
+        let x = |k: usize| Vec2::new(z[node_col(k)], z[node_col(k) + 1]);
+        for (state, &opening) in self.openings.iter().enumerate() {
+            // Pins.
+            for &(a, b, n) in &self.joints {
+                let (pa, ja) = self.corner(z, nodes, state, a, n);
+                let (pb, jb) = self.corner(z, nodes, state, b, n);
+                for row in 0..2 {
+                    let mut e: Vec<(usize, Real)> =
+                        ja[row].iter().map(|&(c, v)| (c, w.joints * v)).collect();
+                    e.extend(jb[row].iter().map(|&(c, v)| (c, -w.joints * v)));
+                    out.push(w.joints * (pa[row] - pb[row]), e);
+                }
+            }
+            // Mean opening.
+            if !self.joints.is_empty() {
+                let m = self.joints.len() as Real;
+                let mut value = -opening;
+                let mut e = Vec::with_capacity(2 * self.joints.len());
+                for (&(a, b, _), &s) in self.joints.iter().zip(&self.joint_signs) {
+                    let ca = self.pose_col(nodes, state, a) + 2;
+                    let cb = self.pose_col(nodes, state, b) + 2;
+                    value += s * (z[cb] - z[ca]) / m;
+                    e.push((cb, w.opening * s / m));
+                    e.push((ca, -w.opening * s / m));
+                }
+                out.push(w.opening * value, e);
+            }
+            // Every pin opens the way the periodic sheet's does, by at least a fraction of the
+            // state's mean (one-sided): a pin turning back would push its two tiles into each
+            // other.
+            for (&(a, b, _), &s) in self.joints.iter().zip(&self.joint_signs) {
+                if s == 0.0 {
+                    continue;
+                }
+                let ca = self.pose_col(nodes, state, a) + 2;
+                let cb = self.pose_col(nodes, state, b) + 2;
+                let value = w.pin_fraction * opening - s * (z[cb] - z[ca]);
+                if value > 0.0 {
+                    out.push(
+                        w.bounds * value,
+                        vec![(cb, -w.bounds * s), (ca, w.bounds * s)],
+                    );
+                }
+            }
+        }
+        if !self.full {
+            return out;
+        }
+        // Target fit: radial error |p| − s·ρ(p).
+        let fit = |i: usize, n: usize, one_sided: bool, out: &mut Rows| {
+            let (p, jp) = self.corner(z, nodes, last, i, n);
+            let r = p.norm().max(1e-300);
+            let (rho, drho) = self.outline.radius(p);
+            let value = r - self.scale * rho;
+            if one_sided && value <= 0.0 {
+                return;
+            }
+            let g = p / r - drho * self.scale;
+            let mut e = Vec::with_capacity(14);
+            for row in 0..2 {
+                e.extend(jp[row].iter().map(|&(c, v)| (c, w.fit * g[row] * v)));
+            }
+            out.push(w.fit * value, e);
+        };
+        for &(i, n) in &self.tips {
+            fit(i, n, false, &mut out);
+        }
+        for &(i, n) in &self.inside {
+            fit(i, n, true, &mut out);
+        }
+        // Smoothness between lattice neighbours.
+        for &(a, b) in &self.neighbours {
+            let (ta, tb) = (&self.tiles[a], &self.tiles[b]);
+            for v in 1..ta.len() {
+                for d in 0..2 {
+                    let value = (x(ta[v])[d] - x(ta[0])[d]) - (x(tb[v])[d] - x(tb[0])[d]);
+                    out.push(
+                        w.smooth * value,
+                        vec![
+                            (node_col(ta[v]) + d, w.smooth),
+                            (node_col(ta[0]) + d, -w.smooth),
+                            (node_col(tb[v]) + d, -w.smooth),
+                            (node_col(tb[0]) + d, w.smooth),
+                        ],
+                    );
+                }
+            }
+        }
+        // Prior.
+        for (k, s) in self.start.iter().enumerate() {
+            for d in 0..2 {
+                out.push(w.prior * (x(k)[d] - s[d]), vec![(node_col(k) + d, w.prior)]);
+            }
+        }
+        // Shape bounds.
+        for (i, t) in self.tiles.iter().enumerate() {
+            let m = t.len();
+            for v in 0..m {
+                let (ip, ia, inx) = (t[(v + m - 1) % m], t[v], t[(v + 1) % m]);
+                let c0 = self.corner_start[i][v];
+                if c0.abs() > 1e-9 {
+                    let o = c0.signum();
+                    let c = corner_cross(x(ip), x(ia), x(inx));
+                    let value = w.corner_fraction * c0.abs() - o * c;
+                    if value > 0.0 {
+                        // c = cross(next − at, prev − at)
+                        let (a, b) = (x(inx) - x(ia), x(ip) - x(ia));
+                        // ∂c/∂next = (b.y, −b.x); ∂c/∂prev = (−a.y, a.x); ∂c/∂at = −(both)
+                        let dn = Vec2::new(b.y, -b.x);
+                        let dp = Vec2::new(-a.y, a.x);
+                        let da = -(dn + dp);
+                        let k = -o * w.bounds;
+                        out.push(
+                            w.bounds * value,
+                            vec![
+                                (node_col(inx), k * dn.x),
+                                (node_col(inx) + 1, k * dn.y),
+                                (node_col(ip), k * dp.x),
+                                (node_col(ip) + 1, k * dp.y),
+                                (node_col(ia), k * da.x),
+                                (node_col(ia) + 1, k * da.y),
+                            ],
+                        );
+                    }
+                }
+                let e = x(inx) - x(ia);
+                let len = e.norm();
+                let value = w.edge_fraction * self.edge_start[i][v] - len;
+                if value > 0.0 && len > 1e-300 {
+                    let g = e / len * (-w.bounds);
+                    out.push(
+                        w.bounds * value,
+                        vec![
+                            (node_col(inx), g.x),
+                            (node_col(inx) + 1, g.y),
+                            (node_col(ia), -g.x),
+                            (node_col(ia) + 1, -g.y),
+                        ],
+                    );
+                }
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{setup, GradedRequest};
+    use super::*;
+
+    /// Every Jacobian entry matches central differences of the residuals, on a perturbed
+    /// start where the one-sided terms are active.
+    #[test]
+    fn the_jacobian_matches_finite_differences() {
+        let request = GradedRequest {
+            design: "rotating-squares".into(),
+            rows: 2,
+            cols: 2,
+            outline: Outline::Ellipse { a: 1.5, b: 1.0 },
+            ..GradedRequest::default()
+        };
+        let (sheet, mut problem) = setup(&request).unwrap();
+        // Strong shape bounds so that some are active after the perturbation.
+        problem.weights.corner_fraction = 0.99;
+        problem.weights.edge_fraction = 0.99;
+        let mut z = Problem::pack(&sheet);
+        let mut seed = 7u64;
+        for v in z.iter_mut() {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            *v += 0.02 * ((seed >> 11) as Real / (1u64 << 53) as Real - 0.5);
+        }
+        let rows = problem.rows(&z);
+        let h = 1e-6;
+        let mut dense = vec![vec![0.0; z.len()]; rows.values.len()];
+        for (r, e) in rows.entries.iter().enumerate() {
+            for &(c, v) in e {
+                dense[r][c] += v;
+            }
+        }
+        for c in 0..z.len() {
+            let (mut zp, mut zm) = (z.clone(), z.clone());
+            zp[c] += h;
+            zm[c] -= h;
+            let (rp, rm) = (problem.rows(&zp), problem.rows(&zm));
+            // One-sided rows switching on or off between the two points change the row
+            // count: such a column is skipped (it sits on a kink).
+            if rp.values.len() != rows.values.len() || rm.values.len() != rows.values.len() {
+                continue;
+            }
+            for (r, exact) in dense.iter().enumerate() {
+                let fd = (rp.values[r] - rm.values[r]) / (2.0 * h);
+                assert!(
+                    (fd - exact[c]).abs() < 1e-5 * (1.0 + fd.abs()),
+                    "row {r} column {c}: finite difference {fd}, exact {}",
+                    exact[c]
+                );
+            }
+        }
+    }
+}
