@@ -415,7 +415,12 @@ async fn scatter_points_are_the_filtered_rows_measures() {
             assert_eq!(p["x"].as_f64(), measure(s, x), "{uri} {}", s.spec);
             assert_eq!(p["y"].as_f64(), measure(s, y), "{uri} {}", s.spec);
             assert_eq!(p["family"], serde_json::json!(s.family), "{uri} {}", s.spec);
-            assert_eq!(p["behaviour"], serde_json::json!(s.behaviour), "{uri} {}", s.spec);
+            assert_eq!(
+                p["behaviour"],
+                serde_json::json!(s.behaviour),
+                "{uri} {}",
+                s.spec
+            );
         }
     }
 }

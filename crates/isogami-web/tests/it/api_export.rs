@@ -104,7 +104,10 @@ async fn the_formats_list_is_the_librarys() {
     }
     // The limits the page checks rows × columns against before asking.
     assert_eq!(v["limits"]["max_patch"], isogami::export::MAX_PATCH);
-    assert_eq!(v["limits"]["max_tiles"], isogami_web::export::MAX_EXPORT_TILES);
+    assert_eq!(
+        v["limits"]["max_tiles"],
+        isogami_web::export::MAX_EXPORT_TILES
+    );
     // The laser group's fields carry the library's defaults and presets.
     let group = v["settings"]
         .as_array()
