@@ -1,34 +1,37 @@
-//! Probe (not shipped): grades rotating squares toward a disc and follows the path.
-use isogami::graded::{check_path, grade, setup, GradedRequest};
+//! Probe for graded sheets (not part of the tests): grades a design towards a disc and
+//! prints the report and every state of the path check, one line each.
+//!
+//! `cargo run --release -p isogami --example graded_probe -- [CELLS [STATES [DESIGN [T]]]]`
+
+use isogami::api::graded_sheet;
+use isogami::graded::GradedRequest;
 use isogami::stop::NEVER;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    let n: usize = args.get(1).map_or(3, |a| a.parse().unwrap());
-    let states: usize = args.get(2).map_or(4, |a| a.parse().unwrap());
-    let steps: usize = args.get(3).map_or(20, |a| a.parse().unwrap());
-    let design = args.get(4).cloned().unwrap_or("rotating-squares".into());
-    let t: Option<f64> = args.get(5).map(|a| a.parse().unwrap());
+    let arg = |k: usize| args.get(k).cloned();
+    let cells: usize = arg(1).map_or(3, |a| a.parse().expect("CELLS is a number"));
+    let states: usize = arg(2).map_or(8, |a| a.parse().expect("STATES is a number"));
+    let design = arg(3).unwrap_or_else(|| "rotating-squares".into());
+    let t: Option<f64> = arg(4).map(|a| a.parse().expect("T is a number"));
     let request = GradedRequest {
         design,
-        rows: n,
-        cols: n,
+        rows: cells,
+        cols: cells,
         states,
         t,
         ..GradedRequest::default()
     };
-    let (sheet, report) = grade(&request, &mut |_, _| true, NEVER).unwrap();
-    println!("{report:?}");
-    let (_, problem) = setup(&request).unwrap();
-    let path = check_path(&sheet, &problem, steps, NEVER).unwrap();
-    for s in &path.states {
+    let run = graded_sheet(&request, &mut |_, _| true, NEVER).expect("graded");
+    println!("{:?}", run.report);
+    for s in &run.path.states {
         println!(
-            "opening {:.3} gap {:.2e} dof {:?} small {:?} overlap {:?}",
+            "opening {:.3} gap {:.2e} dof {:?} smallest {:?} overlap {:?}",
             s.opening, s.joint_gap, s.dof, s.smallest, s.overlap
         );
     }
     println!(
-        "closed spread {:.3e} reached {}",
-        path.closed_spread, path.reached
+        "closed spread {:.3e}, reached {}",
+        run.path.closed_spread, run.path.reached
     );
 }

@@ -2,9 +2,7 @@
 //! outline, then check the result the other way (its own motion from closed to opened).
 
 use crate::error::Result;
-use crate::graded::{
-    check_path, optimise, setup, GradedReport, GradedRequest, GradedSheet, PathCheck,
-};
+use crate::graded::{check_path, grade, GradedReport, GradedRequest, GradedSheet, PathCheck};
 use crate::math::Real;
 use crate::stop::KeepGoing;
 use serde::Serialize;
@@ -31,14 +29,7 @@ pub fn graded_sheet(
     progress: &mut dyn FnMut(usize, Real) -> bool,
     keep_going: KeepGoing<'_>,
 ) -> Result<GradedRun> {
-    let (mut sheet, mut problem) = setup(request)?;
-    let report = optimise(
-        &mut sheet,
-        &mut problem,
-        &request.solve,
-        progress,
-        keep_going,
-    )?;
+    let (sheet, problem, report) = grade(request, progress, keep_going)?;
     let path = check_path(&sheet, &problem, PATH_STEPS, keep_going)?;
     Ok(GradedRun {
         sheet,

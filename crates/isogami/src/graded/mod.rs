@@ -304,12 +304,13 @@ fn mean_opening(poses: &[OpenedPose], graded: &GradedSheet, signs: &[Real]) -> R
         / graded.joints.len().max(1) as Real
 }
 
-/// Grades a design's finite sheet towards a target: the optimised sheet and its report.
+/// Grades a design's finite sheet towards a target: the optimised sheet, the problem it
+/// was optimised for (what [`check_path`] follows) and the report.
 pub fn grade(
     request: &GradedRequest,
     progress: &mut dyn FnMut(usize, Real) -> bool,
     keep_going: KeepGoing<'_>,
-) -> Result<(GradedSheet, GradedReport), crate::Error> {
+) -> Result<(GradedSheet, Problem, GradedReport), crate::Error> {
     let (mut sheet, mut problem) = setup(request)?;
     let report = optimise(
         &mut sheet,
@@ -318,5 +319,5 @@ pub fn grade(
         progress,
         keep_going,
     )?;
-    Ok((sheet, report))
+    Ok((sheet, problem, report))
 }

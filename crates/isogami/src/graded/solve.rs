@@ -360,7 +360,7 @@ mod tests {
             states: 8,
             ..GradedRequest::default()
         };
-        let (sheet, report) = grade(&request, &mut |_, _| true, NEVER).unwrap();
+        let (sheet, problem, report) = grade(&request, &mut |_, _| true, NEVER).unwrap();
         assert_eq!(sheet.tiles.len(), 36);
         assert!(report.joint_gap < 1e-6, "{report:?}");
         assert!(report.max_outline_error < 0.02, "{report:?}");
@@ -371,7 +371,6 @@ mod tests {
             .iter()
             .fold((Real::MAX, 0.0 as Real), |(l, h), &a| (l.min(a), h.max(a)));
         assert!(hi / lo > 1.05, "areas {lo}..{hi}");
-        let (_, problem) = super::super::setup(&request).unwrap();
         let path = super::super::check_path(&sheet, &problem, 10, NEVER).unwrap();
         assert!(path.reached, "{path:#?}");
         assert_eq!(path.states.len(), 11);
