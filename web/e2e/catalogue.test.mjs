@@ -170,3 +170,45 @@ test('CSV and JSON downloads hold every filtered row with the dictionary and pro
   assert.deepEqual(dict.slice(1).map((r) => r[0]), header, 'the dictionary lists every CSV column in order');
   assert.deepEqual(problems(page), []);
 });
+
+test('the table keeps the sorted column in view and the spec column beside it (issue 24 item 8)', async () => {
+  const page = await newPage(browser);
+  await page.setViewportSize({ width: 700, height: 900 });
+  await page.goto(`${server.base}/?view=table`);
+  await page.waitForSelector('[data-testid="design-row"]');
+  const wrap = page.locator('.table-wrap');
+  assert.ok(
+    await wrap.evaluate((w) => w.scrollWidth > w.clientWidth + 200),
+    'at 700 px the table is wider than its box (the test needs a sideways scroll)',
+  );
+  // Scroll to the far right and sort by the last numeric column there.
+  await wrap.evaluate((w) => {
+    w.scrollLeft = w.scrollWidth;
+  });
+  const before = await page.$$eval('[data-testid="design-row"]', (rows) => rows.map((r) => r.dataset.spec).join());
+  await byTestId(page, 'sort-poisson_max').click();
+  await page.waitForFunction(
+    (old) => [...document.querySelectorAll('[data-testid="design-row"]')].map((r) => r.dataset.spec).join() !== old,
+    before,
+  );
+  const seen = await page.evaluate(() => {
+    const w = document.querySelector('.table-wrap');
+    const box = w.getBoundingClientRect();
+    const th = document.querySelector('th[aria-sort]:not([aria-sort="none"])');
+    const spec = document.querySelector('[data-testid="design-row"] td:first-child');
+    const r = th.getBoundingClientRect();
+    const s = spec.getBoundingClientRect();
+    return {
+      label: th.textContent,
+      inside: r.left >= box.left - 0.5 && r.right <= box.right + 0.5,
+      specInside: s.left >= box.left - 0.5 && s.right <= box.right + 0.5,
+      clear: s.right <= r.left + 0.5,
+      tinted: document.querySelectorAll('td.sorted').length,
+    };
+  });
+  assert.match(seen.label, /ν max/);
+  assert.ok(seen.inside, 'the sorted column is inside the table box');
+  assert.ok(seen.specInside && seen.clear, 'the spec column stays visible and does not cover it');
+  assert.ok(seen.tinted > 0, 'the sorted column is marked');
+  assert.deepEqual(problems(page), []);
+});

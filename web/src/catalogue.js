@@ -352,7 +352,27 @@ function renderPage(page) {
     list.replaceChildren(h('p', { class: 'empty' }, 'No design matches these filters.'));
     return;
   }
+  // The table keeps its horizontal scroll across a re-render and brings the sorted column
+  // into view (a re-render used to scroll back to the left edge, hiding the column just
+  // clicked).
+  const scrolled = list.querySelector('.table-wrap')?.scrollLeft ?? 0;
   list.replaceChildren(state.view === 'table' ? table(page.rows) : grid(page.rows));
+  const wrap = list.querySelector('.table-wrap');
+  if (wrap) {
+    wrap.scrollLeft = scrolled;
+    revealSortedColumn(wrap);
+  }
+}
+
+/** Scrolls a table horizontally so its sorted column is visible beside the sticky spec column. */
+function revealSortedColumn(wrap) {
+  const th = wrap.querySelector('th.sorted');
+  const first = wrap.querySelector('th');
+  if (!th || th === first) return;
+  const left = th.offsetLeft - first.offsetWidth;
+  const right = th.offsetLeft + th.offsetWidth - wrap.clientWidth;
+  if (wrap.scrollLeft > left) wrap.scrollLeft = left;
+  else if (wrap.scrollLeft < right) wrap.scrollLeft = right;
 }
 
 /** A span of values as text: one value, or "lo–hi". */
@@ -508,7 +528,11 @@ function table(rows) {
     const desc = active && state.sort?.desc;
     return h(
       'th',
-      { scope: 'col', 'aria-sort': active ? (desc ? 'descending' : 'ascending') : 'none' },
+      {
+        scope: 'col',
+        class: active ? 'sorted' : '',
+        'aria-sort': active ? (desc ? 'descending' : 'ascending') : 'none',
+      },
       h(
         'button',
         {
@@ -530,10 +554,12 @@ function table(rows) {
       'tr',
       { testid: 'design-row', 'data-spec': r.spec },
       TABLE_COLUMNS.map(([key]) => {
-        if (key === 'spec') return h('td', {}, h('a', { href: designHref(r.spec) }, h('code', {}, r.spec)));
-        if (key === 'cell') return h('td', {}, facetLabel('cell', r.cell));
+        const sorted = state.sort?.key === key ? ' sorted' : '';
+        if (key === 'spec') return h('td', { class: sorted.trim() }, h('a', { href: designHref(r.spec) }, h('code', {}, r.spec)));
+        if (key === 'cell') return h('td', { class: sorted.trim() }, facetLabel('cell', r.cell));
         const v = r[key];
-        return h('td', { class: typeof v === 'number' ? 'num' : '' }, typeof v === 'number' ? fmt(v) : facetLabel(key, v ?? null));
+        const num = typeof v === 'number';
+        return h('td', { class: `${num ? 'num' : ''}${sorted}`.trim() }, num ? fmt(v) : facetLabel(key, v ?? null));
       }),
     ),
   );
