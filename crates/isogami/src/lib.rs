@@ -17,6 +17,7 @@ pub mod catalog;
 pub mod cell;
 pub mod contact;
 pub mod deploy;
+mod disjoint_sets;
 pub mod error;
 pub mod explore;
 pub mod export;

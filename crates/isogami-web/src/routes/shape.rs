@@ -32,6 +32,21 @@ fn design_of(text: &str) -> ApiResult<Design> {
     resolve_design(text).map_err(|e| explain(&e))
 }
 
+/// A query's pairs, refusing keys outside `allowed`, and the design its `design` key names.
+fn design_query(raw: Option<&str>, allowed: &[&str]) -> ApiResult<(Vec<(String, String)>, Design)> {
+    let pairs = pairs(raw);
+    if let Some((k, _)) = pairs.iter().find(|(k, _)| !allowed.contains(&k.as_str())) {
+        return Err(ApiError::bad_parameter(format!(
+            "unknown parameter {:?}",
+            truncate(k)
+        )));
+    }
+    let text = param(&pairs, "design")
+        .ok_or_else(|| ApiError::bad_parameter("missing parameter design"))?;
+    let design = design_of(text)?;
+    Ok((pairs, design))
+}
+
 /// A shape-space error in the words of someone moving a slider.
 fn explain_shape(e: &ShapeError) -> ApiError {
     let unprocessable = |kind, hint: &str| {
@@ -71,16 +86,7 @@ pub async fn mobility(
     State(state): State<AppState>,
     RawQuery(raw): RawQuery,
 ) -> ApiResult<Json<ShapeMobility>> {
-    let pairs = pairs(raw.as_deref());
-    if let Some((k, _)) = pairs.iter().find(|(k, _)| k != "design") {
-        return Err(ApiError::bad_parameter(format!(
-            "unknown parameter {:?}",
-            truncate(k)
-        )));
-    }
-    let text = param(&pairs, "design")
-        .ok_or_else(|| ApiError::bad_parameter("missing parameter design"))?;
-    let design = design_of(text)?;
+    let (_, design) = design_query(raw.as_deref(), &["design"])?;
     // A few mobility analyses (milliseconds): bounded by the library's sample count.
     let timeout = state.settings().sim_timeout;
     let out = run_bounded(timeout, move |_| {
@@ -179,16 +185,7 @@ pub async fn ranges(
     State(state): State<AppState>,
     RawQuery(raw): RawQuery,
 ) -> ApiResult<Json<RangesAnswer>> {
-    let pairs = pairs(raw.as_deref());
-    if let Some((k, _)) = pairs.iter().find(|(k, _)| k != "design" && k != "kerf") {
-        return Err(ApiError::bad_parameter(format!(
-            "unknown parameter {:?}",
-            truncate(k)
-        )));
-    }
-    let text = param(&pairs, "design")
-        .ok_or_else(|| ApiError::bad_parameter("missing parameter design"))?;
-    let design = design_of(text)?;
+    let (pairs, design) = design_query(raw.as_deref(), &["design", "kerf"])?;
     let kerf = match param(&pairs, "kerf") {
         None => isogami::contact::ContactSettings::default().kerf,
         Some(t) => t

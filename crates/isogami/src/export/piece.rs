@@ -2,23 +2,17 @@
 //! border tiles whose joints all lead out of the patch; cut (or printed) free they would fall
 //! out of the sheet, so fabrication formats leave them off and say so in their metadata.
 
+use crate::disjoint_sets::DisjointSets;
+
 /// Ids of the tiles of the largest connected piece of the graph of `n` tiles joined by
 /// `joints` (the piece holding the lowest tile id on a tie), ascending; empty when `n` is
 /// zero. Joints must name tiles below `n`.
 pub(crate) fn largest_piece(n: usize, joints: impl IntoIterator<Item = [usize; 2]>) -> Vec<usize> {
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn find(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
+    let mut sets = DisjointSets::new(n);
     for [a, b] in joints {
-        let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
-        parent[ra] = rb;
+        sets.union(a, b);
     }
-    let root: Vec<usize> = (0..n).map(|i| find(&mut parent, i)).collect();
+    let root: Vec<usize> = (0..n).map(|i| sets.find(i)).collect();
     let mut size = vec![0usize; n];
     for &r in &root {
         size[r] += 1;

@@ -6,6 +6,7 @@
 //! edge's offset. Geometry never decides which tile or joint is which.
 
 use crate::cell::UnitCell;
+use crate::disjoint_sets::DisjointSets;
 use crate::geometry::signed_area;
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real, Vec2};
@@ -111,25 +112,15 @@ impl FiniteSheet {
     /// 0 by the lowest tile index in it, and the number of pieces.
     pub fn pieces(&self) -> (Vec<usize>, usize) {
         let n = self.tiles.len();
-        let mut parent: Vec<usize> = (0..n).collect();
-        fn find(parent: &mut [usize], mut i: usize) -> usize {
-            while parent[i] != i {
-                parent[i] = parent[parent[i]];
-                i = parent[i];
-            }
-            i
-        }
+        let mut sets = DisjointSets::new(n);
         for j in &self.joints {
-            let (ra, rb) = (find(&mut parent, j.a), find(&mut parent, j.b));
-            if ra != rb {
-                parent[ra.max(rb)] = ra.min(rb);
-            }
+            sets.union(j.a, j.b);
         }
         let mut label = vec![usize::MAX; n];
         let mut piece = vec![0; n];
         let mut count = 0;
         for (i, slot) in piece.iter_mut().enumerate() {
-            let r = find(&mut parent, i);
+            let r = sets.find(i);
             if label[r] == usize::MAX {
                 label[r] = count;
                 count += 1;

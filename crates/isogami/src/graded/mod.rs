@@ -144,17 +144,25 @@ pub fn setup(request: &GradedRequest) -> Result<(GradedSheet, Problem), crate::E
     // fractions of the opened one's (see `state_fraction`).
     let signs = joint_signs(&graded);
     let opened_opening = mean_opening(&graded.opened, &graded, &signs);
+    // Each periodic state up to the opened one, posed once.
+    let candidates: Vec<(Real, Vec<OpenedPose>)> = traj.steps[..=k]
+        .iter()
+        .map(|step| {
+            let poses = graded.periodic_state(&mech, sheet, &step.q);
+            (mean_opening(&poses, &graded, &signs), poses)
+        })
+        .collect();
     for s in 1..request.states {
         let want = opened_opening * state_fraction(s, request.states);
-        let mut best: Option<(Real, Vec<OpenedPose>)> = None;
-        for step in &traj.steps[..=k] {
-            let poses = GradedSheet::ungraded(&spec, &cell, &mech, sheet, &step.q)?.opened;
-            let miss = (mean_opening(&poses, &graded, &signs) - want).abs();
-            if best.as_ref().is_none_or(|(m, _)| miss < *m) {
-                best = Some((miss, poses));
+        let mut best: Option<&(Real, Vec<OpenedPose>)> = None;
+        for c in &candidates {
+            if best.is_none_or(|b| (c.0 - want).abs() < (b.0 - want).abs()) {
+                best = Some(c);
             }
         }
-        graded.path.push(best.expect("a deployment has states").1);
+        graded
+            .path
+            .push(best.expect("a deployment has states").1.clone());
     }
     let problem = problem_of(&graded, outline, request.weights);
     Ok((graded, problem))

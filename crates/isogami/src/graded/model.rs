@@ -10,6 +10,7 @@
 
 use super::error::GradedError;
 use crate::cell::{End, UnitCell};
+use crate::disjoint_sets::DisjointSets;
 use crate::finite::{FiniteSheet, Region, SheetTile};
 use crate::kinematics::Mechanism;
 use crate::math::{cross, rotation, Real, Vec2};
@@ -102,14 +103,7 @@ impl GradedSheet {
             .collect();
         let slots =
             offsets.last().unwrap() + cell.tiles[sheet.tiles.last().unwrap().tile].polygon.len();
-        let mut parent: Vec<usize> = (0..slots).collect();
-        fn find(parent: &mut [usize], mut i: usize) -> usize {
-            while parent[i] != i {
-                parent[i] = parent[parent[i]];
-                i = parent[i];
-            }
-            i
-        }
+        let mut sets = DisjointSets::new(slots);
         for (a, ta) in sheet.tiles.iter().enumerate() {
             for (k, e) in cell.edges.iter().enumerate() {
                 if e.tile_a != ta.tile {
@@ -125,10 +119,7 @@ impl GradedSheet {
                 for end in [End::A, End::B] {
                     let sa = offsets[a] + cell.endpoint_index_on_a(k, end);
                     let sb = offsets[b] + cell.endpoint_index_on_b(k, end);
-                    let (ra, rb) = (find(&mut parent, sa), find(&mut parent, sb));
-                    if ra != rb {
-                        parent[ra.max(rb)] = ra.min(rb);
-                    }
+                    sets.union(sa, sb);
                 }
             }
         }
@@ -139,7 +130,7 @@ impl GradedSheet {
             let polygon = mech.tile_polygon(&mech.rest, t.tile, t.cell);
             let mut corners = Vec::with_capacity(polygon.len());
             for (v, p) in polygon.iter().enumerate() {
-                let r = find(&mut parent, offsets[i] + v);
+                let r = sets.find(offsets[i] + v);
                 if node_of_root[r] == usize::MAX {
                     node_of_root[r] = nodes.len();
                     nodes.push([p.x, p.y]);
@@ -165,19 +156,7 @@ impl GradedSheet {
                 }
             })
             .collect();
-        let opened = sheet
-            .tiles
-            .iter()
-            .map(|t| {
-                let first = mech.tile_polygon(q, t.tile, t.cell)[0];
-                let theta = mech.pose(q, t.tile).1 - mech.pose(&mech.rest, t.tile).1;
-                OpenedPose {
-                    x: first.x,
-                    y: first.y,
-                    theta,
-                }
-            })
-            .collect();
+        let opened = periodic_poses(mech, sheet, q);
         let mut graded = GradedSheet {
             design: design.to_string(),
             length_scale: mech.length_scale,
@@ -189,6 +168,23 @@ impl GradedSheet {
         };
         graded.centre_opened();
         Ok(graded)
+    }
+
+    /// The poses of this sheet's tiles at the periodic state `q` of `mech` (the sheet it was
+    /// made from by [`GradedSheet::ungraded`]), centred like its opened state.
+    pub fn periodic_state(
+        &self,
+        mech: &Mechanism,
+        sheet: &FiniteSheet,
+        q: &crate::math::DVec,
+    ) -> Vec<OpenedPose> {
+        let mut at = GradedSheet {
+            opened: periodic_poses(mech, sheet, q),
+            path: Vec::new(),
+            ..self.clone()
+        };
+        at.centre_opened();
+        at.opened
     }
 
     /// Closed position of node `n`.
@@ -348,6 +344,24 @@ impl GradedSheet {
     }
 }
 
+/// The pose of every tile of `sheet` at the periodic state `q` of `mech`: the position of its
+/// first corner and its rotation from the closed state.
+fn periodic_poses(mech: &Mechanism, sheet: &FiniteSheet, q: &crate::math::DVec) -> Vec<OpenedPose> {
+    sheet
+        .tiles
+        .iter()
+        .map(|t| {
+            let first = mech.tile_polygon(q, t.tile, t.cell)[0];
+            let theta = mech.pose(q, t.tile).1 - mech.pose(&mech.rest, t.tile).1;
+            OpenedPose {
+                x: first.x,
+                y: first.y,
+                theta,
+            }
+        })
+        .collect()
+}
+
 /// The finite sheet of `rows × cols` cells of a design.
 pub fn region_sheet(
     cell: &UnitCell,
@@ -364,4 +378,49 @@ pub fn region_sheet(
 /// Twice the signed area of the triangle (a, b, c).
 pub(crate) fn corner_cross(prev: Vec2, at: Vec2, next: Vec2) -> Real {
     cross(&(next - at), &(prev - at))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::api::resolve_design;
+
+    fn ungraded_at_rest(spec: &str) -> GradedSheet {
+        let design = resolve_design(spec).unwrap();
+        let cell = design.cell().unwrap();
+        let mech = Mechanism::new(&cell, &design.joints).unwrap();
+        let sheet = region_sheet(&cell, &mech, 3, 3).unwrap();
+        GradedSheet::ungraded(spec, &cell, &mech, &sheet, &mech.rest).unwrap()
+    }
+
+    /// Nodes, tile corners and pins come from the cell's combinatorics: a shape a hair away
+    /// gives the same graded sheet, its nodes a hair away; every pin joins two tiles at a
+    /// node both have, and shared nodes are shared by position too.
+    #[test]
+    fn a_shape_a_hair_away_is_the_same_graded_sheet() {
+        let a = ungraded_at_rest("IH6:0.12239750492,0.5,0.225335752741,0.625,0.5:1x1:-a-aaaaaaa--");
+        let b = ungraded_at_rest("IH6:0.12239750592,0.5,0.225335752741,0.625,0.5:1x1:-a-aaaaaaa--");
+        assert!(a.validate().is_ok());
+        assert_eq!(a.tiles, b.tiles);
+        assert_eq!(a.joints, b.joints);
+        assert_eq!(a.nodes.len(), b.nodes.len());
+        for (p, q) in a.nodes.iter().zip(&b.nodes) {
+            assert!(
+                (p[0] - q[0]).abs() + (p[1] - q[1]).abs() < 1e-7,
+                "{p:?} {q:?}"
+            );
+        }
+        // Every tile's closed corner sits at its node: the closed polygons are the cell's.
+        let design = resolve_design(&a.design).unwrap();
+        let cell = design.cell().unwrap();
+        let mech = Mechanism::new(&cell, &design.joints).unwrap();
+        for (i, t) in a.tiles.iter().enumerate() {
+            let poly = mech.tile_polygon(&mech.rest, t.tile, t.cell);
+            for (p, q) in poly.iter().zip(a.closed_polygon(i)) {
+                assert!((p - q).norm() < 1e-12);
+            }
+        }
+        assert!(a.joint_gap() < 1e-12, "closed, every pin closes");
+        assert!(a.nodes.len() < a.tiles.iter().map(|t| t.nodes.len()).sum::<usize>());
+    }
 }
