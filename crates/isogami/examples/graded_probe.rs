@@ -22,7 +22,7 @@ fn main() {
         t,
         ..GradedRequest::default()
     };
-    let run = graded_sheet(&request, &mut |_, _| true, NEVER).expect("graded");
+    let run = graded_sheet(&request, &mut |_| true, NEVER).expect("graded");
     println!("{:?}", run.report);
     for s in &run.path.states {
         println!(

@@ -80,9 +80,9 @@ pub fn run(args: Args) -> CliResult {
     );
     let run = graded_sheet(
         &request,
-        &mut |i, cost| {
-            bar.set_position(i as u64);
-            bar.set_message(format!("{cost:.3e}"));
+        &mut |p| {
+            bar.set_position(p.iteration as u64);
+            bar.set_message(format!("{:.3e}", p.cost));
             true
         },
         NEVER,

@@ -2,8 +2,9 @@
 //! outline, then check the result the other way (its own motion from closed to opened).
 
 use crate::error::Result;
-use crate::graded::{check_path, grade, GradedReport, GradedRequest, GradedSheet, PathCheck};
-use crate::math::Real;
+use crate::graded::{
+    check_path, grade, GradedProgress, GradedReport, GradedRequest, GradedSheet, PathCheck,
+};
 use crate::stop::KeepGoing;
 use serde::Serialize;
 
@@ -21,12 +22,12 @@ pub struct GradedRun {
 /// States of the path check.
 pub const PATH_STEPS: usize = 20;
 
-/// Grades `request`'s sheet and checks its path. `progress(iteration, cost)` is called after
-/// every accepted step of the optimisation (false stops it: a cancelled error); `keep_going`
-/// is polled by the path check too.
+/// Grades `request`'s sheet and checks its path. `progress` is called after every accepted
+/// step of the optimisation with the iteration, the cost and the sheet as it stands (false
+/// stops it: a cancelled error); `keep_going` is polled by the path check too.
 pub fn graded_sheet(
     request: &GradedRequest,
-    progress: &mut dyn FnMut(usize, Real) -> bool,
+    progress: &mut dyn FnMut(&GradedProgress) -> bool,
     keep_going: KeepGoing<'_>,
 ) -> Result<GradedRun> {
     let (sheet, problem, report) = grade(request, progress, keep_going)?;

@@ -25,7 +25,7 @@ pub use deploy::{check_path, PathCheck, PathState};
 pub use error::GradedError;
 pub use model::{GradedJoint, GradedSheet, GradedTile, OpenedPose};
 pub use problem::{Problem, Weights};
-pub use solve::{optimise, GradedReport, SolveSettings};
+pub use solve::{optimise, GradedProgress, GradedReport, SolveSettings};
 pub use target::{parse_outline, Outline};
 
 use crate::api::{resolve_design, SheetRequest};
@@ -316,7 +316,7 @@ fn mean_opening(poses: &[OpenedPose], graded: &GradedSheet, signs: &[Real]) -> R
 /// was optimised for (what [`check_path`] follows) and the report.
 pub fn grade(
     request: &GradedRequest,
-    progress: &mut dyn FnMut(usize, Real) -> bool,
+    progress: &mut dyn FnMut(&GradedProgress) -> bool,
     keep_going: KeepGoing<'_>,
 ) -> Result<(GradedSheet, Problem, GradedReport), crate::Error> {
     let (mut sheet, mut problem) = setup(request)?;

@@ -148,15 +148,41 @@ fn damped_step(
     Ok(step)
 }
 
+/// Where the optimisation is, passed to its progress callback after every accepted step.
+pub struct GradedProgress<'a> {
+    /// Accepted steps so far, over every stage.
+    pub iteration: usize,
+    /// Most iterations the fit may take.
+    pub max_iterations: usize,
+    /// Cost (½‖r‖²) after the step, at the stage's weights.
+    pub cost: Real,
+    /// Stage of the penalty continuation (0-based) and how many there are.
+    pub stage: usize,
+    /// See `stage`.
+    pub stages: usize,
+    template: &'a GradedSheet,
+    z: &'a DVec,
+}
+
+impl GradedProgress<'_> {
+    /// The sheet as it stands (closed nodes and opened poses of the current iterate; its pins
+    /// are not closed exactly until the end).
+    pub fn sheet(&self) -> GradedSheet {
+        let mut sheet = self.template.clone();
+        Problem::unpack(&mut sheet, self.z);
+        sheet
+    }
+}
+
 /// Damped Gauss–Newton until the cost stalls; returns the iterations taken and the final
-/// cost. `progress(iteration, cost)` is called after each accepted step.
+/// cost. `progress(iteration, cost, z)` is called after each accepted step.
 fn levenberg_marquardt(
     problem: &Problem,
     z: &mut DVec,
     max_iterations: usize,
     rel_decrease: Real,
     skip_below: usize,
-    progress: &mut dyn FnMut(usize, Real) -> bool,
+    progress: &mut dyn FnMut(usize, Real, &DVec) -> bool,
     keep_going: KeepGoing<'_>,
 ) -> Result<(usize, Real), GradedError> {
     let mut rows = problem.rows(z);
@@ -185,7 +211,7 @@ fn levenberg_marquardt(
                 lambda = (lambda / 3.0).max(1e-12);
                 accepted = true;
                 taken = it + 1;
-                if !progress(taken, cost) {
+                if !progress(taken, cost, z) {
                     return Err(GradedError::Cancelled);
                 }
                 if decrease < rel_decrease || cost < 1e-28 {
@@ -217,7 +243,7 @@ pub fn project(
         max_iterations,
         0.0,
         first,
-        &mut |_, _| true,
+        &mut |_, _, _| true,
         keep_going,
     )
     .map(|(_, cost)| cost)
@@ -229,7 +255,7 @@ pub fn optimise(
     sheet: &mut GradedSheet,
     problem: &mut Problem,
     settings: &SolveSettings,
-    progress: &mut dyn FnMut(usize, Real) -> bool,
+    progress: &mut dyn FnMut(&GradedProgress) -> bool,
     keep_going: KeepGoing<'_>,
 ) -> Result<GradedReport, crate::Error> {
     let clock = Instant::now();
@@ -253,7 +279,17 @@ pub fn optimise(
             settings.max_iterations.div_ceil(STAGES),
             settings.rel_decrease,
             0,
-            &mut |i, c| progress(done + i, c),
+            &mut |i, c, z| {
+                progress(&GradedProgress {
+                    iteration: done + i,
+                    max_iterations: settings.max_iterations,
+                    cost: c,
+                    stage,
+                    stages: STAGES,
+                    template: sheet,
+                    z,
+                })
+            },
             keep_going,
         )?;
         iterations += taken;
@@ -360,7 +396,7 @@ mod tests {
             states: 8,
             ..GradedRequest::default()
         };
-        let (sheet, problem, report) = grade(&request, &mut |_, _| true, NEVER).unwrap();
+        let (sheet, problem, report) = grade(&request, &mut |_| true, NEVER).unwrap();
         assert_eq!(sheet.tiles.len(), 36);
         assert!(report.joint_gap < 1e-6, "{report:?}");
         assert!(report.max_outline_error < 0.02, "{report:?}");
