@@ -9,7 +9,7 @@
 //! reaches the closed tiling when, at zero opening, every tile has turned back by the same
 //! angle (the sheet is the closed tiling moved rigidly).
 
-use super::model::GradedSheet;
+use super::model::{GradedSheet, OpenedPose};
 use super::problem::Problem;
 use crate::geometry::interiors_overlap;
 use crate::math::{DMat, DVec, Real};
@@ -33,6 +33,8 @@ pub struct PathState {
     pub smallest: Option<[Real; 2]>,
     /// A pair of tiles whose opened interiors overlap, if any.
     pub overlap: Option<(usize, usize)>,
+    /// The tiles' poses at this state (the closed shapes placed: what a player draws).
+    pub poses: Vec<OpenedPose>,
 }
 
 /// The path from the optimised state to the closed tiling.
@@ -97,6 +99,7 @@ pub fn check_path(
             dof: counted.map(|c| c.0),
             smallest: counted.map(|c| c.1),
             overlap: overlap(&work),
+            poses: work.opened.clone(),
         });
     }
     let thetas: Vec<Real> = work.opened.iter().map(|p| p.theta).collect();

@@ -72,6 +72,9 @@ pub struct GradedReport {
     pub min_area_fraction: Real,
     /// Wall time, seconds.
     pub seconds: Real,
+    /// The target outline at the scale fitted, in the sheet's units (the opened sheet is
+    /// centred on the origin): corners of a polygon, 128 points around a disc or ellipse.
+    pub target: Vec<[Real; 2]>,
 }
 
 /// The normal equations' lower triangle and right-hand side.
@@ -373,6 +376,7 @@ pub fn measure(sheet: &GradedSheet, problem: &Problem) -> GradedReport {
         min_edge_fraction: min_edge,
         min_area_fraction: min_area,
         seconds: 0.0,
+        target: problem.outline.boundary(problem.scale, 128),
     }
 }
 

@@ -77,6 +77,22 @@ impl Outline {
         }
     }
 
+    /// The outline drawn at `scale`: the polygon's own corners, or `samples` points around a
+    /// disc or an ellipse, counter-clockwise.
+    pub fn boundary(&self, scale: Real, samples: usize) -> Vec<[Real; 2]> {
+        match self {
+            Outline::Polygon(p) => p.iter().map(|v| [scale * v.x, scale * v.y]).collect(),
+            _ => (0..samples.max(3))
+                .map(|k| {
+                    let phi = 2.0 * PI * k as Real / samples.max(3) as Real;
+                    let dir = Vec2::new(phi.cos(), phi.sin());
+                    let rho = scale * self.radius(dir).0;
+                    [rho * dir.x, rho * dir.y]
+                })
+                .collect(),
+        }
+    }
+
     /// Area of the outline at scale 1.
     pub fn area(&self) -> Real {
         match self {
