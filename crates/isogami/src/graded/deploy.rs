@@ -14,13 +14,13 @@ use super::problem::Problem;
 use crate::geometry::interiors_overlap;
 use crate::math::{DMat, DVec, Real};
 use crate::stop::KeepGoing;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Largest pose count whose degrees of freedom are counted (a dense SVD).
 pub const DOF_MAX_TILES: usize = 700;
 
 /// One state of the path.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PathState {
     /// Its opening as a fraction of the optimised state's (1: optimised, 0: closed).
     pub opening: Real,
@@ -38,7 +38,7 @@ pub struct PathState {
 }
 
 /// The path from the optimised state to the closed tiling.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PathCheck {
     /// The states, optimised first.
     pub states: Vec<PathState>,
