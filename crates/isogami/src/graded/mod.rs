@@ -19,6 +19,7 @@ pub mod error;
 pub mod model;
 pub mod problem;
 pub mod solve;
+pub mod svg;
 pub mod target;
 
 pub use deploy::{check_path, PathCheck, PathState};
@@ -26,6 +27,7 @@ pub use error::GradedError;
 pub use model::{GradedJoint, GradedSheet, GradedTile, OpenedPose};
 pub use problem::{Problem, Weights};
 pub use solve::{optimise, GradedProgress, GradedReport, SolveSettings};
+pub use svg::outline_from_svg;
 pub use target::{parse_outline, Outline};
 
 use crate::api::{resolve_design, SheetRequest};
