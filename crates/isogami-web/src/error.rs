@@ -81,7 +81,7 @@ impl ApiError {
             StatusCode::METHOD_NOT_ALLOWED,
             "method_not_allowed",
             "this endpoint does not take this HTTP method",
-            "POST to /api/deploy, /api/designs and /api/inverse; DELETE /api/inverse/{id}; GET everything else",
+            "POST to /api/deploy, /api/designs, /api/inverse and /api/graded; DELETE /api/inverse/{id} and /api/graded/{id}; GET everything else",
         )
     }
 

@@ -12,6 +12,7 @@
 //! | [`export`] | fabrication and interchange exports as downloads |
 //! | [`filters`] | query strings → store queries |
 //! | [`finite`] | finite sheets: a region's DOF, its completion and finite deployment |
+//! | [`graded`] | graded-sheet jobs: start, progress with snapshots, stop, download |
 //! | [`inverse`] | inverse-design jobs: start, progress, stop, save |
 //! | [`live`] | deployments of posted designs, bounded in time and cancelled with the client |
 //! | [`view`] | the design view: report, geometry, linkages, notices |
@@ -25,6 +26,7 @@ pub mod error;
 pub mod export;
 pub mod filters;
 pub mod finite;
+pub mod graded;
 pub mod inverse;
 pub mod live;
 pub mod routes;
@@ -52,7 +54,8 @@ pub fn serve_blocking(
         .block_on(serve(state, addr, on_ready))
 }
 
-/// Serves `state` on `addr` until Ctrl-C (which also stops a running inverse-design job).
+/// Serves `state` on `addr` until Ctrl-C (which also stops running inverse-design and
+/// graded-sheet jobs).
 /// `on_ready` gets the bound address (port 0 picks a free one) once the server accepts
 /// connections; its error (e.g. the announcement could not be printed) ends `serve` before
 /// anything is served.
@@ -67,6 +70,7 @@ pub async fn serve(
     serve_on(listener, state, async move {
         let _ = tokio::signal::ctrl_c().await;
         jobs.jobs().stop_all();
+        jobs.graded_jobs().stop_all();
     })
     .await
 }

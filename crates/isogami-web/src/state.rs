@@ -1,8 +1,9 @@
 //! The server's shared state: a small pool of read-only database connections, the
 //! database's path (for saving user designs through the store's locked writer), the
-//! inverse-design jobs and the limits every request obeys.
+//! inverse-design and graded-sheet jobs and the limits every request obeys.
 
 use crate::error::{ApiError, ApiResult};
+use crate::graded::{GradedJobs, GradedLimits};
 use crate::inverse::{InverseLimits, Jobs};
 use isogami_store::{Check, Store, StoreResult};
 use std::path::{Path, PathBuf};
@@ -24,6 +25,8 @@ pub struct ServerSettings {
     pub allow_save: bool,
     /// Caps of inverse-design jobs.
     pub inverse: InverseLimits,
+    /// Caps of graded-sheet jobs.
+    pub graded: GradedLimits,
     /// Longest a connection may take to send a request's headers, idle time before the
     /// first byte included: idle and slow connections are closed after it (default 10 s).
     pub header_timeout: Duration,
@@ -42,6 +45,7 @@ impl Default for ServerSettings {
             readers: 4,
             allow_save: true,
             inverse: InverseLimits::default(),
+            graded: GradedLimits::default(),
             header_timeout: Duration::from_secs(10),
             body_timeout: Duration::from_secs(10),
             heavy_jobs: 2,
@@ -65,6 +69,8 @@ struct Inner {
     save: Mutex<()>,
     /// Inverse-design jobs.
     jobs: Jobs,
+    /// Graded-sheet jobs.
+    graded_jobs: GradedJobs,
     /// Permits of the heavy jobs (exports).
     heavy: Arc<Semaphore>,
 }
@@ -89,6 +95,7 @@ impl AppState {
                 settings,
                 save: Mutex::new(()),
                 jobs: Jobs::default(),
+                graded_jobs: GradedJobs::default(),
                 heavy: Arc::new(Semaphore::new(settings.heavy_jobs.clamp(1, 64))),
             }),
         })
@@ -102,6 +109,11 @@ impl AppState {
     /// The inverse-design jobs.
     pub fn jobs(&self) -> &Jobs {
         &self.inner.jobs
+    }
+
+    /// The graded-sheet jobs.
+    pub fn graded_jobs(&self) -> &GradedJobs {
+        &self.inner.graded_jobs
     }
 
     /// The permits of heavy jobs (see [`ServerSettings::heavy_jobs`]).

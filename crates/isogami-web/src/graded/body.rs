@@ -1,0 +1,239 @@
+//! The body of `POST /api/graded` → the library's [`GradedRequest`], with the meaning of
+//! `isogami graded`'s flags (a left-out field is the flag's default; `outline` is `--target`'s
+//! text, read by the library's own parser), checked against this server's caps.
+
+use super::limits::GradedLimits;
+use crate::error::{ApiError, ApiResult};
+use axum::body::Bytes;
+use axum::extract::rejection::BytesRejection;
+use axum::http::StatusCode;
+use isogami::api::resolve_design;
+use isogami::graded::{parse_outline, GradedRequest, Outline};
+use serde::Deserialize;
+use serde_json::{json, Value};
+
+/// Longest design or outline text accepted.
+pub const MAX_TEXT: usize = 16 * 1024;
+
+/// Points drawn around a disc or an ellipse for the page (as the library's report does).
+const OUTLINE_SAMPLES: usize = 128;
+
+/// What a client posts.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GradedBody {
+    /// The design: a name, a spec or design JSON (`--design`; default rotating-squares).
+    pub design: Option<String>,
+    /// Cells along w (`--region R×_`; default 3).
+    pub rows: Option<usize>,
+    /// Cells along u (`--region _×C`; default 3).
+    pub cols: Option<usize>,
+    /// The target outline: `disc`, `ellipse:A,B` or `polygon:x,y;x,y;…` (`--target`).
+    pub outline: Option<String>,
+    /// The opened state as the periodic deployment's t in (0, 1] (`--t`).
+    pub t: Option<f64>,
+    /// States the pins must close in (`--states`).
+    pub states: Option<usize>,
+    /// Iterations of the fit (`--iterations`).
+    pub iterations: Option<usize>,
+}
+
+/// 400 `bad_target`: the library's message about the outline.
+fn bad_target(message: String) -> ApiError {
+    ApiError::new(
+        StatusCode::BAD_REQUEST,
+        "bad_target",
+        message,
+        "an outline is disc, ellipse:A,B or polygon:x,y;x,y;… seen whole from its centroid",
+    )
+}
+
+/// 400 `over_limit`: a count above this server's cap.
+fn over_limit(message: String) -> ApiError {
+    ApiError::new(
+        StatusCode::BAD_REQUEST,
+        "over_limit",
+        message,
+        "run `isogami graded` from the command line for larger sheets",
+    )
+}
+
+/// The outline of `text` read by the library, or 400 with its one-line message.
+pub fn outline_of(text: &str) -> ApiResult<Outline> {
+    if text.len() > MAX_TEXT {
+        return Err(bad_target("outline longer than 16 KiB".into()));
+    }
+    parse_outline(text).map_err(|e| bad_target(e.to_string()))
+}
+
+/// What the page draws of an outline: the text and its boundary at scale 1 (centred on its
+/// centroid, counter-clockwise; 128 points around a disc or an ellipse).
+pub fn outline_view(text: &str, outline: &Outline) -> Value {
+    json!({
+        "outline": text,
+        "points": outline.boundary(1.0, OUTLINE_SAMPLES),
+    })
+}
+
+impl GradedBody {
+    /// Reads a posted body, with a 4xx JSON error for a missing, oversized or malformed one.
+    pub fn from_request(body: Result<Bytes, BytesRejection>) -> ApiResult<GradedBody> {
+        let bytes = body.map_err(|e| ApiError::bad_body(&e))?;
+        serde_json::from_slice(&bytes).map_err(|e| {
+            ApiError::bad_parameter(format!(
+                "request body is not {{\"design\": …, \"rows\": …, \"cols\": …, \"outline\": …}}: {e}"
+            ))
+        })
+    }
+
+    /// The outline's text as given (default `disc`).
+    pub fn outline_text(&self) -> &str {
+        self.outline.as_deref().unwrap_or("disc")
+    }
+
+    /// The library's request, checked against `limits` (the design read and its cell built,
+    /// so that a bad one is a 400 here rather than a failed job).
+    pub fn request(&self, limits: &GradedLimits) -> ApiResult<GradedRequest> {
+        let mut r = GradedRequest::default();
+        if let Some(d) = &self.design {
+            if d.len() > MAX_TEXT {
+                return Err(ApiError::bad_parameter("design longer than 16 KiB"));
+            }
+            if !d.trim().is_empty() {
+                r.design = d.trim().to_string();
+            }
+        }
+        r.rows = self.rows.unwrap_or(3);
+        r.cols = self.cols.unwrap_or(3);
+        if r.rows == 0 || r.cols == 0 {
+            return Err(ApiError::bad_parameter(format!(
+                "a region of {}x{} cells: at least one cell each way",
+                r.rows, r.cols
+            )));
+        }
+        if r.rows > limits.max_side || r.cols > limits.max_side {
+            return Err(over_limit(format!(
+                "a region of {}x{} cells is above this server's limit of {} cells each way",
+                r.rows, r.cols, limits.max_side
+            )));
+        }
+        if r.rows * r.cols > limits.max_cells {
+            return Err(over_limit(format!(
+                "a region of {}x{} = {} cells is above this server's limit of {} cells",
+                r.rows,
+                r.cols,
+                r.rows * r.cols,
+                limits.max_cells
+            )));
+        }
+        r.outline = outline_of(self.outline_text())?;
+        if let Some(t) = self.t {
+            if !(t.is_finite() && t > 0.0 && t <= 1.0) {
+                return Err(ApiError::bad_parameter(format!(
+                    "t = {t} must be in (0, 1] (an opened state)"
+                )));
+            }
+            r.t = Some(t);
+        }
+        r.states = self.states.unwrap_or(r.states);
+        if r.states == 0 || r.states > limits.max_states {
+            return Err(ApiError::bad_parameter(format!(
+                "{} states: from 1 to {}",
+                r.states, limits.max_states
+            )));
+        }
+        r.solve.max_iterations = self.iterations.unwrap_or(r.solve.max_iterations);
+        if r.solve.max_iterations == 0 {
+            return Err(ApiError::bad_parameter("iterations must be at least 1"));
+        }
+        if r.solve.max_iterations > limits.max_iterations {
+            return Err(over_limit(format!(
+                "iterations {} is above this server's limit of {}",
+                r.solve.max_iterations, limits.max_iterations
+            )));
+        }
+        let design = resolve_design(&r.design).map_err(|e| {
+            ApiError::new(
+                StatusCode::BAD_REQUEST,
+                "bad_design",
+                e.to_string(),
+                "a design is a name (rotating-squares), a spec FAMILY:PARAMS:CELL:JOINTS or \
+                 design JSON",
+            )
+        })?;
+        let per_cell = design
+            .cell()
+            .map_err(|e| ApiError::bad_parameter(e.to_string()))?
+            .tiles
+            .len();
+        let tiles = r.rows * r.cols * per_cell;
+        if tiles > limits.max_tiles {
+            return Err(over_limit(format!(
+                "a region of {}x{} cells of {} tiles each ({tiles} tiles) is above this \
+                 server's limit of {} tiles",
+                r.rows, r.cols, per_cell, limits.max_tiles
+            )));
+        }
+        Ok(r)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn body(v: Value) -> GradedBody {
+        serde_json::from_value(v).unwrap()
+    }
+
+    #[test]
+    fn fields_mean_what_the_cli_flags_mean() {
+        let limits = GradedLimits::default();
+        let r = body(json!({})).request(&limits).unwrap();
+        let d = GradedRequest::default();
+        assert_eq!((r.rows, r.cols, &r.design), (3, 3, &d.design));
+        assert_eq!(
+            (r.outline.clone(), r.states, r.t),
+            (Outline::Disc, d.states, None)
+        );
+        let r = body(json!({
+            "design": "rotating-squares", "rows": 2, "cols": 4, "outline": "ellipse:1.4,1",
+            "t": 0.5, "states": 4, "iterations": 60
+        }))
+        .request(&limits)
+        .unwrap();
+        assert_eq!((r.rows, r.cols), (2, 4));
+        assert_eq!(r.outline, Outline::Ellipse { a: 1.4, b: 1.0 });
+        assert_eq!((r.t, r.states, r.solve.max_iterations), (Some(0.5), 4, 60));
+    }
+
+    #[test]
+    fn bad_values_and_values_over_the_caps_are_refused() {
+        let limits = GradedLimits::default();
+        let star = "polygon:0,0;4,0;4,4;3,4;3,1;1,1;1,4;0,4";
+        let e = body(json!({ "outline": star }))
+            .request(&limits)
+            .unwrap_err();
+        assert_eq!((e.status, e.kind), (StatusCode::BAD_REQUEST, "bad_target"));
+        assert_eq!(e.message, parse_outline(star).unwrap_err().to_string());
+        let cases = [
+            (json!({"rows": 0}), "bad_parameter", "at least one cell"),
+            (json!({"rows": 9}), "over_limit", "9x3"),
+            (json!({"rows": 7, "cols": 7}), "over_limit", "49 cells"),
+            (json!({"t": 0}), "bad_parameter", "t = 0"),
+            (json!({"states": 0}), "bad_parameter", "0 states"),
+            (json!({"iterations": 801}), "over_limit", "iterations 801"),
+            (json!({"iterations": 0}), "bad_parameter", "iterations"),
+            (
+                json!({"design": "no-such-design"}),
+                "bad_design",
+                "no-such-design",
+            ),
+        ];
+        for (v, kind, names) in cases {
+            let e = body(v.clone()).request(&limits).unwrap_err();
+            assert_eq!(e.kind, kind, "{v}: {e:?}");
+            assert!(e.message.contains(names), "{v}: {}", e.message);
+        }
+    }
+}
