@@ -17,6 +17,7 @@
 pub mod deploy;
 pub mod error;
 pub mod model;
+pub mod normal;
 pub mod problem;
 pub mod solve;
 pub mod svg;

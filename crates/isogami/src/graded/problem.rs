@@ -99,24 +99,71 @@ pub struct Problem {
     pub full: bool,
 }
 
-/// One residual row: its value and the non-zero entries of its Jacobian row.
-#[derive(Debug, Clone, Default)]
+/// The residuals and their Jacobian rows. Sparse rows are stored flat (row r's entries are
+/// `entries[starts[r]..starts[r + 1]]`); the few *dense* rows (a mean over every pin of a
+/// state) are kept apart, so that the solver can add them as a low-rank term instead of
+/// filling the normal equations with a dense block.
+#[derive(Debug, Clone)]
 pub struct Rows {
-    /// Residual values.
+    /// Values of the sparse rows.
     pub values: Vec<Real>,
-    /// Jacobian rows: (column, value).
-    pub entries: Vec<Vec<(usize, Real)>>,
+    starts: Vec<usize>,
+    entries: Vec<(usize, Real)>,
+    /// Values of the dense rows.
+    pub dense_values: Vec<Real>,
+    /// Entries of the dense rows: (column, value).
+    pub dense_entries: Vec<Vec<(usize, Real)>>,
+}
+
+impl Default for Rows {
+    fn default() -> Self {
+        Rows {
+            values: Vec::new(),
+            starts: vec![0],
+            entries: Vec::new(),
+            dense_values: Vec::new(),
+            dense_entries: Vec::new(),
+        }
+    }
 }
 
 impl Rows {
-    fn push(&mut self, value: Real, entries: Vec<(usize, Real)>) {
+    fn push(&mut self, value: Real, entries: impl IntoIterator<Item = (usize, Real)>) {
         self.values.push(value);
-        self.entries.push(entries);
+        self.entries.extend(entries);
+        self.starts.push(self.entries.len());
     }
 
-    /// ½‖r‖².
+    fn push_dense(&mut self, value: Real, entries: Vec<(usize, Real)>) {
+        self.dense_values.push(value);
+        self.dense_entries.push(entries);
+    }
+
+    /// Entries (column, value) of sparse row `r`.
+    pub fn row(&self, r: usize) -> &[(usize, Real)] {
+        &self.entries[self.starts[r]..self.starts[r + 1]]
+    }
+
+    /// ½‖r‖² over every row.
     pub fn cost(&self) -> Real {
-        0.5 * self.values.iter().map(|v| v * v).sum::<Real>()
+        0.5 * self
+            .values
+            .iter()
+            .chain(&self.dense_values)
+            .map(|v| v * v)
+            .sum::<Real>()
+    }
+}
+
+/// The Jacobian of an opened corner: 2 rows of 2 to 6 entries.
+struct CornerJacobian {
+    entries: [[(usize, Real); 6]; 2],
+    len: usize,
+}
+
+impl CornerJacobian {
+    fn row(&self, r: usize) -> &[(usize, Real)] {
+        &self.entries[r][..self.len]
     }
 }
 
@@ -180,8 +227,7 @@ impl Problem {
         }
     }
 
-    /// Opened position of node `n` as a corner of tile `i`, and its derivative entries
-    /// (2 rows, each a list of (column, value)).
+    /// Opened position of node `n` as a corner of tile `i`, and its derivative entries.
     fn corner(
         &self,
         z: &DVec,
@@ -189,7 +235,7 @@ impl Problem {
         state: usize,
         i: usize,
         n: usize,
-    ) -> (Vec2, [Vec<(usize, Real)>; 2]) {
+    ) -> (Vec2, CornerJacobian) {
         let f = self.tiles[i][0];
         let pc = self.pose_col(nodes, state, i);
         let th = z[pc + 2];
@@ -199,23 +245,34 @@ impl Problem {
         let rd = r * d;
         let p = Vec2::new(z[pc], z[pc + 1]) + rd;
         let dth = perp(&rd);
-        let mut rows: [Vec<(usize, Real)>; 2] = [Vec::with_capacity(7), Vec::with_capacity(7)];
-        for (row, entries) in rows.iter_mut().enumerate() {
-            entries.push((pc + row, 1.0));
-            entries.push((pc + 2, dth[row]));
-            if n != f {
-                // ∂p/∂X_n = R, ∂p/∂X_f = −R
-                entries.push((node_col(n), r[(row, 0)]));
-                entries.push((node_col(n) + 1, r[(row, 1)]));
-                entries.push((node_col(f), -r[(row, 0)]));
-                entries.push((node_col(f) + 1, -r[(row, 1)]));
-            }
+        let mut jac = CornerJacobian {
+            entries: [[(0, 0.0); 6]; 2],
+            len: if n != f { 6 } else { 2 },
+        };
+        for (row, entries) in jac.entries.iter_mut().enumerate() {
+            entries[0] = (pc + row, 1.0);
+            entries[1] = (pc + 2, dth[row]);
+            // ∂p/∂X_n = R, ∂p/∂X_f = −R
+            entries[2] = (node_col(n), r[(row, 0)]);
+            entries[3] = (node_col(n) + 1, r[(row, 1)]);
+            entries[4] = (node_col(f), -r[(row, 0)]);
+            entries[5] = (node_col(f) + 1, -r[(row, 1)]);
         }
-        (p, rows)
+        (p, jac)
     }
 
     /// Every residual and its Jacobian rows at `z`.
     pub fn rows(&self, z: &DVec) -> Rows {
+        self.rows_of(z, false)
+    }
+
+    /// Every row that can occur, one-sided ones included whether active or not: the sparsity
+    /// pattern of the normal equations (the values mean nothing).
+    pub fn structure(&self, z: &DVec) -> Rows {
+        self.rows_of(z, true)
+    }
+
+    fn rows_of(&self, z: &DVec, every: bool) -> Rows {
         let states = self.openings.len();
         let nodes = (z.len() - 3 * self.tiles.len() * states) / 2;
         let last = states - 1;
@@ -228,9 +285,8 @@ impl Problem {
                 let (pa, ja) = self.corner(z, nodes, state, a, n);
                 let (pb, jb) = self.corner(z, nodes, state, b, n);
                 for row in 0..2 {
-                    let mut e: Vec<(usize, Real)> =
-                        ja[row].iter().map(|&(c, v)| (c, w.joints * v)).collect();
-                    e.extend(jb[row].iter().map(|&(c, v)| (c, -w.joints * v)));
+                    let e = ja.row(row).iter().map(|&(c, v)| (c, w.joints * v));
+                    let e = e.chain(jb.row(row).iter().map(|&(c, v)| (c, -w.joints * v)));
                     out.push(w.joints * (pa[row] - pb[row]), e);
                 }
             }
@@ -246,7 +302,7 @@ impl Problem {
                     e.push((cb, w.opening * s / m));
                     e.push((ca, -w.opening * s / m));
                 }
-                out.push(w.opening * value, e);
+                out.push_dense(w.opening * value, e);
             }
             // Every pin opens the way the periodic sheet's does, by at least a fraction of the
             // state's mean (one-sided): a pin turning back would push its two tiles into each
@@ -258,11 +314,8 @@ impl Problem {
                 let ca = self.pose_col(nodes, state, a) + 2;
                 let cb = self.pose_col(nodes, state, b) + 2;
                 let value = w.pin_fraction * opening - s * (z[cb] - z[ca]);
-                if value > 0.0 {
-                    out.push(
-                        w.bounds * value,
-                        vec![(cb, -w.bounds * s), (ca, w.bounds * s)],
-                    );
+                if every || value > 0.0 {
+                    out.push(w.bounds * value, [(cb, -w.bounds * s), (ca, w.bounds * s)]);
                 }
             }
         }
@@ -275,14 +328,15 @@ impl Problem {
             let r = p.norm().max(1e-300);
             let (rho, drho) = self.outline.radius(p);
             let value = r - self.scale * rho;
-            if one_sided && value <= 0.0 {
+            if one_sided && value <= 0.0 && !every {
                 return;
             }
             let g = p / r - drho * self.scale;
-            let mut e = Vec::with_capacity(14);
-            for row in 0..2 {
-                e.extend(jp[row].iter().map(|&(c, v)| (c, w.fit * g[row] * v)));
-            }
+            let e = (0..2).flat_map(|row| {
+                jp.row(row)
+                    .iter()
+                    .map(move |&(c, v)| (c, w.fit * g[row] * v))
+            });
             out.push(w.fit * value, e);
         };
         for &(i, n) in &self.tips {
@@ -299,7 +353,7 @@ impl Problem {
                     let value = (x(ta[v])[d] - x(ta[0])[d]) - (x(tb[v])[d] - x(tb[0])[d]);
                     out.push(
                         w.smooth * value,
-                        vec![
+                        [
                             (node_col(ta[v]) + d, w.smooth),
                             (node_col(ta[0]) + d, -w.smooth),
                             (node_col(tb[v]) + d, -w.smooth),
@@ -312,7 +366,7 @@ impl Problem {
         // Prior.
         for (k, s) in self.start.iter().enumerate() {
             for d in 0..2 {
-                out.push(w.prior * (x(k)[d] - s[d]), vec![(node_col(k) + d, w.prior)]);
+                out.push(w.prior * (x(k)[d] - s[d]), [(node_col(k) + d, w.prior)]);
             }
         }
         // Shape bounds.
@@ -325,7 +379,7 @@ impl Problem {
                     let o = c0.signum();
                     let c = corner_cross(x(ip), x(ia), x(inx));
                     let value = w.corner_fraction * c0.abs() - o * c;
-                    if value > 0.0 {
+                    if every || value > 0.0 {
                         // c = cross(next − at, prev − at)
                         let (a, b) = (x(inx) - x(ia), x(ip) - x(ia));
                         // ∂c/∂next = (b.y, −b.x); ∂c/∂prev = (−a.y, a.x); ∂c/∂at = −(both)
@@ -335,7 +389,7 @@ impl Problem {
                         let k = -o * w.bounds;
                         out.push(
                             w.bounds * value,
-                            vec![
+                            [
                                 (node_col(inx), k * dn.x),
                                 (node_col(inx) + 1, k * dn.y),
                                 (node_col(ip), k * dp.x),
@@ -349,11 +403,11 @@ impl Problem {
                 let e = x(inx) - x(ia);
                 let len = e.norm();
                 let value = w.edge_fraction * self.edge_start[i][v] - len;
-                if value > 0.0 && len > 1e-300 {
+                if (every || value > 0.0) && len > 1e-300 {
                     let g = e / len * (-w.bounds);
                     out.push(
                         w.bounds * value,
-                        vec![
+                        [
                             (node_col(inx), g.x),
                             (node_col(inx) + 1, g.y),
                             (node_col(ia), -g.x),
@@ -397,12 +451,27 @@ mod tests {
         }
         let rows = problem.rows(&z);
         let h = 1e-6;
-        let mut dense = vec![vec![0.0; z.len()]; rows.values.len()];
-        for (r, e) in rows.entries.iter().enumerate() {
+        // Sparse rows, then dense rows.
+        let values = |rows: &Rows| -> Vec<Real> {
+            rows.values
+                .iter()
+                .chain(&rows.dense_values)
+                .copied()
+                .collect()
+        };
+        let count = rows.values.len();
+        let mut dense = vec![vec![0.0; z.len()]; count + rows.dense_values.len()];
+        for (r, row) in dense.iter_mut().enumerate() {
+            let e = if r < count {
+                rows.row(r)
+            } else {
+                &rows.dense_entries[r - count]
+            };
             for &(c, v) in e {
-                dense[r][c] += v;
+                row[c] += v;
             }
         }
+        let rows_values = values(&rows);
         for c in 0..z.len() {
             let (mut zp, mut zm) = (z.clone(), z.clone());
             zp[c] += h;
@@ -410,11 +479,12 @@ mod tests {
             let (rp, rm) = (problem.rows(&zp), problem.rows(&zm));
             // One-sided rows switching on or off between the two points change the row
             // count: such a column is skipped (it sits on a kink).
-            if rp.values.len() != rows.values.len() || rm.values.len() != rows.values.len() {
+            let (vp, vm) = (values(&rp), values(&rm));
+            if vp.len() != rows_values.len() || vm.len() != rows_values.len() {
                 continue;
             }
             for (r, exact) in dense.iter().enumerate() {
-                let fd = (rp.values[r] - rm.values[r]) / (2.0 * h);
+                let fd = (vp[r] - vm[r]) / (2.0 * h);
                 assert!(
                     (fd - exact[c]).abs() < 1e-5 * (1.0 + fd.abs()),
                     "row {r} column {c}: finite difference {fd}, exact {}",

@@ -1,22 +1,20 @@
 //! Levenberg–Marquardt on the graded sheet's sparse normal equations, then a projection
 //! that closes every pin exactly with the closed shapes held.
 //!
-//! Each iteration forms JᵀJ (lower triangle) and Jᵀr from the rows of [`Problem::rows`],
-//! adds λ·(diag(JᵀJ) + ε) and solves with faer's sparse Cholesky; a step that lowers the cost
+//! Each iteration forms JᵀJ and Jᵀr from the rows of [`Problem::rows`], adds
+//! λ·(diag(JᵀJ) + ε) and solves ([`NormalSystem`]: faer's sparse Cholesky over a pattern
+//! analysed once per solve, the dense rows added by Woodbury); a step that lowers the cost
 //! is taken and λ shrinks, otherwise λ grows and the step is retried. The projection runs the
 //! same iteration on the pin and opening rows over the opened poses only, so the result is a
 //! configuration of the graded sheet to rounding, whatever the weights.
 
 use super::error::GradedError;
 use super::model::GradedSheet;
-use super::problem::{Problem, Rows};
+use super::normal::NormalSystem;
+use super::problem::Problem;
 use crate::math::{DVec, Real, Vec2};
 use crate::stop::KeepGoing;
-use faer::linalg::solvers::Solve;
-use faer::sparse::{SparseColMat, Triplet};
-use faer::{Mat, Side};
 use serde::Serialize;
-use std::collections::HashMap;
 use std::time::Instant;
 
 /// Stages of the penalty continuation.
@@ -77,80 +75,6 @@ pub struct GradedReport {
     pub target: Vec<[Real; 2]>,
 }
 
-/// The normal equations' lower triangle and right-hand side.
-fn normal_equations(
-    rows: &Rows,
-    size: usize,
-    skip_below: usize,
-) -> (HashMap<(usize, usize), Real>, DVec) {
-    let mut a: HashMap<(usize, usize), Real> = HashMap::new();
-    let mut g = DVec::zeros(size);
-    for (value, entries) in rows.values.iter().zip(&rows.entries) {
-        for &(c1, v1) in entries {
-            if c1 < skip_below {
-                continue;
-            }
-            g[c1] += v1 * value;
-            for &(c2, v2) in entries {
-                if c2 < skip_below || c2 > c1 {
-                    continue;
-                }
-                *a.entry((c1, c2)).or_default() += v1 * v2;
-            }
-        }
-    }
-    (a, g)
-}
-
-/// Solves (A + λ(diag A + ε)) δ = −g; columns below `skip_below` get δ = 0.
-fn damped_step(
-    a: &HashMap<(usize, usize), Real>,
-    g: &DVec,
-    lambda: Real,
-    skip_below: usize,
-) -> Result<DVec, GradedError> {
-    let size = g.len();
-    let mut diag = vec![0.0; size];
-    for (&(r, c), &v) in a {
-        if r == c {
-            diag[r] = v;
-        }
-    }
-    let mut triplets: Vec<Triplet<usize, usize, Real>> = a
-        .iter()
-        .filter(|(&(r, c), _)| r != c)
-        .map(|(&(r, c), &v)| Triplet {
-            row: r,
-            col: c,
-            val: v,
-        })
-        .collect();
-    for (k, d) in diag.iter().enumerate() {
-        let val = if k < skip_below {
-            1.0
-        } else {
-            d + lambda * (d + 1e-9)
-        };
-        triplets.push(Triplet {
-            row: k,
-            col: k,
-            val,
-        });
-    }
-    let m = SparseColMat::<usize, Real>::try_new_from_triplets(size, size, &triplets)
-        .map_err(|_| GradedError::Factorisation)?;
-    let llt = m
-        .sp_cholesky(Side::Lower)
-        .map_err(|_| GradedError::Factorisation)?;
-    let mut rhs = Mat::<Real>::from_fn(size, 1, |r, _| if r < skip_below { 0.0 } else { -g[r] });
-    llt.solve_in_place(rhs.as_mut());
-    let step = DVec::from_fn(size, |r, _| rhs[(r, 0)]);
-    if step.iter().any(|v| !v.is_finite()) {
-        return Err(GradedError::NonFinite);
-    }
-    Ok(step)
-}
-
 /// Where the optimisation is, passed to its progress callback after every accepted step.
 pub struct GradedProgress<'a> {
     /// Accepted steps so far, over every stage.
@@ -195,14 +119,15 @@ fn levenberg_marquardt(
     }
     let mut lambda = 1e-4;
     let mut taken = 0;
+    let mut system = NormalSystem::new(&problem.structure(z), z.len(), skip_below)?;
     for it in 0..max_iterations {
         if !keep_going() {
             return Err(GradedError::Cancelled);
         }
-        let (a, g) = normal_equations(&rows, z.len(), skip_below);
+        system.assemble(&rows);
         let mut accepted = false;
         while lambda < 1e12 {
-            let step = damped_step(&a, &g, lambda, skip_below)?;
+            let step = system.step(lambda)?;
             let trial = &*z + &step;
             let trial_rows = problem.rows(&trial);
             let trial_cost = trial_rows.cost();
