@@ -4,6 +4,7 @@
 mod api_catalogue;
 mod api_design;
 mod api_export;
+mod api_graded;
 mod api_inverse;
 mod api_limits;
 mod api_motions;

@@ -1,0 +1,317 @@
+//! The graded-sheet jobs: a small job runs to the end, showing snapshots of the sheet as it
+//! stands on the way, and its result is the library's for the same request (the asked tiles,
+//! the same report and path check), downloadable as `isogami graded --out` writes it; bad
+//! bodies and outlines are 400s with one-line messages (the library's own for an outline) and
+//! start nothing; a stop ends a run as `stopped`; the running cap refuses one more job; the
+//! time limit stops a run.
+
+use crate::common;
+
+use axum::body::Body;
+use axum::http::{Method, Request, StatusCode};
+use axum::Router;
+use common::{app_with, assert_error, catalogue, enc, get, post, send};
+use isogami::api::graded_sheet;
+use isogami::graded::{parse_outline, GradedRequest, Outline};
+use isogami::stop::NEVER;
+use isogami_web::graded::GradedLimits;
+use isogami_web::ServerSettings;
+use serde_json::Value;
+use std::time::{Duration, Instant};
+
+/// A run of a second or so: 2×2 cells of rotating squares, 60 iterations.
+const SMALL: &str =
+    r#"{"design": "rotating-squares", "rows": 2, "cols": 2, "outline": "disc", "iterations": 60}"#;
+/// A run of many seconds (stopped by the tests long before its end).
+const BIG: &str = r#"{"design": "rotating-squares", "rows": 6, "cols": 6, "outline": "ellipse:1.4,1", "iterations": 800}"#;
+
+fn app_of(graded: GradedLimits) -> Router {
+    app_with(
+        &catalogue().db,
+        ServerSettings {
+            graded,
+            ..ServerSettings::default()
+        },
+    )
+}
+
+fn app() -> Router {
+    app_of(GradedLimits::default())
+}
+
+/// Starts a job; its id.
+async fn start(app: &Router, body: &str) -> u64 {
+    let reply = post(app, "/api/graded", body.to_string()).await;
+    assert_eq!(reply.status, StatusCode::ACCEPTED, "{}", reply.text());
+    let v = reply.json();
+    assert_eq!(v["state"], "running");
+    v["id"].as_u64().unwrap()
+}
+
+async fn status(app: &Router, id: u64) -> Value {
+    get(app, &format!("/api/graded/{id}")).await.ok()
+}
+
+async fn delete(app: &Router, id: u64) -> Value {
+    let request = Request::builder()
+        .method(Method::DELETE)
+        .uri(format!("/api/graded/{id}"))
+        .body(Body::empty())
+        .unwrap();
+    send(app, request).await.ok()
+}
+
+/// Polls job `id` until it is no longer running; every view seen, the last one ended.
+async fn until_ended(app: &Router, id: u64) -> Vec<Value> {
+    let t0 = Instant::now();
+    let mut seen = Vec::new();
+    loop {
+        let v = status(app, id).await;
+        let running = v["state"] == "running";
+        seen.push(v);
+        if !running {
+            return seen;
+        }
+        assert!(
+            t0.elapsed() < Duration::from_secs(300),
+            "job {id} still runs"
+        );
+        tokio::time::sleep(Duration::from_millis(10)).await;
+    }
+}
+
+/// Polls job `id` until its progress shows an iteration.
+async fn until_iterating(app: &Router, id: u64) {
+    let t0 = Instant::now();
+    loop {
+        let v = status(app, id).await;
+        assert_eq!(v["state"], "running", "{}", v["error"]);
+        if v["progress"]["iteration"].as_u64().unwrap_or(0) > 0 {
+            return;
+        }
+        assert!(
+            t0.elapsed() < Duration::from_secs(120),
+            "job {id} never iterates"
+        );
+        tokio::time::sleep(Duration::from_millis(10)).await;
+    }
+}
+
+#[tokio::test]
+async fn a_small_job_runs_to_the_end_with_snapshots_and_the_librarys_result() {
+    let app = app();
+    let id = start(&app, SMALL).await;
+    let views = until_ended(&app, id).await;
+    let end = views.last().unwrap();
+    assert_eq!(end["state"], "done", "{}", end["error"]);
+    assert_eq!(end["error"], Value::Null);
+    assert_eq!(end["request"]["rows"], 2);
+    assert_eq!(end["request"]["outline"], "disc");
+    assert_eq!(
+        end["request"]["outline_points"].as_array().unwrap().len(),
+        128
+    );
+
+    // The same request through the library, as the CLI runs it.
+    let request = GradedRequest {
+        design: "rotating-squares".into(),
+        rows: 2,
+        cols: 2,
+        outline: Outline::Disc,
+        solve: isogami::graded::SolveSettings {
+            max_iterations: 60,
+            ..Default::default()
+        },
+        ..GradedRequest::default()
+    };
+    let run = graded_sheet(&request, &mut |_| true, NEVER).unwrap();
+    let result = &end["result"];
+    let tiles = result["sheet"]["tiles"].as_array().unwrap();
+    assert_eq!(tiles.len(), run.sheet.tiles.len(), "the asked tiles");
+    assert_eq!(
+        result["sheet"]["tiles"],
+        serde_json::to_value(&run.sheet.tiles).unwrap()
+    );
+    assert_eq!(result["report"]["tiles"], tiles.len());
+    assert_eq!(
+        result["path"]["states"].as_array().unwrap().len(),
+        run.path.states.len()
+    );
+    for state in result["path"]["states"].as_array().unwrap() {
+        assert_eq!(state["poses"].as_array().unwrap().len(), tiles.len());
+    }
+    assert_eq!(result["path"]["reached"], run.path.reached);
+
+    // Snapshots: one polygon per tile, taken while it ran; the last is the result's opened
+    // state.
+    let snap = &end["snapshot"];
+    assert_eq!(snap["polygons"].as_array().unwrap().len(), tiles.len());
+    assert!(snap["count"].as_u64().unwrap() >= 2, "{snap}");
+    let running_snaps = views
+        .iter()
+        .filter(|v| v["state"] == "running" && !v["snapshot"].is_null())
+        .count();
+    let progressed = views
+        .iter()
+        .any(|v| v["state"] == "running" && v["progress"]["iteration"].as_u64().unwrap_or(0) > 0);
+    assert!(
+        running_snaps > 0 || !progressed,
+        "a snapshot shows once the run iterates"
+    );
+    assert_eq!(end["progress"]["max_iterations"], 60, "{}", end["progress"]);
+
+    // The download is the result, as `isogami graded --out` writes it.
+    let sheet = get(&app, &format!("/api/graded/{id}/sheet")).await;
+    assert_eq!(sheet.status, StatusCode::OK);
+    assert!(sheet.content_type.starts_with("application/json"));
+    let text = sheet.text();
+    assert!(text.ends_with("}\n"));
+    let parsed: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(&parsed, result);
+    // Pretty, in the struct's field order (as the CLI's serde_json::to_string_pretty of the
+    // GradedRun), not a re-serialised Value's sorted keys.
+    assert!(
+        text.starts_with("{\n  \"sheet\": {\n    \"design\": "),
+        "{}",
+        &text[..80]
+    );
+    // An ended job stays as it was.
+    assert_eq!(status(&app, id).await["result"], *result);
+}
+
+#[tokio::test]
+async fn bad_bodies_and_outlines_are_400s_with_one_line_messages_and_start_nothing() {
+    let app = app();
+    let star = "polygon:0,0;4,0;4,4;3,4;3,1;1,1;1,4;0,4";
+    let library = parse_outline(star).unwrap_err().to_string();
+    let cases: Vec<(String, &str, &str)> = vec![
+        (
+            format!(r#"{{"outline": "{star}"}}"#),
+            "bad_target",
+            "not seen whole",
+        ),
+        (r#"{"outline": "circle"}"#.into(), "bad_target", "circle"),
+        (r#"{"rows": 0}"#.into(), "bad_parameter", "at least one"),
+        (r#"{"rows": 9, "cols": 1}"#.into(), "over_limit", "9x1"),
+        (r#"{"rows": 7, "cols": 7}"#.into(), "over_limit", "49 cells"),
+        (r#"{"iterations": 5000}"#.into(), "over_limit", "5000"),
+        (r#"{"states": 0}"#.into(), "bad_parameter", "0 states"),
+        (r#"{"t": 2}"#.into(), "bad_parameter", "t = 2"),
+        (r#"{"design": "nope"}"#.into(), "bad_design", "nope"),
+        (r#"{"colour": 1}"#.into(), "bad_parameter", "colour"),
+        ("not json".into(), "bad_parameter", "request body"),
+    ];
+    for (body, kind, names) in &cases {
+        let reply = post(&app, "/api/graded", body.clone()).await;
+        assert_eq!(
+            assert_error(&reply, StatusCode::BAD_REQUEST, body),
+            *kind,
+            "{body}"
+        );
+        let message = reply.json()["error"].as_str().unwrap().to_string();
+        assert!(message.contains(names), "{body}: {message}");
+    }
+    // The library's own message, word for word, for a posted outline and a checked one.
+    let reply = post(&app, "/api/graded", format!(r#"{{"outline": "{star}"}}"#)).await;
+    assert_eq!(reply.json()["error"], library.as_str());
+    let reply = get(&app, &format!("/api/graded/outline?outline={}", enc(star))).await;
+    assert_eq!(
+        assert_error(&reply, StatusCode::BAD_REQUEST, "outline"),
+        "bad_target"
+    );
+    assert_eq!(reply.json()["error"], library.as_str());
+    let ok = get(
+        &app,
+        &format!(
+            "/api/graded/outline?outline={}",
+            enc("polygon:0,-1;2,0;1,2;-1,2;-2,0")
+        ),
+    )
+    .await
+    .ok();
+    assert_eq!(ok["points"].as_array().unwrap().len(), 5);
+    let reply = get(&app, "/api/graded/outline?target=disc").await;
+    assert_eq!(
+        assert_error(&reply, StatusCode::BAD_REQUEST, "unknown key"),
+        "bad_parameter"
+    );
+
+    let settings = get(&app, "/api/graded").await.ok();
+    assert_eq!(settings["running"], serde_json::json!([]), "no job started");
+    assert_eq!(settings["limits"]["side"], 8);
+    assert_eq!(settings["defaults"]["design"], "rotating-squares");
+    let reply = get(&app, "/api/graded/1").await;
+    assert_eq!(
+        assert_error(&reply, StatusCode::NOT_FOUND, "job 1"),
+        "not_found"
+    );
+    let reply = get(&app, "/api/graded/1/sheet").await;
+    assert_eq!(
+        assert_error(&reply, StatusCode::NOT_FOUND, "sheet of job 1"),
+        "not_found"
+    );
+}
+
+#[tokio::test]
+async fn a_stop_ends_a_run_and_the_running_cap_refuses_one_more() {
+    let app = app_of(GradedLimits {
+        max_running: 1,
+        ..GradedLimits::default()
+    });
+    let id = start(&app, BIG).await;
+    let reply = post(&app, "/api/graded", SMALL).await;
+    assert_eq!(
+        assert_error(&reply, StatusCode::CONFLICT, "second job"),
+        "busy"
+    );
+    assert!(reply.json()["error"]
+        .as_str()
+        .unwrap()
+        .contains(&format!("job {id}")));
+    assert_eq!(
+        get(&app, "/api/graded").await.ok()["running"],
+        serde_json::json!([id])
+    );
+    // No sheet before the end.
+    let reply = get(&app, &format!("/api/graded/{id}/sheet")).await;
+    assert_eq!(
+        assert_error(&reply, StatusCode::CONFLICT, "running"),
+        "not_done"
+    );
+    until_iterating(&app, id).await;
+    let stopping = delete(&app, id).await;
+    assert!(stopping["state"] == "stopped" || stopping["stopping"] == true);
+    let t0 = Instant::now();
+    let end = until_ended(&app, id).await.pop().unwrap();
+    assert!(t0.elapsed() < Duration::from_secs(10), "the stop took long");
+    assert_eq!(end["state"], "stopped");
+    assert_eq!(end["result"], Value::Null);
+    assert_eq!(end["error"]["kind"], "stopped");
+    assert_eq!(end["error"]["error"], "grading stopped by request");
+    // Stopping an ended job changes nothing; the next job may start.
+    assert_eq!(delete(&app, id).await["state"], "stopped");
+    let next = start(&app, SMALL).await;
+    assert!(next > id);
+    assert_eq!(
+        until_ended(&app, next).await.pop().unwrap()["state"],
+        "done"
+    );
+}
+
+#[tokio::test]
+async fn the_time_limit_stops_a_run() {
+    let app = app_of(GradedLimits {
+        max_run: Duration::from_millis(300),
+        ..GradedLimits::default()
+    });
+    let id = start(&app, BIG).await;
+    let end = until_ended(&app, id).await.pop().unwrap();
+    assert_eq!(end["state"], "stopped");
+    assert!(
+        end["error"]["error"]
+            .as_str()
+            .unwrap()
+            .contains("time limit of 0.3 s"),
+        "{end}"
+    );
+}
