@@ -5,7 +5,7 @@
 use crate::output::{emit, json_text, write_atomic, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami::api::{graded_sheet, GradedRun};
-use isogami::graded::{parse_outline, GradedRequest, Outline};
+use isogami::graded::{outline_from_svg, parse_outline, GradedRequest, Outline};
 use isogami::stop::NEVER;
 use std::path::PathBuf;
 
@@ -19,8 +19,10 @@ pub struct Args {
     #[arg(long, default_value = "3x3", value_parser = parse_cells)]
     region: (usize, usize),
     /// The outline the opened sheet should have: disc, ellipse:A,B (semi-axes along x and y,
-    /// their ratio counts) or polygon:x,y;x,y;… (star-shaped about its centroid). Scaled to
-    /// the area the design's own sheet covers when open.
+    /// their ratio counts), polygon:x,y;x,y;… (star-shaped about its centroid) or @FILE.svg
+    /// (the one closed shape drawn in an SVG file: path, polygon, rect, circle or ellipse,
+    /// transforms applied, as seen on screen). Scaled to the area the design's own sheet
+    /// covers when open.
     #[arg(long, default_value = "disc", value_parser = parse_target)]
     target: Outline,
     /// The opened state as the periodic deployment's t in (0, 1] [default: the periodic
@@ -54,8 +56,14 @@ fn parse_cells(text: &str) -> Result<(usize, usize), String> {
     Ok((number(r)?, number(c)?))
 }
 
+/// A target outline's text, or `@PATH`: the outline of the SVG file at PATH (clap's message
+/// names the value, so the errors do not repeat the path).
 fn parse_target(text: &str) -> Result<Outline, String> {
-    parse_outline(text).map_err(|e| e.to_string())
+    let Some(path) = text.strip_prefix('@') else {
+        return parse_outline(text).map_err(|e| e.to_string());
+    };
+    let svg = std::fs::read_to_string(path).map_err(|e| format!("cannot read the file: {e}"))?;
+    outline_from_svg(&svg).map_err(|e| e.to_string())
 }
 
 /// Grades one design towards one outline.
@@ -165,5 +173,8 @@ mod tests {
         assert!(parse_cells("3").unwrap_err().contains("RxC"));
         assert!(parse_target("ellipse:2,1").is_ok());
         assert!(parse_target("square").unwrap_err().contains("target"));
+        assert!(parse_target("@/nonexistent/outline.svg")
+            .unwrap_err()
+            .contains("cannot read the file"));
     }
 }
