@@ -1,0 +1,293 @@
+// What the graded-sheet page asks for and shows, as data: the form checked against the
+// server's caps, the outline's text (disc, ellipse, or a polygon drawn point by point), a
+// star-shaped check of a drawn polygon (the library's rule, for a static site and instant
+// feedback; the server answers with the library's own message), the body of POST /api/graded
+// and the equivalent `isogami graded …` command, the tiles of a graded sheet placed from the
+// poses of a state, the bounds that frame them, and the report's lines. Pure functions over
+// plain data; graded.js draws the page.
+//
+// Form state: { design, rows, cols, outline: 'disc' | 'ellipse' | 'polygon', aspect,
+// points: [[x, y], …] (the drawn polygon, y up), iterations } where numbers are the text of
+// their fields.
+
+import { shellWord } from './export-request.js';
+
+/** Defaults when the server gives none (a static site). */
+export const DEFAULTS = Object.freeze({
+  design: 'rotating-squares',
+  rows: 3,
+  cols: 3,
+  outline: 'disc',
+  states: 8,
+  iterations: 800,
+});
+
+/** A blank form: the design from `?design=` when given, else the server's default. */
+export function emptyForm(settings, search = '') {
+  const d = { ...DEFAULTS, ...(settings?.defaults ?? {}) };
+  const given = new URLSearchParams(search).get('design');
+  return {
+    design: given && given.trim() ? given.trim() : d.design,
+    rows: String(d.rows),
+    cols: String(d.cols),
+    outline: 'disc',
+    aspect: '1.4',
+    points: [],
+    iterations: String(d.iterations),
+  };
+}
+
+/** A whole number field's problem, or ''. */
+function wholeProblem(name, text, min, cap) {
+  const t = String(text ?? '').trim();
+  if (t === '') return `${name}: give a whole number`;
+  const v = Number(t);
+  if (!Number.isInteger(v) || v < min) return `${name} must be a whole number of at least ${min}`;
+  if (cap !== undefined && v > cap) return `${name} ${v} is above this server's limit of ${cap}`;
+  return '';
+}
+
+/** The region's problem as one line (checked as typed against the server's caps), or ''. */
+export function regionProblem(form, limits = {}) {
+  const side = limits.side;
+  const rows = wholeProblem('rows', form.rows, 1, side);
+  if (rows) return rows;
+  const cols = wholeProblem('columns', form.cols, 1, side);
+  if (cols) return cols;
+  const cells = Number(form.rows) * Number(form.cols);
+  if (limits.cells !== undefined && cells > limits.cells) {
+    return `a region of ${form.rows}x${form.cols} = ${cells} cells is above this server's limit of ${limits.cells} cells`;
+  }
+  return '';
+}
+
+/** The iterations field's problem, or ''. */
+export function iterationsProblem(form, limits = {}) {
+  return wholeProblem('iterations', form.iterations, 1, limits.iterations);
+}
+
+/** A number for an outline's text: at most 4 decimals, no trailing zeros. */
+function num(v) {
+  const r = Math.round(v * 1e4) / 1e4;
+  return String(Object.is(r, -0) ? 0 : r);
+}
+
+/** The outline's text as `isogami graded --target` reads it. */
+export function outlineText(form) {
+  if (form.outline === 'ellipse') return `ellipse:${String(form.aspect).trim()},1`;
+  if (form.outline === 'polygon') return `polygon:${form.points.map(([x, y]) => `${num(x)},${num(y)}`).join(';')}`;
+  return 'disc';
+}
+
+/** The ellipse's aspect ratio's problem, or ''. */
+export function aspectProblem(form) {
+  if (form.outline !== 'ellipse') return '';
+  const v = Number(String(form.aspect).trim());
+  if (String(form.aspect).trim() === '' || !Number.isFinite(v) || v <= 0) return 'the aspect ratio must be a positive number';
+  return '';
+}
+
+/** The signed area of a polygon ([[x, y], …], counter-clockwise positive). */
+export function signedArea(p) {
+  let a = 0;
+  for (let k = 0; k < p.length; k += 1) {
+    const [x0, y0] = p[k];
+    const [x1, y1] = p[(k + 1) % p.length];
+    a += x0 * y1 - x1 * y0;
+  }
+  return a / 2;
+}
+
+/** The area centroid of a polygon. */
+export function centroid(p) {
+  let a = 0;
+  let cx = 0;
+  let cy = 0;
+  for (let k = 0; k < p.length; k += 1) {
+    const [x0, y0] = p[k];
+    const [x1, y1] = p[(k + 1) % p.length];
+    const w = x0 * y1 - x1 * y0;
+    a += w;
+    cx += (x0 + x1) * w;
+    cy += (y0 + y1) * w;
+  }
+  return [cx / (3 * a), cy / (3 * a)];
+}
+
+function diagonal(p) {
+  const xs = p.map((v) => v[0]);
+  const ys = p.map((v) => v[1]);
+  return Math.hypot(Math.max(...xs) - Math.min(...xs), Math.max(...ys) - Math.min(...ys));
+}
+
+/** Why a drawn polygon cannot be a target, in the library's words (graded::Outline::validated:
+ * at least three points, some area, every edge turning counter-clockwise as seen from the
+ * centroid), or '' when it can. The server's answer is the one shown when there is a server. */
+export function starProblem(points) {
+  if (points.length < 3 || points.some((v) => !v.every(Number.isFinite))) {
+    return 'bad target: an outline needs at least three finite points';
+  }
+  const area = signedArea(points);
+  if (Math.abs(area) <= 1e-12 * diagonal(points) ** 2) return 'bad target: the outline encloses no area';
+  const p = area < 0 ? [...points].reverse() : points;
+  const [cx, cy] = centroid(p);
+  const q = p.map(([x, y]) => [x - cx, y - cy]);
+  const s = diagonal(q);
+  for (let k = 0; k < q.length; k += 1) {
+    const [ax, ay] = q[k];
+    const [bx, by] = q[(k + 1) % q.length];
+    if (ax * by - ay * bx <= 1e-9 * s * s) {
+      return `bad target: the outline is not seen whole from its centroid (edge ${k}); give a star-shaped outline`;
+    }
+  }
+  return '';
+}
+
+/** The body of POST /api/graded. */
+export function gradedBody(form) {
+  return {
+    design: String(form.design).trim(),
+    rows: Number(form.rows),
+    cols: Number(form.cols),
+    outline: outlineText(form),
+    iterations: Number(form.iterations),
+  };
+}
+
+/** The `isogami graded …` command that grades the same sheet and writes the same file. */
+export function cliCommand(form) {
+  const b = gradedBody(form);
+  return ['isogami', 'graded', '--design', shellWord(b.design), '--region', `${b.rows}x${b.cols}`,
+    '--target', shellWord(b.outline), '--iterations', String(b.iterations), '--out', 'graded.json'].join(' ');
+}
+
+/** Convex hull (monotone chain) of points, counter-clockwise. */
+export function convexHull(points) {
+  const p = [...points].sort((a, b) => a[0] - b[0] || a[1] - b[1]);
+  if (p.length < 3) return p;
+  const cross = (o, a, b) => (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+  const lower = [];
+  for (const v of p) {
+    while (lower.length >= 2 && cross(lower.at(-2), lower.at(-1), v) <= 0) lower.pop();
+    lower.push(v);
+  }
+  const upper = [];
+  for (const v of [...p].reverse()) {
+    while (upper.length >= 2 && cross(upper.at(-2), upper.at(-1), v) <= 0) upper.pop();
+    upper.push(v);
+  }
+  return lower.slice(0, -1).concat(upper.slice(0, -1));
+}
+
+/** The outline (points at scale 1, centred) scaled to cover `area`: how the page sizes the
+ * target under the sheet while the run goes (the library scales it to the area the start
+ * covers; its report gives the fitted outline at the end). */
+export function outlineAtArea(points, area) {
+  const a = Math.abs(signedArea(points));
+  if (!(a > 0) || !(area > 0)) return points;
+  const s = Math.sqrt(area / a);
+  return points.map(([x, y]) => [s * x, s * y]);
+}
+
+/** The area of the convex hull of every corner of `polygons`. */
+export function hullArea(polygons) {
+  return Math.abs(signedArea(convexHull(polygons.flat())));
+}
+
+/** The closed polygon of every tile of a graded sheet (GradedSheet JSON). */
+export function closedPolygons(sheet) {
+  return sheet.tiles.map((t) => t.nodes.map((n) => [...sheet.nodes[n]]));
+}
+
+/** Every tile placed by `poses` (one {x, y, theta} per tile): its closed polygon turned by
+ * theta about its first node, that node at (x, y) (GradedSheet::opened_polygon). */
+export function posedPolygons(sheet, poses) {
+  return sheet.tiles.map((t, i) => {
+    const { x, y, theta } = poses[i];
+    const c = Math.cos(theta);
+    const s = Math.sin(theta);
+    const [fx, fy] = sheet.nodes[t.nodes[0]];
+    return t.nodes.map((n) => {
+      const dx = sheet.nodes[n][0] - fx;
+      const dy = sheet.nodes[n][1] - fy;
+      return [x + c * dx - s * dy, y + s * dx + c * dy];
+    });
+  });
+}
+
+/** [minX, minY, maxX, maxY] of every point of every list given. */
+export function bounds(...lists) {
+  let b = [Infinity, Infinity, -Infinity, -Infinity];
+  for (const list of lists) {
+    for (const poly of list) {
+      for (const [x, y] of poly) {
+        b = [Math.min(b[0], x), Math.min(b[1], y), Math.max(b[2], x), Math.max(b[3], y)];
+      }
+    }
+  }
+  return b;
+}
+
+/** The player's states, closed first: slider position k shows `path.states[n - 1 - k]` (the
+ * path check lists them from the optimised opened state to the closed one). */
+export function playerStates(result) {
+  return [...(result?.path?.states ?? [])].reverse();
+}
+
+const pct = (v) => `${(100 * v).toFixed(2)} %`;
+
+/** The report in lines: fit, shapes, pins, the path check (DOF per state, overlaps named). */
+export function reportLines(result) {
+  const r = result.report;
+  const p = result.path;
+  const lines = [];
+  lines.push({
+    key: 'fit',
+    text: `Fit: the opened outline is within ${pct(r.max_outline_error)} of the target (median ${pct(r.median_outline_error)}), ${pct(r.max_outside)} outside it at most.`,
+  });
+  lines.push({
+    key: 'sheet',
+    text: `Sheet: ${r.tiles} tiles, ${result.sheet.joints.length} pins, ${result.sheet.nodes.length} nodes; ${r.iterations} iterations, cost ${fmtCost(r.cost[0])} → ${fmtCost(r.cost[1])} in ${r.seconds.toFixed(1)} s.`,
+  });
+  lines.push({
+    key: 'pins',
+    text: `Pins closed to ${r.joint_gap.toExponential(1)} L after the optimisation; corners keep ≥ ${(100 * r.min_corner_fraction).toFixed(0)} % of their turn, edges ≥ ${(100 * r.min_edge_fraction).toFixed(0)} % of their length, tiles ≥ ${(100 * r.min_area_fraction).toFixed(0)} % of their area.`,
+  });
+  const open = p.states.filter((s) => s.opening > 0);
+  const dofs = open.map((s) => (s.dof === null || s.dof === undefined ? '?' : String(s.dof)));
+  const oneDof = dofs.every((d) => d === '1');
+  const gap = Math.max(0, ...p.states.map((s) => s.joint_gap));
+  lines.push({
+    key: 'path',
+    text: p.reached
+      ? `Opens along one motion: the path check reached the closed tiling from the opened state in ${p.states.length} states, one DOF at each, pins closed to ${gap.toExponential(1)} L, no overlap.`
+      : `Does NOT open along one motion: ${[
+        oneDof ? 'one DOF at every state' : `DOF ${dofs.join(' ')} from open to closed`,
+        `pins closed to ${gap.toExponential(1)} L on the way (closed means below 1e-6 L)`,
+        `closed-state spread ${p.closed_spread.toExponential(1)} rad`,
+      ].join('; ')}.`,
+  });
+  const overlaps = p.states
+    .map((s) => s.overlap && { a: s.overlap[0], b: s.overlap[1], opening: s.opening })
+    .filter(Boolean);
+  lines.push({
+    key: 'overlaps',
+    text: overlaps.length
+      ? `Overlaps: ${overlaps.map((o) => `tiles ${o.a} and ${o.b} at ${(100 * o.opening).toFixed(0)} % open`).join(', ')}.`
+      : 'No two tiles overlap at any state of the path.',
+  });
+  return lines;
+}
+
+/** A cost for a line of text. */
+export function fmtCost(v) {
+  if (typeof v !== 'number' || !Number.isFinite(v)) return '–';
+  return v.toExponential(3);
+}
+
+/** The progress line of a job view. */
+export function progressLine(job) {
+  const p = job.progress;
+  if (!p) return job.state === 'running' ? 'Setting up the sheet…' : '';
+  return `iteration ${p.iteration} of at most ${p.max_iterations} · cost ${fmtCost(p.cost)} · stage ${p.stage + 1} of ${p.stages} · ${job.elapsed.toFixed(1)} s`;
+}

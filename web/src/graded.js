@@ -1,0 +1,442 @@
+// The graded-sheet page (graded.html): a design (pre-filled from ?design=), a region checked
+// against the server's caps as typed, a target outline (disc, ellipse, or a polygon clicked
+// point by point on a pad, checked by the library through GET /api/graded/outline and its
+// one-line error shown beside the pad); Grade starts a job (POST /api/graded) that the page
+// polls: iteration, cost, stage, a progress bar and the opened sheet as it stands drawn over
+// the target; at the end the report, a player through the path check's states (closed ↔
+// opened, the tiles placed from each state's poses, the fitted target at the opened end) and
+// the sheet's JSON as `isogami graded --out` writes it. On a static site nothing runs: the
+// page shows the command. Pure logic is in graded-model.js.
+
+import { ApiError, openData } from './data.js';
+import { showNotice, clearNotice, debounce } from './dom.js';
+import {
+  DEFAULTS, aspectProblem, bounds, cliCommand, emptyForm, gradedBody, hullArea, iterationsProblem, outlineAtArea,
+  outlineText, playerStates, posedPolygons, progressLine, regionProblem, reportLines, starProblem,
+} from './graded-model.js';
+
+const $ = (id) => document.getElementById(id);
+const SVG = 'http://www.w3.org/2000/svg';
+const POLL_MS = 250;
+/** States per second while playing. */
+const PLAY_RATE = 8;
+
+let data;
+let settings = { defaults: DEFAULTS, limits: {} };
+let points = [];
+let jobId = null;
+let timer = null;
+let outlineAsked = 0;
+let serverOutlineError = '';
+let live = null; // { frame, target, count }
+let player = null; // { result, states, frame, playing, raf }
+
+/** An SVG element. */
+function s(tag, attrs = {}) {
+  const el = document.createElementNS(SVG, tag);
+  for (const [k, v] of Object.entries(attrs)) if (v !== null && v !== undefined) el.setAttribute(k, v);
+  return el;
+}
+
+const pointsAttr = (poly) => poly.map(([x, y]) => `${+x.toFixed(6)},${+y.toFixed(6)}`).join(' ');
+
+async function getJson(url, options) {
+  let res;
+  try {
+    res = await fetch(url, options);
+  } catch (e) {
+    throw new ApiError(`cannot reach ${url}: ${e.message}`, 'network', 'is `isogami serve` still running?');
+  }
+  let body = null;
+  try {
+    body = await res.json();
+  } catch {
+    body = null;
+  }
+  if (res.ok && body !== null) return body;
+  if (body && typeof body.error === 'string') throw new ApiError(body.error, body.kind || 'error', body.hint || '', res.status);
+  throw new ApiError(`${res.status} ${res.statusText} for ${url}`, 'http', '', res.status);
+}
+
+function form() {
+  return {
+    design: $('design').value,
+    rows: $('rows').value,
+    cols: $('cols').value,
+    outline: document.querySelector('input[name="outline"]:checked')?.value ?? 'disc',
+    aspect: $('aspect').value,
+    points,
+    iterations: $('iterations').value,
+  };
+}
+
+function showError(e) {
+  showNotice($('notice'), { message: e.message, hint: e.hint || '', kind: e.kind || 'error' });
+}
+
+/** Every check of the form, shown beside its control; true when nothing is wrong. */
+function check() {
+  const f = form();
+  const limits = settings.limits ?? {};
+  const region = regionProblem(f, limits);
+  $('region-error').textContent = region;
+  const iterations = iterationsProblem(f, limits);
+  $('iterations-error').textContent = iterations;
+  const outline = outlineProblem(f);
+  $('outline-error').textContent = outline;
+  $('command').textContent = cliCommand(f);
+  return !region && !iterations && !outline;
+}
+
+/** The outline's problem: the ellipse's ratio, or a drawn polygon's (the server's message
+ * when it answered for these points, else the same rule checked here). */
+function outlineProblem(f) {
+  if (f.outline === 'ellipse') return aspectProblem(f);
+  if (f.outline !== 'polygon') return '';
+  if (points.length < 3) return '';
+  return serverOutlineError || starProblem(points);
+}
+
+/** Asks the library about the drawn polygon (debounced; stale answers dropped). */
+const askOutline = debounce(async () => {
+  if (!data.live || form().outline !== 'polygon' || points.length < 3) return;
+  const text = outlineText(form());
+  const asked = ++outlineAsked;
+  try {
+    await getJson(`./api/graded/outline?outline=${encodeURIComponent(text)}`);
+    if (asked === outlineAsked) serverOutlineError = '';
+  } catch (e) {
+    if (asked !== outlineAsked) return;
+    serverOutlineError = e.kind === 'bad_target' ? e.message : '';
+  }
+  if (asked === outlineAsked) {
+    document.body.dataset.outlineChecks = String(Number(document.body.dataset.outlineChecks || 0) + 1);
+    check();
+    drawPad();
+  }
+}, 120);
+
+function pointsChanged() {
+  serverOutlineError = '';
+  outlineAsked += 1;
+  $('outline-status').textContent = points.length
+    ? `${points.length} point${points.length === 1 ? '' : 's'}${points.length < 3 ? ': at least 3 make an outline' : ''}`
+    : '';
+  check();
+  drawPad();
+  askOutline();
+}
+
+function drawPad() {
+  const pad = $('pad');
+  const f = form();
+  const g = s('g', { transform: 'scale(1,-1)' });
+  g.append(s('line', { class: 'axis', x1: -1.25, y1: 0, x2: 1.25, y2: 0 }), s('line', { class: 'axis', x1: 0, y1: -1.25, x2: 0, y2: 1.25 }));
+  const bad = Boolean(outlineProblem(f));
+  if (f.outline === 'disc') g.append(s('circle', { class: 'outline', cx: 0, cy: 0, r: 1, 'data-outline': 'disc' }));
+  else if (f.outline === 'ellipse') {
+    const a = Number(f.aspect);
+    const ok = Number.isFinite(a) && a > 0;
+    const k = ok ? Math.max(a, 1) : 1;
+    g.append(s('ellipse', { class: `outline${ok ? '' : ' bad'}`, cx: 0, cy: 0, rx: ok ? a / k : 1, ry: 1 / k, 'data-outline': 'ellipse' }));
+  } else {
+    if (points.length >= 2) {
+      g.append(s(points.length >= 3 ? 'polygon' : 'polyline', {
+        class: `outline${bad ? ' bad' : ''}`, points: pointsAttr(points), 'data-outline': 'polygon',
+      }));
+    }
+    for (const [x, y] of points) g.append(s('circle', { class: 'corner', cx: x, cy: y, r: 0.035 }));
+  }
+  pad.replaceChildren(g);
+  pad.dataset.outline = f.outline;
+  pad.dataset.points = String(points.length);
+  pad.dataset.bad = String(bad);
+}
+
+/** Adds a corner where the pad was clicked (choosing the polygon outline). */
+function padClick(event) {
+  const pad = $('pad');
+  const g = pad.firstElementChild;
+  const ctm = g?.getScreenCTM();
+  if (!ctm) return;
+  const p = new DOMPoint(event.clientX, event.clientY).matrixTransform(ctm.inverse());
+  const polygon = document.querySelector('input[name="outline"][value="polygon"]');
+  if (!polygon.checked) {
+    polygon.checked = true;
+    points = [];
+  }
+  points = [...points, [Math.round(p.x * 1e4) / 1e4, Math.round(p.y * 1e4) / 1e4]];
+  pointsChanged();
+}
+
+/** Draws `polygons` (and the target) into `svg` framed by `frame` [minX, minY, maxX, maxY],
+ * y up; `overlap` marks two tiles. */
+function drawSheet(svg, polygons, { frame, target = null, overlap = null }) {
+  const [x0, y0, x1, y1] = frame;
+  const size = Math.max(x1 - x0, y1 - y0) || 1;
+  const m = 0.05 * size;
+  const cx = (x0 + x1) / 2;
+  const cy = (y0 + y1) / 2;
+  const half = size / 2 + m;
+  svg.setAttribute('viewBox', `${cx - half} ${-cy - half} ${2 * half} ${2 * half}`);
+  const g = s('g', { transform: 'scale(1,-1)' });
+  polygons.forEach((poly, i) => {
+    const hit = overlap && (overlap[0] === i || overlap[1] === i);
+    g.append(s('polygon', { class: `tile${hit ? ' overlap' : ''}`, points: pointsAttr(poly), 'data-tile': i }));
+  });
+  if (target) g.append(s('polygon', { class: 'target', points: pointsAttr(target), 'data-target': '' }));
+  svg.replaceChildren(g);
+}
+
+async function main() {
+  data = await openData();
+  document.body.dataset.mode = data.mode;
+  $('mode').textContent = data.mode === 'static' ? 'static site (read-only)' : 'live server';
+  if (data.live) {
+    try {
+      settings = await getJson('./api/graded');
+    } catch (e) {
+      showError(e);
+    }
+  }
+  const initial = emptyForm(settings, window.location.search);
+  for (const key of ['design', 'rows', 'cols', 'iterations']) $(key).value = initial[key];
+  const limits = settings.limits ?? {};
+  if (limits.side !== undefined) {
+    for (const key of ['rows', 'cols']) $(key).max = String(limits.side);
+    $('iterations').max = String(limits.iterations);
+    $('region-cap').textContent = `This server grades at most ${limits.side} cells each way, ${limits.cells} cells and ${limits.tiles} tiles in all, ${limits.iterations} iterations.`;
+  }
+  $('graded-form').addEventListener('input', () => {
+    check();
+    drawPad();
+  });
+  $('graded-form').addEventListener('change', (e) => {
+    if (e.target.name === 'outline') pointsChanged();
+  });
+  $('graded-form').addEventListener('submit', (event) => {
+    event.preventDefault();
+    run();
+  });
+  $('pad').addEventListener('click', padClick);
+  $('undo-point').addEventListener('click', () => {
+    points = points.slice(0, -1);
+    pointsChanged();
+  });
+  $('clear-points').addEventListener('click', () => {
+    points = [];
+    pointsChanged();
+  });
+  $('stop').addEventListener('click', stop);
+  $('state-slider').addEventListener('input', () => {
+    pause();
+    showState(Number($('state-slider').value));
+  });
+  $('play').addEventListener('click', () => (player?.playing ? pause() : play()));
+  check();
+  drawPad();
+  document.body.dataset.ready = 'true';
+  if (!data.live) {
+    $('run').disabled = true;
+    $('progress-section').hidden = true;
+    $('run-note').textContent = 'The optimiser needs `isogami serve`: run the command below instead, or open this page from `isogami serve`.';
+    return;
+  }
+  if (settings.running?.length) attach(settings.running[0]);
+}
+
+function setRunning(running) {
+  $('run').disabled = running;
+  $('stop').disabled = !running;
+}
+
+async function run() {
+  if (!check()) {
+    showNotice($('notice'), { message: 'fix the form first: see the message beside the control', hint: '', kind: 'bad_parameter' });
+    return;
+  }
+  const f = form();
+  if (f.outline === 'polygon' && points.length < 3) {
+    $('outline-error').textContent = 'bad target: an outline needs at least three finite points';
+    return;
+  }
+  clearNotice($('notice'));
+  $('run').disabled = true;
+  try {
+    const started = await getJson('./api/graded', {
+      method: 'POST',
+      headers: { 'content-type': 'application/json' },
+      body: JSON.stringify(gradedBody(f)),
+    });
+    attach(started.id);
+  } catch (e) {
+    $('run').disabled = false;
+    showError(e);
+  }
+}
+
+function attach(id) {
+  jobId = id;
+  live = null;
+  pause();
+  player = null;
+  document.body.dataset.jobId = String(id);
+  document.body.dataset.gradedState = 'running';
+  document.body.dataset.snapshotsDrawn = '0';
+  $('results-section').hidden = true;
+  $('live-sheet').replaceChildren();
+  $('stage-line').textContent = 'Starting: the design’s own finite sheet, opened…';
+  setRunning(true);
+  clearTimeout(timer);
+  poll();
+}
+
+async function poll() {
+  const id = jobId;
+  let job;
+  try {
+    job = await getJson(`./api/graded/${encodeURIComponent(id)}`);
+  } catch (e) {
+    if (id !== jobId) return;
+    setRunning(false);
+    document.body.dataset.gradedState = 'lost';
+    showError(e);
+    return;
+  }
+  if (id !== jobId) return;
+  render(job);
+  if (job.state === 'running') timer = setTimeout(poll, POLL_MS);
+  else finish(job);
+}
+
+function render(job) {
+  const p = job.progress;
+  $('progress-line').textContent = progressLine(job);
+  const bar = $('progress-bar');
+  bar.max = Math.max(1, p?.max_iterations ?? 1);
+  bar.value = job.state === 'done' ? bar.max : Math.min(bar.max, p?.iteration ?? 0);
+  if (job.state === 'running') {
+    $('stage-line').textContent = job.stopping
+      ? 'Stopping…'
+      : p
+        ? `Fitting the shapes: stage ${p.stage + 1} of ${p.stages} (the pins stiffened at each stage); then the pins are closed and the path checked.`
+        : 'Starting: the design’s own finite sheet, opened…';
+  }
+  drawSnapshot(job);
+}
+
+/** Draws the job's snapshot when it is a new one. */
+function drawSnapshot(job) {
+  const snap = job.snapshot;
+  if (!snap || (live && live.count === snap.count)) return;
+  if (!live) {
+    // The target sized to the sheet's area at its first snapshot (the library sizes it to the
+    // start's); the report's fitted outline replaces it at the end.
+    const target = outlineAtArea(job.request.outline_points, hullArea(snap.polygons));
+    live = { target, frame: bounds(snap.polygons, [target]), count: 0 };
+    $('live-target-note').textContent = '(sized to the sheet’s area at the start)';
+  }
+  let target = live.target;
+  if (job.state === 'done' && job.result) {
+    target = job.result.report.target;
+    $('live-target-note').textContent = '(at the fitted scale)';
+  }
+  const b = bounds(snap.polygons, [target]);
+  live.frame = [Math.min(live.frame[0], b[0]), Math.min(live.frame[1], b[1]), Math.max(live.frame[2], b[2]), Math.max(live.frame[3], b[3])];
+  live.count = snap.count;
+  drawSheet($('live-sheet'), snap.polygons, { frame: live.frame, target });
+  $('live-sheet').dataset.iteration = String(snap.iteration);
+  document.body.dataset.snapshotsDrawn = String(Number(document.body.dataset.snapshotsDrawn || 0) + 1);
+}
+
+function finish(job) {
+  clearTimeout(timer);
+  setRunning(false);
+  const words = { done: 'Done', failed: 'Failed', stopped: 'Stopped' };
+  const iterations = job.progress ? ` after ${job.progress.iteration} iterations` : '';
+  $('stage-line').textContent = `${words[job.state] ?? job.state}${iterations} in ${job.elapsed.toFixed(1)} s.`;
+  if (job.state === 'done') showResult(job);
+  else if (job.error) showNotice($('notice'), { message: job.error.error, hint: job.error.hint, kind: job.error.kind });
+  document.body.dataset.gradedState = job.state;
+}
+
+function showResult(job) {
+  const result = job.result;
+  $('report').replaceChildren(...reportLines(result).map((l) => {
+    const li = document.createElement('li');
+    li.dataset.key = l.key;
+    li.dataset.testid = `report-${l.key}`;
+    if (l.key === 'path') li.dataset.reached = String(result.path.reached);
+    li.textContent = l.text;
+    return li;
+  }));
+  const states = playerStates(result);
+  const all = states.map((st) => posedPolygons(result.sheet, st.poses));
+  player = { result, states, all, frame: bounds(...all, [result.report.target]), playing: false, raf: 0 };
+  const slider = $('state-slider');
+  slider.max = String(states.length - 1);
+  slider.value = String(states.length - 1);
+  showState(states.length - 1);
+  $('download').href = `./api/graded/${encodeURIComponent(job.id)}/sheet`;
+  $('download').setAttribute('download', `graded-${job.request.rows}x${job.request.cols}.json`);
+  $('results-section').hidden = false;
+}
+
+/** Shows player state `k` (0 closed … n − 1 the optimised opened state). */
+function showState(k) {
+  if (!player) return;
+  const n = player.states.length;
+  const st = player.states[k];
+  const opened = k === n - 1;
+  drawSheet($('player-sheet'), player.all[k], {
+    frame: player.frame,
+    target: opened ? player.result.report.target : null,
+    overlap: st.overlap ?? null,
+  });
+  $('player-sheet').dataset.state = String(k);
+  $('state-value').textContent = `${(100 * st.opening).toFixed(0)} % open${st.dof === null || st.dof === undefined ? '' : ` · DOF ${st.dof}`}${st.overlap ? ` · tiles ${st.overlap[0]} and ${st.overlap[1]} overlap` : ''}`;
+}
+
+function play() {
+  if (!player || player.states.length < 2) return;
+  player.playing = true;
+  $('play').textContent = 'Pause';
+  $('play').setAttribute('aria-pressed', 'true');
+  const n = player.states.length;
+  const start = performance.now();
+  const from = Number($('state-slider').value);
+  // Ping-pong over 0 … n − 1, starting where the slider is, heading for the other end.
+  const period = 2 * (n - 1);
+  const phase0 = from === n - 1 ? n - 1 : from;
+  const step = (now) => {
+    if (!player?.playing) return;
+    const t = (phase0 + Math.floor(((now - start) / 1000) * PLAY_RATE)) % period;
+    const k = t < n ? t : period - t;
+    if (String(k) !== $('state-slider').value || $('player-sheet').dataset.state !== String(k)) {
+      $('state-slider').value = String(k);
+      showState(k);
+    }
+    player.raf = requestAnimationFrame(step);
+  };
+  player.raf = requestAnimationFrame(step);
+}
+
+function pause() {
+  if (!player) return;
+  player.playing = false;
+  cancelAnimationFrame(player.raf);
+  $('play').textContent = 'Play';
+  $('play').setAttribute('aria-pressed', 'false');
+}
+
+async function stop() {
+  if (jobId === null) return;
+  $('stop').disabled = true;
+  try {
+    render(await getJson(`./api/graded/${encodeURIComponent(jobId)}`, { method: 'DELETE' }));
+  } catch (e) {
+    showError(e);
+  }
+}
+
+main();

@@ -1,0 +1,123 @@
+// The graded-sheet page's pure logic: the form pre-filled from ?design=, the region checked
+// against the caps as typed, the outline's text, the star-shaped check (the library's rule and
+// words, on the same cases as its tests), the POST body and the command saying the same thing,
+// tiles placed from poses as GradedSheet::opened_polygon places them, the player's order, the
+// target sized to an area, and the report's lines.
+
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import {
+  DEFAULTS, bounds, centroid, cliCommand, closedPolygons, convexHull, emptyForm, gradedBody, hullArea,
+  iterationsProblem, outlineAtArea, outlineText, playerStates, posedPolygons, regionProblem, reportLines,
+  signedArea, starProblem,
+} from '../src/graded-model.js';
+import { shellSplit } from './shell.mjs';
+
+const limits = { side: 8, cells: 36, tiles: 300, iterations: 800, states: 16 };
+
+test('the form starts from ?design= or the default, with the server’s defaults', () => {
+  assert.equal(emptyForm(null).design, 'rotating-squares');
+  assert.equal(emptyForm(null, '?design=IH6%3A0.5%3A1x1%3Abb').design, 'IH6:0.5:1x1:bb');
+  assert.equal(emptyForm(null, '?design=%20').design, 'rotating-squares');
+  const f = emptyForm({ defaults: { rows: 4, cols: 5, iterations: 100 } });
+  assert.deepEqual([f.rows, f.cols, f.iterations, f.outline], ['4', '5', '100', 'disc']);
+  assert.equal(emptyForm(null).iterations, String(DEFAULTS.iterations));
+});
+
+test('the region and iterations are checked against the caps as typed', () => {
+  const f = (rows, cols, iterations = '60') => ({ rows, cols, iterations });
+  assert.equal(regionProblem(f('3', '3'), limits), '');
+  assert.equal(regionProblem(f('', '3'), limits), 'rows: give a whole number');
+  assert.equal(regionProblem(f('0', '3'), limits), 'rows must be a whole number of at least 1');
+  assert.equal(regionProblem(f('2.5', '3'), limits), 'rows must be a whole number of at least 1');
+  assert.equal(regionProblem(f('3', '9'), limits), "columns 9 is above this server's limit of 8");
+  assert.equal(regionProblem(f('7', '7'), limits), "a region of 7x7 = 49 cells is above this server's limit of 36 cells");
+  assert.equal(regionProblem(f('40', '40'), {}), '', 'no caps on a static site');
+  assert.equal(iterationsProblem(f('3', '3', '801'), limits), "iterations 801 is above this server's limit of 800");
+  assert.equal(iterationsProblem(f('3', '3', '0'), limits), 'iterations must be a whole number of at least 1');
+});
+
+test('outlines are written as isogami graded --target reads them', () => {
+  assert.equal(outlineText({ outline: 'disc' }), 'disc');
+  assert.equal(outlineText({ outline: 'ellipse', aspect: '1.4' }), 'ellipse:1.4,1');
+  const points = [[0, -1], [1.23456, 0], [0, 1], [-1, -0.00001]];
+  assert.equal(outlineText({ outline: 'polygon', points }), 'polygon:0,-1;1.2346,0;0,1;-1,0');
+});
+
+test('a drawn polygon is refused when its centroid does not see it whole, in the library’s words', () => {
+  // The library's own cases (graded::target tests).
+  assert.equal(starProblem([[0, -1], [2, 0], [1, 2], [-1, 2], [-2, 0]]), '');
+  assert.equal(starProblem([[-1, -1], [2, -1], [2, 2], [-1, 2]]), '');
+  assert.equal(starProblem([[-1, -1], [-1, 2], [2, 2], [2, -1]]), '', 'clockwise is fine');
+  const u = [[0, 0], [4, 0], [4, 4], [3, 4], [3, 1], [1, 1], [1, 4], [0, 4]];
+  assert.match(starProblem(u), /^bad target: the outline is not seen whole from its centroid \(edge \d+\); give a star-shaped outline$/);
+  assert.equal(starProblem([[0, 0], [1, 0]]), 'bad target: an outline needs at least three finite points');
+  assert.equal(starProblem([[0, 0], [1, 1], [2, 2]]), 'bad target: the outline encloses no area');
+});
+
+test('the body and the command say the same thing', () => {
+  const form = { design: ' rotating-squares ', rows: '2', cols: '3', outline: 'polygon', points: [[0, -1], [1, 0], [0, 1], [-1, 0]], iterations: '60' };
+  const body = gradedBody(form);
+  assert.deepEqual(body, { design: 'rotating-squares', rows: 2, cols: 3, outline: 'polygon:0,-1;1,0;0,1;-1,0', iterations: 60 });
+  const words = shellSplit(cliCommand(form));
+  assert.deepEqual(words, ['isogami', 'graded', '--design', 'rotating-squares', '--region', '2x3', '--target', body.outline,
+    '--iterations', '60', '--out', 'graded.json']);
+  const spec = cliCommand({ ...form, design: 'IH6:0.5:1x1:b b' });
+  assert.equal(shellSplit(spec)[3], 'IH6:0.5:1x1:b b');
+});
+
+// Two unit squares side by side, the second turned a quarter about its first node.
+const sheet = {
+  nodes: [[0, 0], [1, 0], [1, 1], [0, 1], [2, 0], [2, 1]],
+  tiles: [{ nodes: [0, 1, 2, 3] }, { nodes: [1, 4, 5, 2] }],
+  joints: [{ a: 0, b: 1, node: 1 }],
+};
+
+test('tiles are placed from poses as GradedSheet::opened_polygon places them', () => {
+  const close = (a, b) => a.every((p, i) => Math.abs(p[0] - b[i][0]) < 1e-12 && Math.abs(p[1] - b[i][1]) < 1e-12);
+  const rest = posedPolygons(sheet, [{ x: 0, y: 0, theta: 0 }, { x: 1, y: 0, theta: 0 }]);
+  assert.deepEqual(rest, closedPolygons(sheet));
+  const turned = posedPolygons(sheet, [{ x: 0, y: 0, theta: 0 }, { x: 5, y: 1, theta: Math.PI / 2 }]);
+  assert.ok(close(turned[1], [[5, 1], [5, 2], [4, 2], [4, 1]]), JSON.stringify(turned[1]));
+  assert.deepEqual(bounds(turned), [0, 0, 5, 2]);
+});
+
+test('the player runs closed to opened: the path check lists the opened state first', () => {
+  const result = { path: { states: [{ opening: 1 }, { opening: 0.5 }, { opening: 0 }] } };
+  assert.deepEqual(playerStates(result).map((s) => s.opening), [0, 0.5, 1]);
+  assert.deepEqual(playerStates(null), []);
+});
+
+test('areas, hulls and the target sized to an area', () => {
+  const square = [[-1, -1], [1, -1], [1, 1], [-1, 1]];
+  assert.equal(signedArea(square), 4);
+  assert.deepEqual(centroid([[0, 0], [2, 0], [2, 2], [0, 2]]), [1, 1]);
+  assert.deepEqual(convexHull([[0, 0], [1, 0], [0.5, 0.2], [1, 1], [0, 1]]), [[0, 0], [1, 0], [1, 1], [0, 1]]);
+  assert.equal(hullArea(closedPolygons(sheet)), 2);
+  const scaled = outlineAtArea(square, 16);
+  assert.equal(signedArea(scaled), 16);
+  assert.deepEqual(scaled[0], [-2, -2]);
+});
+
+test('the report names the fit, the path’s verdict and the overlapping tiles', () => {
+  const state = (opening, extra = {}) => ({ opening, dof: 1, joint_gap: 1e-7, overlap: null, poses: [], ...extra });
+  const result = {
+    sheet: { joints: [1, 2, 3], nodes: [1, 2, 3, 4, 5] },
+    report: {
+      tiles: 2, iterations: 60, cost: [9.4, 0.55], seconds: 0.5, joint_gap: 4.6e-6, max_outline_error: 0.0212,
+      median_outline_error: 0.0027, max_outside: 0.0212, min_corner_fraction: 0.35, min_edge_fraction: 0.44,
+      min_area_fraction: 0.52, target: [],
+    },
+    path: { states: [state(1), state(0.5, { overlap: [3, 7] }), state(0)], closed_spread: 2e-16, reached: false },
+  };
+  const lines = Object.fromEntries(reportLines(result).map((l) => [l.key, l.text]));
+  assert.match(lines.fit, /within 2\.12 % of the target \(median 0\.27 %\)/);
+  assert.match(lines.pins, /^Pins closed to 4\.6e-6 L/);
+  assert.match(lines.path, /^Does NOT open along one motion: one DOF at every state/);
+  assert.equal(lines.overlaps, 'Overlaps: tiles 3 and 7 at 50 % open.');
+  result.path.reached = true;
+  result.path.states[1].overlap = null;
+  const ok = Object.fromEntries(reportLines(result).map((l) => [l.key, l.text]));
+  assert.match(ok.path, /^Opens along one motion: the path check reached the closed tiling .* in 3 states/);
+  assert.equal(ok.overlaps, 'No two tiles overlap at any state of the path.');
+});
