@@ -1,6 +1,6 @@
 // Builds the browser front end: `node build.mjs <outdir>` bundles and minifies src/ into
 // <outdir>: index.html (catalogue), design.html (design page), inverse.html (inverse design),
-// app.js, design.js, inverse.js, style.css.
+// graded.html (graded sheets), app.js, design.js, inverse.js, graded.js, style.css, graded.css.
 // Every URL in them is relative, so the files work under `isogami serve` and from any
 // static host or sub-path. Called by crates/isogami-web's build.rs after `npm ci`.
 
@@ -35,10 +35,12 @@ await build({
     app: join(src, 'catalogue.js'),
     design: join(src, 'design.js'),
     inverse: join(src, 'inverse.js'),
+    graded: join(src, 'graded.js'),
   },
   outdir,
 });
 await build({ ...common, entryPoints: [join(src, 'style.css')], outfile: join(outdir, 'style.css') });
+await build({ ...common, entryPoints: [join(src, 'graded.css')], outfile: join(outdir, 'graded.css') });
 for (const name of await readdir(src)) {
   if (name.endsWith('.html')) await copyFile(join(src, name), join(outdir, name));
 }

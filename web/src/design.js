@@ -254,6 +254,7 @@ function showView(v, { fromEditor, source = null }) {
   } else if (notice) showNotice($('notice'), notice);
   else clearNotice($('notice'));
   $('spec').textContent = v.spec;
+  $('grade-link').href = `./graded.html?design=${encodeURIComponent(v.spec)}`;
   const origin = v.origin ?? 'live';
   $('origin').textContent = origin === 'live' ? 'live (not in the database)' : `${origin} design`;
   $('origin').dataset.origin = origin;
