@@ -11,13 +11,11 @@
 
 use super::model::{GradedSheet, OpenedPose};
 use super::problem::Problem;
+pub use super::rank::{dof, RANK_TOLERANCE};
 use crate::geometry::interiors_overlap;
-use crate::math::{DMat, DVec, Real};
+use crate::math::{DVec, Real};
 use crate::stop::KeepGoing;
 use serde::{Deserialize, Serialize};
-
-/// Largest pose count whose degrees of freedom are counted (a dense SVD).
-pub const DOF_MAX_TILES: usize = 700;
 
 /// One state of the path.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -26,7 +24,7 @@ pub struct PathState {
     pub opening: Real,
     /// Largest pin gap after closing the pins (length scales).
     pub joint_gap: Real,
-    /// Degrees of freedom (None: not counted, the sheet is too big for the dense count).
+    /// Degrees of freedom (up to [`super::rank::MAX_COUNTED`]; None: the count failed).
     pub dof: Option<usize>,
     /// The two smallest singular values of the pins' Jacobian past the rigid motions,
     /// relative to the largest (the mechanism's mode, then the next).
@@ -56,12 +54,6 @@ pub const PIN_TOLERANCE: Real = 1e-6;
 /// Overlaps shallower than this are ignored (length scales): pins closed to
 /// [`PIN_TOLERANCE`] let two pinned tiles' edges cross by about that much beside the pin.
 pub const OVERLAP_TOLERANCE: Real = 1e-5;
-
-/// Singular values of the pins' Jacobian below this fraction of the largest count as zero.
-/// A graded sheet is a mechanism to the precision its pins close to (~1e-7 L): its mode's
-/// singular value sits near 1e-6 of the largest, the next one near 1e-2 (measured on graded
-/// rotating squares along their whole path), so the threshold sits between the two.
-pub const RANK_TOLERANCE: Real = 1e-4;
 
 /// Follows the path of `sheet` in `steps` steps (at least 2).
 pub fn check_path(
@@ -118,43 +110,6 @@ pub fn check_path(
         closed_spread,
         reached,
     })
-}
-
-/// Degrees of freedom of a state (3 per tile, less the rank of the pins' Jacobian, less
-/// the 3 rigid motions) and the two smallest singular values past the rigid motions (the
-/// mechanism's mode and the next), relative to the largest; None above [`DOF_MAX_TILES`].
-pub fn dof(sheet: &GradedSheet) -> Option<(usize, [Real; 2])> {
-    let t = sheet.tiles.len();
-    if t > DOF_MAX_TILES {
-        return None;
-    }
-    let mut j = DMat::zeros(2 * sheet.joints.len(), 3 * t);
-    for (r, joint) in sheet.joints.iter().enumerate() {
-        for (tile, sign) in [(joint.a, 1.0), (joint.b, -1.0)] {
-            let p = sheet.opened_corner(tile, joint.node);
-            let pose = sheet.opened[tile];
-            // ∂p/∂(x, y) = I; ∂p/∂θ = perp(p − first node's opened position)
-            let d = p - crate::math::Vec2::new(pose.x, pose.y);
-            j[(2 * r, 3 * tile)] += sign;
-            j[(2 * r + 1, 3 * tile + 1)] += sign;
-            j[(2 * r, 3 * tile + 2)] += sign * -d.y;
-            j[(2 * r + 1, 3 * tile + 2)] += sign * d.x;
-        }
-    }
-    // Singular values of JᵀJ's square roots: 3T of them, zeros included.
-    let spectrum = crate::math::symmetric_eigen(j.transpose() * &j)?;
-    let mut sv: Vec<Real> = spectrum.values.iter().map(|v| v.max(0.0).sqrt()).collect();
-    sv.sort_by(|a, b| b.total_cmp(a));
-    let max = sv.first().copied().unwrap_or(0.0).max(1e-300);
-    let rank = sv.iter().filter(|&&s| s > RANK_TOLERANCE * max).count();
-    let n = sv.len();
-    // Past the 3 rigid motions (exact zeros): the smallest two.
-    let small = if n >= 5 {
-        [sv[n - 4] / max, sv[n - 5] / max]
-    } else {
-        [0.0, 0.0]
-    };
-    Some(((3 * t).saturating_sub(rank + 3), small))
 }
 
 /// A pair of tiles whose opened interiors overlap (pinned neighbours touch only at their

@@ -19,6 +19,7 @@ pub mod error;
 pub mod model;
 pub mod normal;
 pub mod problem;
+pub mod rank;
 pub mod solve;
 pub mod svg;
 pub mod target;

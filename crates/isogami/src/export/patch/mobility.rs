@@ -29,6 +29,63 @@ pub struct PatchMobility {
     pub added_tiles: usize,
     /// Area of the rectangle's tiles kept over the area of all of them.
     pub covered_fraction: Real,
+    /// For a graded sheet (issue 25), what it is as a mechanism of its own; then `dof` and
+    /// `raw_dof` are its [`GradedMobility::dof`] (0 when not counted), `completed` is false
+    /// and the tile counts are its own. None for a design's patch.
+    pub graded: Option<GradedMobility>,
+}
+
+/// A graded sheet as a mechanism of its own: its tiles each have their own shape, so the
+/// periodic design's count says nothing about it; its degrees of freedom are counted on its
+/// own pins ([`crate::graded::deploy::dof`]) at one of its opened states.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GradedMobility {
+    /// Opening of the state the degrees of freedom were counted at, as a fraction of the
+    /// optimised state's (the opened state nearest half open: the closed tiling and a fully
+    /// opened state can be singular).
+    pub counted_at: Real,
+    /// Degrees of freedom there, rigid motions taken out (counted up to
+    /// [`crate::graded::rank::MAX_COUNTED`]); None when the count failed.
+    pub dof: Option<usize>,
+    /// Whether the path check written with the sheet (`isogami graded`'s `path`) followed it
+    /// from opened to closed along one motion; None when the sheet came without one.
+    pub path_reached: Option<bool>,
+}
+
+impl GradedMobility {
+    /// The record of a graded sheet of `tiles` tiles.
+    pub(super) fn patch_mobility(self, tiles: usize) -> PatchMobility {
+        let dof = self.dof.unwrap_or(0);
+        PatchMobility {
+            completed: false,
+            dof,
+            raw_dof: dof,
+            requested_tiles: tiles,
+            removed_tiles: 0,
+            added_tiles: 0,
+            covered_fraction: 1.0,
+            graded: Some(self),
+        }
+    }
+
+    /// A warning for a graded sheet not known to open along one motion.
+    fn warning(&self) -> Option<String> {
+        let mut said = Vec::new();
+        match self.dof {
+            None => said.push("its degrees of freedom could not be counted".into()),
+            Some(1) => {}
+            Some(d) => said.push(format!(
+                "it has {d} degrees of freedom at {:.0} % open, not one",
+                100.0 * self.counted_at
+            )),
+        }
+        if self.path_reached == Some(false) {
+            said.push(
+                "its path check did not follow it from opened to closed along one motion".into(),
+            );
+        }
+        (!said.is_empty()).then(|| format!("this graded sheet: {}", said.join("; ")))
+    }
 }
 
 impl PatchMobility {
@@ -42,11 +99,15 @@ impl PatchMobility {
             removed_tiles: 0,
             added_tiles: 0,
             covered_fraction: 1.0,
+            graded: None,
         }
     }
 
     /// A warning for a sheet that is not one mechanism with one DOF, naming its DOF.
     pub fn warning(&self) -> Option<String> {
+        if let Some(g) = &self.graded {
+            return g.warning();
+        }
         (self.dof != 1).then(|| {
             format!(
                 "this raw patch has {} degrees of freedom with a free boundary (its boundary \
@@ -113,6 +174,7 @@ pub(super) fn finite_patch(
             removed_tiles: c.report.removed.len(),
             added_tiles: c.report.added.len(),
             covered_fraction: c.report.covered_fraction,
+            graded: None,
         },
         None => PatchMobility::raw(analysis.raw_mobility.dof, analysis.raw.len()),
     };
