@@ -289,5 +289,5 @@ export function fmtCost(v) {
 export function progressLine(job) {
   const p = job.progress;
   if (!p) return job.state === 'running' ? 'Setting up the sheet…' : '';
-  return `iteration ${p.iteration} of at most ${p.max_iterations} · cost ${fmtCost(p.cost)} · stage ${p.stage + 1} of ${p.stages} · ${job.elapsed.toFixed(1)} s`;
+  return `iteration ${p.iteration} (limit ${p.max_iterations}) · cost ${fmtCost(p.cost)} · stage ${p.stage + 1} of ${p.stages} · ${job.elapsed.toFixed(1)} s`;
 }

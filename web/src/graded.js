@@ -29,7 +29,7 @@ let timer = null;
 let outlineAsked = 0;
 let serverOutlineError = '';
 let live = null; // { frame, target, count }
-let player = null; // { result, states, frame, playing, raf }
+let player = null; // { result, states, all, frame, playing, timer }
 
 /** An SVG element. */
 function s(tag, attrs = {}) {
@@ -285,6 +285,7 @@ function attach(id) {
   document.body.dataset.snapshotsDrawn = '0';
   $('results-section').hidden = true;
   $('live-sheet').replaceChildren();
+  $('live-sheet').hidden = true;
   $('stage-line').textContent = 'Starting: the design’s own finite sheet, opened…';
   setRunning(true);
   clearTimeout(timer);
@@ -345,6 +346,7 @@ function drawSnapshot(job) {
   live.frame = [Math.min(live.frame[0], b[0]), Math.min(live.frame[1], b[1]), Math.max(live.frame[2], b[2]), Math.max(live.frame[3], b[3])];
   live.count = snap.count;
   drawSheet($('live-sheet'), snap.polygons, { frame: live.frame, target });
+  $('live-sheet').hidden = false;
   $('live-sheet').dataset.iteration = String(snap.iteration);
   document.body.dataset.snapshotsDrawn = String(Number(document.body.dataset.snapshotsDrawn || 0) + 1);
 }
@@ -372,7 +374,7 @@ function showResult(job) {
   }));
   const states = playerStates(result);
   const all = states.map((st) => posedPolygons(result.sheet, st.poses));
-  player = { result, states, all, frame: bounds(...all, [result.report.target]), playing: false, raf: 0 };
+  player = { result, states, all, frame: bounds(...all, [result.report.target]), playing: false, timer: 0 };
   const slider = $('state-slider');
   slider.max = String(states.length - 1);
   slider.value = String(states.length - 1);
@@ -403,28 +405,24 @@ function play() {
   $('play').textContent = 'Pause';
   $('play').setAttribute('aria-pressed', 'true');
   const n = player.states.length;
-  const start = performance.now();
-  const from = Number($('state-slider').value);
-  // Ping-pong over 0 … n − 1, starting where the slider is, heading for the other end.
+  // Ping-pong over 0 … n − 1 from where the slider is, heading for the other end. A timer,
+  // not animation frames: those stop while the page is hidden, a timer only slows.
   const period = 2 * (n - 1);
-  const phase0 = from === n - 1 ? n - 1 : from;
-  const step = (now) => {
-    if (!player?.playing) return;
-    const t = (phase0 + Math.floor(((now - start) / 1000) * PLAY_RATE)) % period;
+  const from = Number($('state-slider').value);
+  let t = from === n - 1 ? n - 1 : from;
+  clearInterval(player.timer);
+  player.timer = setInterval(() => {
+    t = (t + 1) % period;
     const k = t < n ? t : period - t;
-    if (String(k) !== $('state-slider').value || $('player-sheet').dataset.state !== String(k)) {
-      $('state-slider').value = String(k);
-      showState(k);
-    }
-    player.raf = requestAnimationFrame(step);
-  };
-  player.raf = requestAnimationFrame(step);
+    $('state-slider').value = String(k);
+    showState(k);
+  }, 1000 / PLAY_RATE);
 }
 
 function pause() {
   if (!player) return;
   player.playing = false;
-  cancelAnimationFrame(player.raf);
+  clearInterval(player.timer);
   $('play').textContent = 'Play';
   $('play').setAttribute('aria-pressed', 'false');
 }

@@ -1,0 +1,261 @@
+// The graded-sheet page over `isogami serve`, in real headless Chromium: reached from the
+// catalogue's navigation, a small sheet (3×3 cells of rotating squares, few iterations) grades
+// while the page watches — the drawing of the sheet as it stands changes during the run —, the
+// report appears, the player's closed and opened ends differ and the tiles drawn there are the
+// run's poses, the download is the job's result; the region is checked against the caps as
+// typed; a non-star polygon drawn on the pad shows the library's one-line error and starts
+// nothing; Stop ends a run; a design page's "grade this design" pre-fills the design; on the
+// static site the page shows the command instead of running.
+
+import { after, before, test } from 'node:test';
+import assert from 'node:assert/strict';
+import {
+  buildSite, byTestId, downloadText, getJson, launchBrowser, newPage, problems, screenshot, serveFolder, startServer,
+} from './harness.mjs';
+import { posedPolygons } from '../src/graded-model.js';
+import { shellSplit } from '../test/shell.mjs';
+
+let server;
+let browser;
+
+before(async () => {
+  server = await startServer();
+  browser = await launchBrowser();
+});
+
+after(async () => {
+  await browser?.close();
+  await server?.stop();
+});
+
+/** Stops every running job (so that a test's page does not attach to one a failed test left). */
+async function stopAll() {
+  for (const id of (await getJson(`${server.base}/api/graded`)).running) {
+    await fetch(`${server.base}/api/graded/${id}`, { method: 'DELETE' });
+    while ((await getJson(`${server.base}/api/graded/${id}`)).state === 'running') await new Promise((ok) => setTimeout(ok, 50));
+  }
+}
+
+const state = (page) => page.evaluate(() => document.body.dataset.gradedState ?? '');
+
+/** The polygons drawn as tiles in an SVG of the page, as numbers. */
+function drawnTiles(page, testid) {
+  return page.$$eval(`[data-testid="${testid}"] polygon.tile`, (els) =>
+    els.map((e) => e.getAttribute('points').trim().split(/\s+/).map((p) => p.split(',').map(Number))));
+}
+
+function assertSamePolygons(drawn, expected, what) {
+  assert.equal(drawn.length, expected.length, `${what}: tile count`);
+  let worst = 0;
+  drawn.forEach((poly, i) => {
+    assert.equal(poly.length, expected[i].length, `${what}: corners of tile ${i}`);
+    poly.forEach(([x, y], k) => {
+      worst = Math.max(worst, Math.abs(x - expected[i][k][0]), Math.abs(y - expected[i][k][1]));
+    });
+  });
+  assert.ok(worst < 1e-5, `${what}: drawn tiles ${worst} from the poses`);
+}
+
+/** Clicks the pad at outline coordinates (x, y), y up (mapped to the screen by the pad's own
+ * transform, so the page reads back the same point to its rounding). */
+async function clickPad(page, x, y) {
+  const at = await page.evaluate(([px, py]) => {
+    const g = document.querySelector('[data-testid="draw-pad"] g');
+    const p = new DOMPoint(px, py).matrixTransform(g.getScreenCTM());
+    return [p.x, p.y];
+  }, [x, y]);
+  await page.mouse.click(at[0], at[1]);
+}
+
+test('a small sheet grades while the page watches, then reports, plays and downloads', async () => {
+  const page = await newPage(browser);
+  await page.goto(`${server.base}/index.html`);
+  await byTestId(page, 'nav-graded').click();
+  await page.waitForURL(/graded\.html$/);
+  await page.waitForFunction(() => document.body.dataset.ready === 'true');
+  assert.equal(await byTestId(page, 'design').inputValue(), 'rotating-squares');
+  // Every field has a label; the caps come from the server and are checked as typed.
+  const unlabelled = await page.$$eval('#graded-form input', (els) =>
+    els.filter((e) => e.labels.length === 0 && !e.getAttribute('aria-label')).map((e) => e.id || e.name));
+  assert.deepEqual(unlabelled, []);
+  const settings = await getJson(`${server.base}/api/graded`);
+  assert.equal(await byTestId(page, 'rows').getAttribute('max'), String(settings.limits.side));
+  await byTestId(page, 'cols').fill('9');
+  assert.equal(await byTestId(page, 'region-error').textContent(), `columns 9 is above this server's limit of ${settings.limits.side}`, 'region error for 3x9');
+  await byTestId(page, 'rows').fill('7');
+  await byTestId(page, 'cols').fill('7');
+  assert.match(await byTestId(page, 'region-error').textContent(), /49 cells is above this server's limit of 36 cells/);
+  await byTestId(page, 'rows').fill('3');
+  await byTestId(page, 'cols').fill('3');
+  assert.equal(await byTestId(page, 'region-error').textContent(), '', 'no region error for 3x3');
+  await byTestId(page, 'iterations').fill('150');
+  assert.deepEqual(shellSplit(await byTestId(page, 'graded-command').textContent()),
+    ['isogami', 'graded', '--design', 'rotating-squares', '--region', '3x3', '--target', 'disc', '--iterations', '150', '--out', 'graded.json']);
+
+  // Record every drawing of the live sheet and the job's state then.
+  await page.evaluate(() => {
+    window.liveDrawings = [];
+    const svg = document.querySelector('[data-testid="live-sheet"]');
+    new MutationObserver(() => {
+      if (svg.firstChild) window.liveDrawings.push({ state: document.body.dataset.gradedState, iteration: svg.dataset.iteration, svg: svg.innerHTML });
+    }).observe(svg, { childList: true });
+  });
+  const started = page.waitForResponse((r) => r.url().endsWith('/api/graded') && r.request().method() === 'POST');
+  await byTestId(page, 'run').click();
+  assert.equal((await started).status(), 202);
+  await page.waitForFunction(() => document.body.dataset.gradedState === 'running');
+  assert.match(await byTestId(page, 'progress-line').textContent(), /iteration \d+ \(limit 150\)|Setting up/);
+  await page.waitForFunction(() => ['done', 'failed', 'stopped'].includes(document.body.dataset.gradedState), null, { timeout: 60000 });
+  assert.equal(await state(page), 'done', await page.locator('#notice').textContent());
+  const drawings = await page.evaluate(() => window.liveDrawings);
+  const whileRunning = drawings.filter((d) => d.state === 'running');
+  assert.ok(whileRunning.length >= 2, `the sheet was drawn ${whileRunning.length} times while it ran`);
+  assert.ok(new Set(whileRunning.map((d) => d.svg)).size >= 2, 'the drawing changed during the run');
+  assert.ok(new Set(whileRunning.map((d) => d.iteration)).size >= 2, 'snapshots of different iterations');
+  assert.equal(await byTestId(page, 'progress-bar').evaluate((b) => b.value === b.max), true);
+
+  // The report, as the job says.
+  const id = await page.evaluate(() => document.body.dataset.jobId);
+  const job = await getJson(`${server.base}/api/graded/${id}`);
+  const result = job.result;
+  const fit = await byTestId(page, 'report-fit').textContent();
+  assert.ok(fit.includes(`within ${(100 * result.report.max_outline_error).toFixed(2)} %`), fit);
+  const path = await byTestId(page, 'report-path').textContent();
+  assert.match(path, result.path.reached ? /^Opens along one motion/ : /^Does NOT open along one motion/);
+  assert.match(await byTestId(page, 'report-overlaps').textContent(), /^(No two tiles overlap|Overlaps: tiles \d+ and \d+)/);
+
+  // The player starts at the opened end: the tiles drawn are the optimised state's poses,
+  // over the fitted target.
+  const n = result.path.states.length;
+  assert.equal(await byTestId(page, 'state-slider').getAttribute('max'), String(n - 1));
+  assert.equal(await byTestId(page, 'state-slider').inputValue(), String(n - 1));
+  const opened = await drawnTiles(page, 'player-sheet');
+  assertSamePolygons(opened, posedPolygons(result.sheet, result.path.states[0].poses), 'opened end');
+  assert.equal(await page.locator('[data-testid="player-sheet"] polygon.target').count(), 1);
+  const openedShot = await byTestId(page, 'player-sheet').screenshot();
+  // The closed end (Home on the slider): the closed tiling, no target.
+  await byTestId(page, 'state-slider').focus();
+  await page.keyboard.press('Home');
+  assert.equal(await page.evaluate(() => document.querySelector('[data-testid="player-sheet"]').dataset.state), '0');
+  const closed = await drawnTiles(page, 'player-sheet');
+  assertSamePolygons(closed, posedPolygons(result.sheet, result.path.states[n - 1].poses), 'closed end');
+  assert.equal(await page.locator('[data-testid="player-sheet"] polygon.target').count(), 0);
+  const moved = Math.max(...closed.flatMap((poly, i) => poly.map(([x, y], k) => Math.hypot(x - opened[i][k][0], y - opened[i][k][1]))));
+  assert.ok(moved > 0.1, `tiles moved ${moved} between the ends`);
+  const closedShot = await byTestId(page, 'player-sheet').screenshot();
+  assert.ok(!openedShot.equals(closedShot), 'the drawings of the two ends differ');
+  assert.match(await byTestId(page, 'state-value').textContent(), /^0 % open/);
+  // Play moves through the states.
+  await byTestId(page, 'play').click();
+  await page.waitForFunction(() => Number(document.querySelector('[data-testid="player-sheet"]').dataset.state) >= 3);
+  await byTestId(page, 'play').click();
+  assert.equal(await byTestId(page, 'play').getAttribute('aria-pressed'), 'false');
+
+  // The download is the job's result, as `isogami graded --out` writes it.
+  const file = await downloadText(page, () => byTestId(page, 'download').click());
+  assert.equal(file.name, 'graded-3x3.json');
+  assert.deepEqual(JSON.parse(file.text), result);
+  assert.ok((await screenshot(browser, page, 'graded-done')) > 20);
+  assert.deepEqual(problems(page), []);
+});
+
+test('a polygon drawn on the pad: a non-star one shows the library’s error and starts nothing', async () => {
+  await stopAll();
+  const page = await newPage(browser);
+  await page.goto(`${server.base}/graded.html`);
+  await page.waitForFunction(() => document.body.dataset.ready === 'true');
+  // A U: its centroid does not see the inside of the notch.
+  const u = [[-1, -1], [1, -1], [1, 1], [0.5, 1], [0.5, -0.5], [-0.5, -0.5], [-0.5, 1], [-1, 1]];
+  for (const [x, y] of u) await clickPad(page, x, y);
+  assert.equal(await byTestId(page, 'outline-polygon').isChecked(), true);
+  await page.waitForFunction(() => Number(document.body.dataset.outlineChecks || 0) >= 1 &&
+    document.querySelector('[data-testid="draw-pad"]').dataset.points === '8');
+  await page.waitForFunction(() => document.querySelector('[data-testid="outline-error"]').textContent !== '');
+  const shown = await byTestId(page, 'outline-error').textContent();
+  // The library's message for the outline the page would send (the command's --target).
+  const words = shellSplit(await byTestId(page, 'graded-command').textContent());
+  const target = words[words.indexOf('--target') + 1];
+  assert.match(target, /^polygon:(-?[\d.]+,-?[\d.]+;){7}-?[\d.]+,-?[\d.]+$/);
+  const res = await fetch(`${server.base}/api/graded/outline?outline=${encodeURIComponent(target)}`);
+  assert.equal(res.status, 400);
+  assert.equal(shown, (await res.json()).error);
+  assert.match(shown, /not seen whole from its centroid/);
+  assert.equal(await byTestId(page, 'draw-pad').getAttribute('data-bad'), 'true');
+  assert.ok((await screenshot(browser, page, 'graded-bad-polygon')) > 20);
+  // Grade starts nothing.
+  let posted = false;
+  page.on('request', (r) => {
+    if (r.url().endsWith('/api/graded') && r.method() === 'POST') posted = true;
+  });
+  await byTestId(page, 'run').click();
+  await page.waitForTimeout(300);
+  assert.equal(posted, false);
+  assert.equal(await state(page), '', 'no job attached or started');
+  // A diamond is fine.
+  await byTestId(page, 'clear-points').click();
+  for (const [x, y] of [[0, -1], [1, 0], [0, 1], [-1, 0]]) await clickPad(page, x, y);
+  await page.waitForFunction(() => document.querySelector('[data-testid="draw-pad"]').dataset.points === '4');
+  await page.waitForTimeout(400);
+  assert.equal(await byTestId(page, 'outline-error').textContent(), '');
+  assert.equal(await byTestId(page, 'draw-pad').getAttribute('data-bad'), 'false');
+  // Where the clicks landed, to the pixel (the pad is 240 px across 2.5 units).
+  const drawn = shellSplit(await byTestId(page, 'graded-command').textContent());
+  const corners = drawn[drawn.indexOf('--target') + 1].replace('polygon:', '').split(';').map((p) => p.split(',').map(Number));
+  [[0, -1], [1, 0], [0, 1], [-1, 0]].forEach(([x, y], k) => {
+    assert.ok(Math.hypot(corners[k][0] - x, corners[k][1] - y) < 0.02, `corner ${k}: ${corners[k]}`);
+  });
+  // The problems of the page are the 400s of the checked outline alone.
+  assert.deepEqual(problems(page, [/^400 GET .*\/api\/graded\/outline\?outline=polygon/]), []);
+});
+
+test('Stop ends a run, and a design page’s link pre-fills the design', async () => {
+  await stopAll();
+  const page = await newPage(browser);
+  const rows = await getJson(`${server.base}/api/designs?limit=1`);
+  const spec = rows.rows[0].spec;
+  await page.goto(`${server.base}/design.html?spec=${encodeURIComponent(spec)}`);
+  await page.waitForFunction((s) => document.querySelector('[data-testid="grade-link"]').getAttribute('href').includes(encodeURIComponent(s)), spec);
+  await byTestId(page, 'grade-link').click();
+  await page.waitForURL(/graded\.html\?design=/);
+  await page.waitForFunction(() => document.body.dataset.ready === 'true');
+  assert.equal(await byTestId(page, 'design').inputValue(), spec);
+
+  await byTestId(page, 'design').fill('rotating-squares');
+  await byTestId(page, 'rows').fill('6');
+  await byTestId(page, 'cols').fill('6');
+  await byTestId(page, 'outline-ellipse').check();
+  await byTestId(page, 'iterations').fill('800');
+  await byTestId(page, 'run').click();
+  await page.waitForFunction(() => Number(document.body.dataset.snapshotsDrawn || 0) >= 1, null, { timeout: 30000 });
+  assert.equal(await state(page), 'running');
+  await byTestId(page, 'stop').click();
+  await page.waitForFunction(() => document.body.dataset.gradedState === 'stopped', null, { timeout: 15000 });
+  assert.match(await page.locator('#notice').textContent(), /grading stopped by request/);
+  assert.ok(await page.locator('#results-section').isHidden());
+  assert.equal(await byTestId(page, 'run').isDisabled(), false);
+  assert.deepEqual(problems(page), []);
+});
+
+test('on the static site the page says the optimiser needs the server', async () => {
+  const site = await buildSite();
+  const files = await serveFolder(site.dir, '/sub');
+  try {
+    const page = await newPage(browser);
+    await page.goto(`${files.base}/index.html`);
+    await byTestId(page, 'nav-graded').click();
+    await page.waitForURL(/graded\.html$/);
+    await page.waitForFunction(() => document.body.dataset.ready === 'true' && document.body.dataset.mode === 'static');
+    assert.ok(await byTestId(page, 'run').isDisabled());
+    assert.match(await byTestId(page, 'run-note').textContent(), /needs `isogami serve`/);
+    assert.ok(await page.locator('#progress-section').isHidden());
+    await byTestId(page, 'outline-ellipse').check();
+    assert.match(await byTestId(page, 'graded-command').textContent(), /--target ellipse:1\.4,1/);
+    // The drawn polygon is checked in the page (the library's rule and words).
+    for (const [x, y] of [[-1, -1], [1, -1], [1, 1], [0.5, 1], [0.5, -0.5], [-0.5, -0.5], [-0.5, 1], [-1, 1]]) await clickPad(page, x, y);
+    assert.match(await byTestId(page, 'outline-error').textContent(), /^bad target: the outline is not seen whole from its centroid/);
+    assert.deepEqual(problems(page), []);
+  } finally {
+    await files.stop();
+    await site.remove();
+  }
+});
