@@ -124,7 +124,7 @@ create_exception!(
     isogami,
     FiniteError,
     IsogamiError,
-    "A finite sheet that cannot be made or deployed: an empty or bad region, a request out of range, no one-DOF sheet in the region, or a floppy sheet asked to deploy."
+    "A finite sheet that cannot be made, deployed or graded: an empty or bad region, a request out of range, no one-DOF sheet in the region, a floppy sheet asked to deploy, a graded sheet's target that cannot be read (text or SVG file) or a graded run's file that cannot be loaded."
 );
 
 /// The Python exception of a library error.
@@ -146,6 +146,7 @@ pub fn library(e: isogami::Error) -> PyErr {
         E::Inverse(_) => InverseError::new_err(message),
         E::Shape(_) => ShapeError::new_err(message),
         E::Finite(_) => FiniteError::new_err(message),
+        E::Graded(g) => graded(g, message),
         _ => IsogamiError::new_err(message),
     }
 }
@@ -162,6 +163,16 @@ fn deploy(e: &LibDeployError, message: String) -> PyErr {
         LibDeployError::Cancelled => CancelledError::new_err(message),
         LibDeployError::InMethod { error, .. } => deploy(error, message),
         _ => DeployError::new_err(message),
+    }
+}
+
+/// The class of a graded-sheet error: a finite sheet's, but for settings and cancellation.
+fn graded(e: &isogami::graded::GradedError, message: String) -> PyErr {
+    use isogami::graded::GradedError as G;
+    match e {
+        G::BadSetting(_) => SettingsError::new_err(message),
+        G::Cancelled => CancelledError::new_err(message),
+        _ => FiniteError::new_err(message),
     }
 }
 

@@ -6,7 +6,7 @@
 //!
 //! One module per concern: `design`, `family`, `cell`, `mobility`, `settings`,
 //! `deployment` (with `progress`), `measure`, `linkage`, `compare`, `query` and `database`,
-//! `export`, `inverse`, `shape`, `finite` (finite sheets), `errors`, and `convert` for the boundary's conversions.
+//! `export`, `inverse`, `shape`, `finite` (finite sheets), `graded` (graded sheets), `errors`, and `convert` for the boundary's conversions.
 
 mod cell;
 mod compare;
@@ -18,6 +18,7 @@ mod errors;
 mod export;
 mod family;
 mod finite;
+mod graded;
 mod inverse;
 mod linkage;
 mod measure;
@@ -53,6 +54,7 @@ fn _isogami(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<finite::PyFiniteSheet>()?;
     m.add_class::<finite::PySheetDeployment>()?;
     m.add_class::<pull::PySheetPull>()?;
+    m.add_class::<graded::PyGradedRun>()?;
     m.add_function(wrap_pyfunction!(design::design, m)?)?;
     m.add_function(wrap_pyfunction!(family::families, m)?)?;
     m.add_function(wrap_pyfunction!(family::family, m)?)?;
@@ -72,6 +74,8 @@ fn _isogami(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(finite::finite_sheet, m)?)?;
     m.add_function(wrap_pyfunction!(finite::deploy_sheet, m)?)?;
     m.add_function(wrap_pyfunction!(pull::pull_sheet, m)?)?;
+    m.add_function(wrap_pyfunction!(graded::graded, m)?)?;
+    m.add_function(wrap_pyfunction!(graded::load_graded, m)?)?;
     for f in [
         wrap_pyfunction!(measure::deformation_gradient, m)?,
         wrap_pyfunction!(measure::polar, m)?,

@@ -5,6 +5,7 @@
 
 use crate::errors;
 use pyo3::prelude::*;
+use pyo3::types::PyTuple;
 use std::time::{Duration, Instant};
 
 /// Ctrl-C is checked at least this often (and at every step when a callback is given).
@@ -73,7 +74,7 @@ impl Watch {
     pub fn tick(&mut self, states: usize) -> bool {
         let new = self.reported != Some(states);
         self.reported = Some(states);
-        self.check(new, |py| Ok(states.into_pyobject(py)?.into_any()))
+        self.check(new, |py| one(py, states.into_pyobject(py)?.into_any()))
     }
 
     /// As [`Watch::tick`], with the callback's one argument made by `argument` (called only
@@ -82,14 +83,29 @@ impl Watch {
         &mut self,
         argument: impl FnOnce(Python<'_>) -> PyResult<Bound<'_, PyAny>>,
     ) -> bool {
-        self.check(true, argument)
+        self.check(true, |py| one(py, argument(py)?))
+    }
+
+    /// As [`Watch::tick_with`], with all the callback's arguments made by `arguments` (a
+    /// graded sheet's `progress(iteration, cost)`).
+    pub fn tick_args(
+        &mut self,
+        arguments: impl FnOnce(Python<'_>) -> PyResult<Bound<'_, PyTuple>>,
+    ) -> bool {
+        self.check(true, arguments)
+    }
+
+    /// The timeout and (when due) Ctrl-C, never the callback: for the polls of
+    /// `isogami::stop::watched` while the work reports its own progress on another thread.
+    pub fn poll(&mut self) -> bool {
+        self.check(false, |py| Ok(PyTuple::empty(py)))
     }
 
     /// The timeout, then (when due) Ctrl-C and, when `call` is set, the callback.
     fn check(
         &mut self,
         call: bool,
-        argument: impl FnOnce(Python<'_>) -> PyResult<Bound<'_, PyAny>>,
+        arguments: impl FnOnce(Python<'_>) -> PyResult<Bound<'_, PyTuple>>,
     ) -> bool {
         let callback = self.callback.as_ref().filter(|_| call);
         if let Some(limit) = self.timeout {
@@ -108,7 +124,7 @@ impl Watch {
             match callback {
                 None => Ok(true),
                 Some(cb) => {
-                    let answer = cb.call1(py, (argument(py)?,))?;
+                    let answer = cb.call1(py, arguments(py)?)?;
                     // None (no return value) goes on; False (any falsy value) stops.
                     let answer = answer.bind(py);
                     Ok(answer.is_none() || answer.is_truthy()?)
@@ -157,4 +173,9 @@ impl Watch {
             None => otherwise(),
         }
     }
+}
+
+/// A one-argument tuple.
+fn one<'py>(py: Python<'py>, argument: Bound<'py, PyAny>) -> PyResult<Bound<'py, PyTuple>> {
+    PyTuple::new(py, [argument])
 }

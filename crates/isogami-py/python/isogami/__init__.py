@@ -17,7 +17,9 @@ Main entry points: ``design``, ``families``/``family``, ``cell``, ``analyze``, `
 (with ``DeploySettings``), ``linkages``, ``compare``, ``open_database`` (with ``Query``),
 ``export`` (``export_formats``), ``inverse`` (inverse design on a database), ``shape_mobility`` / ``follow_shape`` /
 ``rank_drop_shape`` / ``param_ranges_of`` (shape-aware mobility, each parameter's valid range), ``finite_sheet`` / ``deploy_sheet`` / ``pull_sheet`` (finite sheets: a region's
-degrees of freedom, its completion to one DOF and its deployment) and the measure functions (``polar``, ``principal_expansions``, ``expansion_profile``, ...).
+degrees of freedom, its completion to one DOF and its deployment), ``graded`` / ``load_graded``
+(graded sheets: tiles each shaped so that the sheet opens into a target outline, typed in or
+drawn in an SVG file) and the measure functions (``polar``, ``principal_expansions``, ``expansion_profile``, ...).
 Every library error is an ``IsogamiError`` subclass carrying the library's message.
 """
 
@@ -42,6 +44,7 @@ from ._isogami import (
     ExportError,
     FiniteError,
     FiniteSheet,
+    GradedRun,
     InverseError,
     InverseResult,
     ShapeError,
@@ -78,6 +81,8 @@ from ._isogami import (
     export,
     export_formats,
     finite_sheet,
+    graded,
+    load_graded,
     inverse,
     follow_shape,
     param_ranges_of,
@@ -114,6 +119,7 @@ __all__ = [
     "ExportError",
     "FiniteError",
     "FiniteSheet",
+    "GradedRun",
     "InverseError",
     "InverseResult",
     "ShapeError",
@@ -150,6 +156,8 @@ __all__ = [
     "export",
     "export_formats",
     "finite_sheet",
+    "graded",
+    "load_graded",
     "inverse",
     "follow_shape",
     "param_ranges_of",

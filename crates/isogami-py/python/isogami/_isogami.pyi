@@ -7,7 +7,7 @@ from typing import final, overload, Any, Callable, Dict, List, Literal, Mapping,
 import numpy as np
 import numpy.typing as npt
 
-from ._types import FloatArray, IntArray, Matrix, Vector, DesignLike, CellLike, FamilyLike, Progress, Method, Behaviour, FacetValues, Ranges, InverseProgress
+from ._types import FloatArray, IntArray, Matrix, Vector, DesignLike, CellLike, FamilyLike, Progress, Method, Behaviour, FacetValues, Ranges, InverseProgress, GradedProgress
 
 __version__: str
 __all__ = [
@@ -30,6 +30,7 @@ __all__ = [
     "Family",
     "FiniteError",
     "FiniteSheet",
+    "GradedRun",
     "InverseError",
     "InverseResult",
     "IsogamiError",
@@ -68,6 +69,8 @@ __all__ = [
     "families",
     "family",
     "finite_sheet",
+    "graded",
+    "load_graded",
     "follow_shape",
     "inverse",
     "linkages",
@@ -979,3 +982,57 @@ def deploy_sheet(
     **overrides: Any,
 ) -> SheetDeployment:
     """The (completed) finite sheet deployed with contact among its own tiles."""
+
+@final
+class GradedRun:
+    """A graded sheet, how its optimisation went and whether it opens along one motion."""
+
+    @property
+    def design(self) -> str: ...
+    @property
+    def length_scale(self) -> float: ...
+    @property
+    def nodes(self) -> FloatArray: ...
+    @property
+    def tiles(self) -> IntArray: ...
+    @property
+    def tile_nodes(self) -> List[IntArray]: ...
+    @property
+    def joints(self) -> IntArray: ...
+    @property
+    def poses(self) -> FloatArray: ...
+    @property
+    def states(self) -> FloatArray: ...
+    @property
+    def closed(self) -> List[FloatArray]: ...
+    @property
+    def opened(self) -> List[FloatArray]: ...
+    @property
+    def target(self) -> FloatArray: ...
+    @property
+    def reached(self) -> bool: ...
+    @property
+    def max_outline_error(self) -> float: ...
+    @property
+    def joint_gap(self) -> float: ...
+    def report(self) -> Dict[str, Any]: ...
+    def path_check(self) -> Dict[str, Any]: ...
+    def to_json(self) -> str: ...
+    def save(self, path: Union[str, PathLike[str]]) -> None: ...
+
+def graded(
+    design: DesignLike,
+    region: Union[Tuple[int, int], str] = (3, 3),
+    target: str = "disc",
+    t: Optional[float] = None,
+    states: int = 8,
+    iterations: int = 800,
+    *,
+    progress: Optional[GradedProgress] = None,
+    timeout: Optional[float] = None,
+) -> GradedRun:
+    """A design's finite sheet graded so that it opens into ``target`` (disc, ellipse:A,B,
+    polygon:x,y;..., or @file.svg), and the check that it opens along one motion."""
+
+def load_graded(path: Union[str, PathLike[str]]) -> GradedRun:
+    """The graded run ``GradedRun.save`` or ``isogami graded --out`` wrote."""

@@ -31,5 +31,7 @@ Ranges = Union[
     str,
 ]
 InverseProgress = Callable[[Dict[str, Any]], Optional[bool]]
+# A graded sheet's optimisation: progress(iteration, cost).
+GradedProgress = Callable[[int, float], Optional[bool]]
 
-__all__ = ["FloatArray", "IntArray", "Matrix", "Vector", "DesignLike", "CellLike", "FamilyLike", "Progress", "Method", "Behaviour", "FacetValues", "Ranges", "InverseProgress"]
+__all__ = ["FloatArray", "IntArray", "Matrix", "Vector", "DesignLike", "CellLike", "FamilyLike", "Progress", "Method", "Behaviour", "FacetValues", "Ranges", "InverseProgress", "GradedProgress"]

@@ -1,0 +1,432 @@
+//! `isogami.graded` / `isogami.GradedRun` and `isogami.load_graded`: a design's finite sheet
+//! graded so that it opens into a target outline, and the check that it does (the library's
+//! `api::graded_sheet`), as numpy arrays, with the JSON `isogami graded --json` prints.
+
+use crate::convert::{array, count_or, design_of, int_array, to_python, type_name};
+use crate::errors;
+use crate::progress::Watch;
+use isogami::api::{graded_sheet, GradedRun};
+use isogami::graded::{outline_from_svg, parse_outline, GradedRequest, GradedSheet, Outline};
+use numpy::{PyArray2, PyArray3};
+use pyo3::exceptions::{PyOSError, PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyTuple;
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// A graded sheet, how its optimisation went and whether it opens along one motion (what
+/// ``isogami graded --json`` prints, ``to_json()`` word for word).
+///
+/// The sheet: ``nodes`` (k, 2), the closed positions of the corners tiles share; tiles
+/// ``tiles`` (n, 3) as (i, j, tile) — tile ``tile`` of the design's cell in the copy at
+/// ``i·u + j·w`` — with their corners ``tile_nodes`` (rows of ``nodes``, counter-clockwise);
+/// pins ``joints`` (m, 3) as (a, b, node); the opened state ``poses`` (n, 3) as (x, y, θ) of
+/// each tile's first corner and its turn from closed; ``closed`` and ``opened``, one (c, 2)
+/// polygon per tile; ``states`` (s, n, 3), the poses part of the way open the pins close in
+/// too. Lengths are in units of the design's mean edge length (``length_scale`` in the
+/// design's tiling units), the opened sheet centred on the origin.
+#[pyclass(name = "GradedRun", module = "isogami", frozen)]
+pub struct PyGradedRun {
+    sheet: GradedSheet,
+    report: Value,
+    path: Value,
+    /// The JSON, as the CLI prints it (without the final newline).
+    text: String,
+}
+
+impl PyGradedRun {
+    fn new(run: &GradedRun) -> PyResult<PyGradedRun> {
+        let json =
+            |e: serde_json::Error| errors::IsogamiError::new_err(format!("JSON output: {e}"));
+        Ok(PyGradedRun {
+            sheet: run.sheet.clone(),
+            report: serde_json::to_value(&run.report).map_err(json)?,
+            path: serde_json::to_value(&run.path).map_err(json)?,
+            text: serde_json::to_string_pretty(run).map_err(json)?,
+        })
+    }
+
+    /// A run from its JSON: `sheet` read and checked by the library, `report` and `path`
+    /// kept as they are (objects), the text itself as `to_json()`'s.
+    fn from_text(text: &str, source: &str) -> PyResult<PyGradedRun> {
+        let bad = |m: String| {
+            errors::library(isogami::graded::GradedError::BadSheet(format!("{source}: {m}")).into())
+        };
+        let mut whole: Value =
+            serde_json::from_str(text).map_err(|e| bad(format!("not JSON ({e})")))?;
+        let mut part = |key: &str| -> PyResult<Value> {
+            match whole.get_mut(key).map(Value::take) {
+                Some(v @ Value::Object(_)) => Ok(v),
+                _ => Err(bad(format!(
+                    "no \"{key}\" object: not the JSON of `isogami graded --out`"
+                ))),
+            }
+        };
+        let (sheet, report, path) = (part("sheet")?, part("report")?, part("path")?);
+        let sheet: GradedSheet =
+            serde_json::from_value(sheet).map_err(|e| bad(format!("its sheet ({e})")))?;
+        sheet.validate().map_err(|e| errors::library(e.into()))?;
+        Ok(PyGradedRun {
+            sheet,
+            report,
+            path,
+            text: text.trim_end().to_string(),
+        })
+    }
+
+    fn polygons<'py>(
+        &self,
+        py: Python<'py>,
+        polygon: impl Fn(usize) -> Vec<isogami::math::Vec2>,
+    ) -> PyResult<Vec<Bound<'py, PyArray2<f64>>>> {
+        (0..self.sheet.tiles.len())
+            .map(|i| {
+                let p = polygon(i);
+                array(
+                    py,
+                    (p.len(), 2),
+                    p.iter().flat_map(|v| [v.x, v.y]).collect(),
+                )
+            })
+            .collect()
+    }
+
+    fn number(&self, key: &str) -> f64 {
+        self.report
+            .get(key)
+            .and_then(Value::as_f64)
+            .unwrap_or(f64::NAN)
+    }
+}
+
+fn poses_rows(poses: &[isogami::graded::OpenedPose]) -> Vec<f64> {
+    poses.iter().flat_map(|p| [p.x, p.y, p.theta]).collect()
+}
+
+#[pymethods]
+impl PyGradedRun {
+    /// The design's spec string.
+    #[getter]
+    fn design(&self) -> String {
+        self.sheet.design.clone()
+    }
+    /// The design's mean edge length in its tiling units: the unit of every length here.
+    #[getter]
+    fn length_scale(&self) -> f64 {
+        self.sheet.length_scale
+    }
+    /// Closed positions of the shared corners, shape (k, 2).
+    #[getter]
+    fn nodes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let n = &self.sheet.nodes;
+        array(py, (n.len(), 2), n.iter().flatten().copied().collect())
+    }
+    /// The tiles, shape (n, 3): (i, j, tile).
+    #[getter]
+    fn tiles<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
+        let t = &self.sheet.tiles;
+        let v = t
+            .iter()
+            .flat_map(|t| [i64::from(t.cell[0]), i64::from(t.cell[1]), t.tile as i64])
+            .collect();
+        int_array(py, (t.len(), 3), v)
+    }
+    /// Each tile's corners as rows of ``nodes``, counter-clockwise: one int array per tile.
+    #[getter]
+    fn tile_nodes<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, numpy::PyArray1<i64>>>> {
+        self.sheet
+            .tiles
+            .iter()
+            .map(|t| {
+                int_array(
+                    py,
+                    t.nodes.len(),
+                    t.nodes.iter().map(|&n| n as i64).collect(),
+                )
+            })
+            .collect()
+    }
+    /// The pins, shape (m, 3): (a, b, node), a and b rows of ``tiles``.
+    #[getter]
+    fn joints<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
+        let j = &self.sheet.joints;
+        let v = j
+            .iter()
+            .flat_map(|j| [j.a as i64, j.b as i64, j.node as i64])
+            .collect();
+        int_array(py, (j.len(), 3), v)
+    }
+    /// The opened state: each tile's (x, y, θ), shape (n, 3) — where its first corner is and
+    /// how far it turned from closed (radians, counter-clockwise).
+    #[getter]
+    fn poses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        array(
+            py,
+            (self.sheet.opened.len(), 3),
+            poses_rows(&self.sheet.opened),
+        )
+    }
+    /// The states part of the way open the pins close in too, least open first, shape
+    /// (s, n, 3) as ``poses``.
+    #[getter]
+    fn states<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f64>>> {
+        let s = &self.sheet.path;
+        let v = s.iter().flat_map(|p| poses_rows(p)).collect();
+        array(py, (s.len(), self.sheet.tiles.len(), 3), v)
+    }
+    /// Each tile's closed polygon: one (c, 2) array per tile.
+    #[getter]
+    fn closed<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyArray2<f64>>>> {
+        self.polygons(py, |i| self.sheet.closed_polygon(i))
+    }
+    /// Each tile's opened polygon: one (c, 2) array per tile.
+    #[getter]
+    fn opened<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyArray2<f64>>>> {
+        self.polygons(py, |i| self.sheet.opened_polygon(i))
+    }
+    /// The target outline at the scale it was fitted at, shape (k, 2), counter-clockwise.
+    #[getter]
+    fn target<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let points: Vec<f64> = self
+            .report
+            .get("target")
+            .and_then(Value::as_array)
+            .map(|a| {
+                a.iter()
+                    .flat_map(|p| [&p[0], &p[1]])
+                    .filter_map(Value::as_f64)
+                    .collect()
+            })
+            .unwrap_or_default();
+        array(py, (points.len() / 2, 2), points)
+    }
+    /// Whether the graded sheet opens along one motion from closed to the opened state
+    /// (closed pins, one DOF, no overlap at every state of the path check).
+    #[getter]
+    fn reached(&self) -> bool {
+        self.path
+            .get("reached")
+            .and_then(Value::as_bool)
+            .unwrap_or(false)
+    }
+    /// Largest relative distance of the opened outline from the target.
+    #[getter]
+    fn max_outline_error(&self) -> f64 {
+        self.number("max_outline_error")
+    }
+    /// Largest distance between the two opened positions of a pinned corner (length scales).
+    #[getter]
+    fn joint_gap(&self) -> f64 {
+        self.number("joint_gap")
+    }
+    /// The optimisation and the fit as a dict (the JSON's ``report``).
+    fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.report)
+    }
+    /// The check of the path from the opened state back to the closed tiling as a dict (the
+    /// JSON's ``path``: ``states``, ``closed_spread``, ``reached``).
+    fn path_check<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.path)
+    }
+    /// The whole run as JSON: what ``isogami graded --json`` prints (without its final
+    /// newline); a loaded run's is its file's.
+    fn to_json(&self) -> String {
+        self.text.clone()
+    }
+    /// Writes the run to ``path`` as ``isogami graded --out`` does (``to_json()`` and a
+    /// newline), replacing the file whole or leaving it as it was.
+    fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        let contents = self.text.clone() + "\n";
+        py.detach(|| write_whole(&path, contents.as_bytes()))
+            .map_err(|e| PyOSError::new_err(format!("cannot write {}: {e}", path.display())))
+    }
+    /// A run from ``to_json()``'s text (for unpickling).
+    #[staticmethod]
+    fn _from_json(text: &str) -> PyResult<PyGradedRun> {
+        PyGradedRun::from_text(text, "text")
+    }
+    /// Pickles as its JSON exactly (``GradedRun._from_json``) (see the `pickle` module).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let r = crate::pickle::recipe(
+            py,
+            "GradedRun._from_json",
+            vec![self.text.clone().into_pyobject(py)?.into_any()],
+            &[],
+        )?;
+        crate::pickle::reduce(py, &r)
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<Self>()
+            .is_ok_and(|o| o.get().text == self.text)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "GradedRun({}: {} tiles, outline within {:.2} %, {})",
+            self.sheet.design,
+            self.sheet.tiles.len(),
+            100.0 * self.number("max_outline_error"),
+            if self.reached() {
+                "opens along one motion"
+            } else {
+                "does not open along one motion"
+            }
+        )
+    }
+}
+
+/// Writes `contents` beside `path` and renames it into place.
+fn write_whole(path: &Path, contents: &[u8]) -> std::io::Result<()> {
+    let name = path
+        .file_name()
+        .ok_or_else(|| std::io::Error::other("not a file name"))?;
+    let mut staged = name.to_os_string();
+    staged.push(format!(".{}.partial", std::process::id()));
+    let staged = path.with_file_name(staged);
+    let written = std::fs::write(&staged, contents).and_then(|()| std::fs::rename(&staged, path));
+    if written.is_err() {
+        let _ = std::fs::remove_file(&staged);
+    }
+    written
+}
+
+/// A target's text as ``isogami graded --target`` reads it: ``disc``, ``ellipse:A,B``,
+/// ``polygon:x,y;...`` or ``@PATH`` of an SVG file.
+fn outline_of(target: &str) -> PyResult<Outline> {
+    let outline = match target.strip_prefix('@') {
+        None => parse_outline(target),
+        Some(path) => {
+            let text = std::fs::read_to_string(path).map_err(|e| {
+                errors::library(
+                    isogami::graded::GradedError::BadTarget(format!("cannot read {path}: {e}"))
+                        .into(),
+                )
+            })?;
+            outline_from_svg(&text)
+        }
+    };
+    outline.map_err(|e| errors::library(e.into()))
+}
+
+/// The region: (rows, cols) or ``"RxC"``.
+fn region_of(region: &Bound<'_, PyAny>) -> PyResult<(usize, usize)> {
+    if let Ok(text) = region.extract::<String>() {
+        let cells = text.split_once(['x', 'X']).and_then(|(r, c)| {
+            Some((
+                r.trim().parse::<usize>().ok()?,
+                c.trim().parse::<usize>().ok()?,
+            ))
+        });
+        return cells.ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "region {text:?} is not RxC (e.g. \"3x3\") or (rows, cols)"
+            ))
+        });
+    }
+    region.extract::<(usize, usize)>().map_err(|_| {
+        PyTypeError::new_err(format!(
+            "region must be (rows, cols) or \"RxC\", got {}",
+            type_name(region)
+        ))
+    })
+}
+
+/// Grades ``design``'s finite sheet of ``region`` cells — (rows, cols) or ``"RxC"`` — so that
+/// it opens into ``target``: ``"disc"``, ``"ellipse:A,B"``, ``"polygon:x,y;x,y;..."`` (star-
+/// shaped about its centroid) or ``"@outline.svg"``, the one closed shape of an SVG file
+/// (as ``isogami graded --target``); scaled to the area the design's own sheet covers open.
+/// ``t``: the opened state as the periodic deployment's t in (0, 1] (None: the state of
+/// largest area); ``states``: opened states the pins must close in (1 to 16); ``iterations``
+/// of the optimisation. Then checks that the graded closed tiling opens along one motion.
+///
+/// ``progress(iteration, cost)`` is called after every accepted step of the optimisation;
+/// returning False (or raising) stops the run, as do ``timeout`` seconds and Ctrl-C
+/// (``CancelledError``, or the callback's own exception, or KeyboardInterrupt). The GIL is
+/// released while it runs.
+///
+/// Returns a ``GradedRun``. Raises ``FiniteError`` for a bad target, region or sheet (the
+/// library's one-line message), ``SettingsError`` for a setting out of range.
+///
+/// >>> run = isogami.graded("rotating-squares", (2, 2), "ellipse:1.3,1", iterations=60)
+/// >>> run.poses.shape, len(run.opened)
+/// ((16, 3), 16)
+#[pyfunction]
+#[pyo3(signature = (design, region=None, target="disc", t=None, states=None, iterations=None, *, progress=None, timeout=None),
+  text_signature = "(design, region=(3, 3), target='disc', t=None, states=8, iterations=800, *, progress=None, timeout=None)")]
+#[allow(clippy::too_many_arguments)]
+pub fn graded(
+    py: Python<'_>,
+    design: &Bound<'_, PyAny>,
+    region: Option<&Bound<'_, PyAny>>,
+    target: &str,
+    t: Option<f64>,
+    states: Option<&Bound<'_, PyAny>>,
+    iterations: Option<&Bound<'_, PyAny>>,
+    progress: Option<Bound<'_, PyAny>>,
+    timeout: Option<f64>,
+) -> PyResult<PyGradedRun> {
+    let (rows, cols) = match region {
+        Some(r) if !r.is_none() => region_of(r)?,
+        _ => (3, 3),
+    };
+    let defaults = GradedRequest::default();
+    let mut request = GradedRequest {
+        design: design_of(design)?.to_string(),
+        rows,
+        cols,
+        outline: outline_of(target)?,
+        t,
+        states: count_or("states", states, 0, defaults.states)?,
+        ..defaults
+    };
+    request.solve.max_iterations =
+        count_or("iterations", iterations, 1, request.solve.max_iterations)?;
+    let progress = progress.filter(|p| !p.is_none());
+    if let Some(cb) = &progress {
+        if !cb.is_callable() {
+            return Err(PyTypeError::new_err(format!(
+                "progress must be callable (iteration, cost) -> bool | None, got {}",
+                type_name(cb)
+            )));
+        }
+    }
+    // The optimisation calls back on the work's thread; the caller's thread polls for the
+    // timeout and Ctrl-C meanwhile (`stop::watched`), so the setup and the path check stop too.
+    let watch = Mutex::new(Watch::new(progress, timeout)?);
+    let result = py.detach(|| {
+        let lock = || watch.lock().unwrap_or_else(|e| e.into_inner());
+        isogami::stop::watched(&mut |_| lock().poll(), 0, |keep_going| {
+            graded_sheet(
+                &request,
+                &mut |p| {
+                    let (iteration, cost) = (p.iteration, p.cost);
+                    lock().tick_args(|py| (iteration, cost).into_pyobject(py))
+                },
+                keep_going,
+            )
+        })
+    });
+    let watch = watch.into_inner().unwrap_or_else(|e| e.into_inner());
+    PyGradedRun::new(&watch.finish(result)?)
+}
+
+/// The run ``GradedRun.save`` or ``isogami graded --out`` wrote to ``path``: its sheet read
+/// and checked, its report and path check as written, ``to_json()`` the file's text.
+///
+/// Raises ``FiniteError`` for a file that cannot be read or is not a graded run.
+#[pyfunction]
+pub fn load_graded(py: Python<'_>, path: PathBuf) -> PyResult<PyGradedRun> {
+    let shown = path.display().to_string();
+    let text = py.detach(|| std::fs::read_to_string(&path)).map_err(|e| {
+        errors::library(
+            isogami::graded::GradedError::BadSheet(format!("cannot read {shown}: {e}")).into(),
+        )
+    })?;
+    PyGradedRun::from_text(&text, &shown)
+}
