@@ -14,7 +14,7 @@ fn main() {
     let states: usize = arg(2).map_or(8, |a| a.parse().expect("STATES is a number"));
     let design = arg(3).unwrap_or_else(|| "rotating-squares".into());
     let t: Option<f64> = arg(4).map(|a| a.parse().expect("T is a number"));
-    let request = GradedRequest {
+    let mut request = GradedRequest {
         design,
         rows: cells,
         cols: cells,
@@ -22,8 +22,43 @@ fn main() {
         t,
         ..GradedRequest::default()
     };
+    // Overrides for probing: GRADED_<NAME>=value.
+    let env = |name: &str| -> Option<f64> {
+        std::env::var(format!("GRADED_{name}"))
+            .ok()
+            .map(|v| v.parse().expect("a number"))
+    };
+    let w = &mut request.weights;
+    for (name, slot) in [
+        ("FIT", &mut w.fit),
+        ("SMOOTH", &mut w.smooth),
+        ("BOUNDS", &mut w.bounds),
+        ("JOINTS", &mut w.joints),
+        ("OPENING", &mut w.opening),
+        ("CORNER", &mut w.corner_fraction),
+        ("ANGLE", &mut w.angle_fraction),
+        ("EDGE", &mut w.edge_fraction),
+        ("PIN", &mut w.pin_fraction),
+        ("PRIOR", &mut w.prior),
+    ] {
+        if let Some(v) = env(name) {
+            *slot = v;
+        }
+    }
+    if let Some(v) = env("ITERATIONS") {
+        request.solve.max_iterations = v as usize;
+    }
+    if let Some(v) = env("DECREASE") {
+        request.solve.rel_decrease = v;
+    }
     let run = graded_sheet(&request, &mut |_| true, NEVER).expect("graded");
-    println!("{:?}", run.report);
+    let r = &run.report;
+    println!(
+        "tiles {} iterations {} cost {:.3e} -> {:.3e} gap {:.1e} outline max {:.4} median {:.4} outside {:.4} corner {:.3} angle {:.1} edge {:.3} area {:.3} {:.2} s",
+        r.tiles, r.iterations, r.cost[0], r.cost[1], r.joint_gap, r.max_outline_error,
+        r.median_outline_error, r.max_outside, r.min_corner_fraction, r.min_angle_degrees, r.min_edge_fraction,
+        r.min_area_fraction, r.seconds
+    );
     for s in &run.path.states {
         println!(
             "opening {:.3} gap {:.2e} dof {:?} smallest {:?} overlap {:?}",

@@ -244,6 +244,21 @@ pub fn problem_of(graded: &GradedSheet, outline: Outline, weights: Weights) -> P
             let m = t.len();
             (0..m)
                 .map(|v| {
+                    model::corner_sine(
+                        start[t[(v + m - 1) % m]],
+                        start[t[v]],
+                        start[t[(v + 1) % m]],
+                    )
+                })
+                .collect()
+        })
+        .collect();
+    let corner_area_start = tiles
+        .iter()
+        .map(|t| {
+            let m = t.len();
+            (0..m)
+                .map(|v| {
                     model::corner_cross(
                         start[t[(v + m - 1) % m]],
                         start[t[v]],
@@ -274,6 +289,7 @@ pub fn problem_of(graded: &GradedSheet, outline: Outline, weights: Weights) -> P
         neighbours,
         start,
         corner_start,
+        corner_area_start,
         edge_start,
         weights,
         full: true,

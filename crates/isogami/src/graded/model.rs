@@ -375,9 +375,21 @@ pub fn region_sheet(
     Ok(FiniteSheet::new(cell, mech, tiles))
 }
 
-/// Twice the signed area of the triangle (a, b, c).
+/// Twice the signed area of the triangle (prev, at, next): cross(next − at, prev − at).
 pub(crate) fn corner_cross(prev: Vec2, at: Vec2, next: Vec2) -> Real {
     cross(&(next - at), &(prev - at))
+}
+
+/// Sine of the corner at `at` between its edges to `next` and `prev`, counter-clockwise
+/// positive (a convex corner of a counter-clockwise polygon); 0 for a degenerate edge.
+pub(crate) fn corner_sine(prev: Vec2, at: Vec2, next: Vec2) -> Real {
+    let (a, b) = (next - at, prev - at);
+    let lengths = a.norm() * b.norm();
+    if lengths > 0.0 {
+        cross(&a, &b) / lengths
+    } else {
+        0.0
+    }
 }
 
 #[cfg(test)]

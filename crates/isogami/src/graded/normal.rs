@@ -258,6 +258,7 @@ mod tests {
         };
         let (sheet, mut problem) = setup(&request).unwrap();
         problem.weights.corner_fraction = 0.99;
+        problem.weights.angle_fraction = 0.99;
         problem.weights.edge_fraction = 0.99;
         let z = Problem::pack(&sheet);
         let structure = problem.structure(&z);

@@ -20,10 +20,11 @@
 //!   similar shapes (their edge vectors from the first corner agree);
 //! - **prior**: a weak pull of the closed nodes to their start (fixes the gauge);
 //! - **shape bounds** (one-sided): every corner keeps at least a fraction of its starting
-//!   turn (convex stays convex, reflex stays reflex) and every edge a fraction of its
-//!   starting length.
+//!   sine (a minimum angle, away from 0 and from a straight angle: convex stays convex,
+//!   reflex stays reflex) and of its starting triangle's area (no slivers), and every edge a
+//!   fraction of its starting length.
 
-use super::model::{corner_cross, GradedSheet};
+use super::model::GradedSheet;
 use super::target::Outline;
 use crate::math::{perp, rotation, DVec, Real, Vec2};
 
@@ -42,8 +43,11 @@ pub struct Weights {
     pub prior: Real,
     /// Shape bounds.
     pub bounds: Real,
-    /// Fraction of its starting turn every corner keeps.
+    /// Fraction of its starting area the triangle of every corner (its two edges) keeps.
     pub corner_fraction: Real,
+    /// Fraction of its starting sine every corner keeps (0.3 keeps a right angle within
+    /// 17.5° to 162.5°).
+    pub angle_fraction: Real,
     /// Fraction of its starting length every edge keeps.
     pub edge_fraction: Real,
     /// Fraction of a state's mean opening every pin opens at least.
@@ -59,8 +63,9 @@ impl Default for Weights {
             smooth: 0.3,
             prior: 1e-3,
             bounds: 30.0,
-            corner_fraction: 0.3,
-            edge_fraction: 0.3,
+            corner_fraction: 0.15,
+            angle_fraction: 0.3,
+            edge_fraction: 0.15,
             pin_fraction: 0.2,
         }
     }
@@ -89,8 +94,10 @@ pub struct Problem {
     pub neighbours: Vec<(usize, usize)>,
     /// Starting node positions (prior).
     pub start: Vec<Vec2>,
-    /// Starting corner turns, per tile per corner.
+    /// Starting corner sines, per tile per corner.
     pub corner_start: Vec<Vec<Real>>,
+    /// Starting corner crosses (twice the corner's triangle), per tile per corner.
+    pub corner_area_start: Vec<Vec<Real>>,
     /// Starting edge lengths, per tile per edge.
     pub edge_start: Vec<Vec<Real>>,
     /// Weights.
@@ -166,6 +173,10 @@ impl CornerJacobian {
         &self.entries[r][..self.len]
     }
 }
+
+/// Corners whose starting sine is below this are straight (a vertex on a straight side):
+/// no bound keeps their angle.
+pub const SINE_FLOOR: Real = 1e-6;
 
 /// Column of node `n`'s x.
 fn node_col(n: usize) -> usize {
@@ -374,30 +385,44 @@ impl Problem {
             let m = t.len();
             for v in 0..m {
                 let (ip, ia, inx) = (t[(v + m - 1) % m], t[v], t[(v + 1) % m]);
-                let c0 = self.corner_start[i][v];
-                if c0.abs() > 1e-9 {
-                    let o = c0.signum();
-                    let c = corner_cross(x(ip), x(ia), x(inx));
-                    let value = w.corner_fraction * c0.abs() - o * c;
-                    if every || value > 0.0 {
-                        // c = cross(next − at, prev − at)
-                        let (a, b) = (x(inx) - x(ia), x(ip) - x(ia));
-                        // ∂c/∂next = (b.y, −b.x); ∂c/∂prev = (−a.y, a.x); ∂c/∂at = −(both)
-                        let dn = Vec2::new(b.y, -b.x);
-                        let dp = Vec2::new(-a.y, a.x);
-                        let da = -(dn + dp);
-                        let k = -o * w.bounds;
-                        out.push(
-                            w.bounds * value,
-                            [
-                                (node_col(inx), k * dn.x),
-                                (node_col(inx) + 1, k * dn.y),
-                                (node_col(ip), k * dp.x),
-                                (node_col(ip) + 1, k * dp.y),
-                                (node_col(ia), k * da.x),
-                                (node_col(ia) + 1, k * da.y),
-                            ],
-                        );
+                let s0 = self.corner_start[i][v];
+                if s0.abs() > SINE_FLOOR {
+                    let o = s0.signum();
+                    let (a, b) = (x(inx) - x(ia), x(ip) - x(ia));
+                    let (la, lb) = (a.norm(), b.norm());
+                    // c = cross(next − at, prev − at) = |a||b| sin: twice the corner's
+                    // triangle. ∂c/∂next = (b.y, −b.x); ∂c/∂prev = (−a.y, a.x).
+                    let c = crate::math::cross(&a, &b);
+                    let (dcn, dcp) = (Vec2::new(b.y, -b.x), Vec2::new(-a.y, a.x));
+                    let c0 = self.corner_area_start[i][v];
+                    let bound = |value: Real, dn: Vec2, dp: Vec2, out: &mut Rows| {
+                        if every || value > 0.0 {
+                            let da = -(dn + dp);
+                            let k = -o * w.bounds;
+                            out.push(
+                                w.bounds * value,
+                                [
+                                    (node_col(inx), k * dn.x),
+                                    (node_col(inx) + 1, k * dn.y),
+                                    (node_col(ip), k * dp.x),
+                                    (node_col(ip) + 1, k * dp.y),
+                                    (node_col(ia), k * da.x),
+                                    (node_col(ia) + 1, k * da.y),
+                                ],
+                            );
+                        }
+                    };
+                    // The corner's triangle keeps a fraction of its area: tiles do not
+                    // collapse to slivers.
+                    bound(w.corner_fraction * c0.abs() - o * c, dcn, dcp, &mut out);
+                    // Its sine keeps a fraction of its value: a minimum angle, away from 0
+                    // and from a straight angle.
+                    if la > 1e-300 && lb > 1e-300 {
+                        let sine = c / (la * lb);
+                        // ∂|a|/∂next = â, ∂|b|/∂prev = b̂
+                        let dn = dcn / (la * lb) - a * (sine / (la * la));
+                        let dp = dcp / (la * lb) - b * (sine / (lb * lb));
+                        bound(w.angle_fraction * s0.abs() - o * sine, dn, dp, &mut out);
                     }
                 }
                 let e = x(inx) - x(ia);
@@ -440,6 +465,7 @@ mod tests {
         let (sheet, mut problem) = setup(&request).unwrap();
         // Strong shape bounds so that some are active after the perturbation.
         problem.weights.corner_fraction = 0.99;
+        problem.weights.angle_fraction = 0.99;
         problem.weights.edge_fraction = 0.99;
         let mut z = Problem::pack(&sheet);
         let mut seed = 7u64;
