@@ -4,7 +4,7 @@
 //! [`export_design`] checks the request and the options before anything is deployed, builds
 //! the patch ([`patch_at_with`](super::patch::patch_at_with)) and writes the format ([`export_files`]). Front ends only parse
 //! their arguments into these types and store the bytes (the CLI atomically, the server as a
-//! download, Python as `bytes`).
+//! download, Python as `bytes`). [`export_graded`] does the same for a graded sheet.
 
 use super::error::ExportError;
 use super::fold::fold_text;
@@ -12,10 +12,11 @@ use super::format::Format;
 use super::kirigami_sim::{kirigami_sim_files, KIRIGAMI_SIM_FILES};
 use super::laser::{laser_dxf, laser_sheet, laser_svg, LaserSettings};
 use super::obj::obj_text;
-use super::patch::{patch_at_with, Patch, PatchRequest};
+use super::patch::{graded_patch, patch_at_with, GradedPatchRequest, Patch, PatchRequest};
 use super::print3d::{print_sheet_until, PrintSettings};
 use super::tile_table::{tile_csv, tile_table};
 use crate::deploy::Progress;
+use crate::graded::{GradedSheet, PathCheck};
 use crate::stop::{watched, KeepGoing, NEVER};
 use crate::topology::Design;
 
@@ -131,5 +132,23 @@ pub fn export_design(
     let files = watched(progress, states, |keep_going| {
         export_files_until(format, &patch, options, keep_going)
     })?;
+    Ok((patch, files))
+}
+
+/// Checks `request` and `options`, places a graded sheet (with its path check's states when
+/// given; see [`graded_patch`]) and writes `format`, polling `keep_going` while a print's
+/// solid is built. Returns the patch too, for a summary of what was written.
+pub fn export_graded(
+    sheet: &GradedSheet,
+    path: Option<&PathCheck>,
+    request: &GradedPatchRequest,
+    format: Format,
+    options: &ExportOptions,
+    keep_going: KeepGoing<'_>,
+) -> Result<(Patch, ExportFiles), ExportError> {
+    request.validate()?;
+    options.validate(format)?;
+    let patch = graded_patch(sheet, path, request)?;
+    let files = export_files_until(format, &patch, options, keep_going)?;
     Ok((patch, files))
 }

@@ -16,9 +16,14 @@
 //! | laser cutting: SVG, DXF (closed sheet, bridges, kerf) | [`laser`] | texts |
 //! | 3D printing: STL, 3MF (one solid, lamella hinges) | [`print3d`] | bytes |
 //!
+//! A graded sheet (issue 25) is written the same way: [`graded_patch`] makes its patch
+//! (closed sheet, path states, optimised opened state), [`read_graded`] reads the JSON
+//! `isogami graded` writes, and [`export_graded`] is its entry point.
+//!
 //! The library does no I/O: each format returns a `String` (or bytes), the CLI writes it.
-//! Front ends call one entry point, [`export_design`] (or [`export_files`] for a patch they
-//! already have), with a [`Format`] parsed from its name; they never dispatch on formats.
+//! Front ends call one entry point, [`export_design`] (or [`export_graded`] for a graded
+//! sheet, [`export_files`] for a patch they already have), with a [`Format`] parsed from its
+//! name; they never dispatch on formats.
 
 mod error;
 mod files;
@@ -34,9 +39,12 @@ pub mod print3d;
 pub mod tile_table;
 
 pub use error::ExportError;
-pub use files::{export_design, export_files, export_files_until, ExportFiles, ExportOptions};
+pub use files::{
+    export_design, export_files, export_files_until, export_graded, ExportFiles, ExportOptions,
+};
 pub use format::{Format, SettingsGroup};
 pub use patch::{
-    patch_at, patch_at_with, Patch, PatchJoint, PatchRequest, PatchState, PatchTile, Scale, State,
+    graded_patch, patch_at, patch_at_with, read_graded, GradedInput, GradedMobility,
+    GradedPatchRequest, Patch, PatchJoint, PatchRequest, PatchState, PatchTile, Scale, State,
     MAX_PATCH, MAX_PATCH_FRAMES, MAX_SIZE_MM, MIN_SIZE_MM,
 };

@@ -30,7 +30,7 @@ pub struct PatchMobility {
     /// Area of the rectangle's tiles kept over the area of all of them.
     pub covered_fraction: Real,
     /// For a graded sheet (issue 25), what it is as a mechanism of its own; then `dof` and
-    /// `raw_dof` are its [`GradedMobility::dof`] (0 when not counted), `completed` is false
+    /// `raw_dof` are its [`GradedMobility::dof`] (0 when the count failed), `completed` is false
     /// and the tile counts are its own. None for a design's patch.
     pub graded: Option<GradedMobility>,
 }

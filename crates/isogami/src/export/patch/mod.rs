@@ -14,14 +14,17 @@
 //! | what is asked: size, scale, state, completion, and their limits | `request` |
 //! | the sheet to write and what it is as a finite mechanism | `mobility` |
 //! | placing tiles, joints and the outline in millimetres | `place` |
+//! | a graded sheet (issue 25) as a patch, and reading one from JSON | [`graded`] |
 
+pub mod graded;
 mod mobility;
 mod place;
 mod request;
 
+pub use graded::{graded_patch, read_graded, GradedInput, GradedPatchRequest};
 use mobility::finite_patch;
-pub use mobility::PatchMobility;
-use place::{bounds, mm, outline, patch_joints, Placer};
+pub use mobility::{GradedMobility, PatchMobility};
+use place::{all_finite, bounds, mm, outline, patch_joints, polygons_mm, split_loops, Placer};
 pub use request::{
     PatchRequest, Scale, State, MAX_PATCH, MAX_PATCH_FRAMES, MAX_SIZE_MM, MIN_SIZE_MM,
 };
@@ -176,13 +179,7 @@ pub fn patch_at_with(
             mm / width
         }
     };
-    let to_mm = |polys: &[Vec<[Real; 2]>]| -> Vec<Vec<[Real; 2]>> {
-        let (lo, _) = bounds(polys);
-        polys
-            .iter()
-            .map(|p| p.iter().map(|v| mm(*v, lo, mm_per_unit)).collect())
-            .collect()
-    };
+    let to_mm = |polys: &[Vec<[Real; 2]>]| polygons_mm(polys, mm_per_unit);
     let n = geometry.tiles.len();
     let frame = &frames[chosen];
     let tiles: Vec<PatchTile> = to_mm(&at_state)
@@ -226,21 +223,11 @@ pub fn patch_at_with(
     let joints = patch_joints(&cell, &run.mechanism, &sheet, &tiles);
     let edge_mm = geometry.length_scale * mm_per_unit;
     let loops = outline(&cell, &place, &closed_polygons_mm, 1e-7 * edge_mm);
-    let outline_mm = loops
-        .iter()
-        .map(|l| l.iter().map(|(p, _)| *p).collect())
-        .collect();
-    let outline_vertices = loops
-        .iter()
-        .map(|l| l.iter().map(|(_, v)| *v).collect())
-        .collect();
-    let all_numbers = |p: &Vec<[Real; 2]>| p.iter().flatten().all(|x| x.is_finite());
-    let all_finite = tiles.iter().all(|t| all_numbers(&t.polygon_mm))
-        && closed_polygons_mm.iter().all(all_numbers)
-        && states
-            .iter()
-            .all(|s: &PatchState| s.polygons_mm.iter().all(all_numbers));
-    if !all_finite {
+    let (outline_mm, outline_vertices) = split_loops(&loops);
+    let numbers = all_finite(tiles.iter().map(|t| &t.polygon_mm))
+        && all_finite(&closed_polygons_mm)
+        && all_finite(states.iter().flat_map(|s| &s.polygons_mm));
+    if !numbers {
         let (what, value) = request.scale_value();
         return Err(ExportError::BadSize { what, value });
     }

@@ -111,23 +111,71 @@ pub(super) fn outline(
     closed: &[Vec<[Real; 2]>],
     tol: Real,
 ) -> Vec<Vec<([Real; 2], [usize; 2])>> {
-    let mut edges = Vec::new();
-    for (id, poly) in closed.iter().enumerate() {
-        let SheetTile { cell: c, tile } = place.tiles[id];
-        for k in 0..poly.len() {
+    outline_loops(
+        closed,
+        |id, k| {
+            let SheetTile { cell: c, tile } = place.tiles[id];
             let e = &cell.edges[cell.tile_edges[tile][k]];
             let (other, offset) = if e.tile_a == tile && e.edge_a == k {
                 (e.tile_b, e.offset)
             } else {
                 (e.tile_a, [-e.offset[0], -e.offset[1]])
             };
-            if place
+            place
                 .id([c[0] + offset[0], c[1] + offset[1]], other)
                 .is_none()
-            {
+        },
+        tol,
+    )
+}
+
+/// Boundary loops of closed tile polygons: edge `k` of tile `id` (from vertex k to k + 1) is
+/// on the boundary when `on_boundary(id, k)`; those edges are chained into loops of (start,
+/// [tile id, vertex index]) (see `chain_loops`).
+pub(super) fn outline_loops(
+    closed: &[Vec<[Real; 2]>],
+    on_boundary: impl Fn(usize, usize) -> bool,
+    tol: Real,
+) -> Vec<Vec<([Real; 2], [usize; 2])>> {
+    let mut edges = Vec::new();
+    for (id, poly) in closed.iter().enumerate() {
+        for k in 0..poly.len() {
+            if on_boundary(id, k) {
                 edges.push(([poly[k], poly[(k + 1) % poly.len()]], [id, k]));
             }
         }
     }
     chain_loops(&edges, tol)
+}
+
+/// Polygons scaled to millimetres, shifted so that their bounding box starts at (0, 0).
+pub(super) fn polygons_mm(polys: &[Vec<[Real; 2]>], mm_per_unit: Real) -> Vec<Vec<[Real; 2]>> {
+    let (lo, _) = bounds(polys);
+    polys
+        .iter()
+        .map(|p| p.iter().map(|v| mm(*v, lo, mm_per_unit)).collect())
+        .collect()
+}
+
+/// The loops' points and their [tile id, vertex index] labels, apart.
+pub(super) type Loops = (Vec<Vec<[Real; 2]>>, Vec<Vec<[usize; 2]>>);
+
+/// Splits outline loops into their points and their labels.
+pub(super) fn split_loops(loops: &[Vec<([Real; 2], [usize; 2])>]) -> Loops {
+    let points = loops
+        .iter()
+        .map(|l| l.iter().map(|(p, _)| *p).collect())
+        .collect();
+    let labels = loops
+        .iter()
+        .map(|l| l.iter().map(|(_, v)| *v).collect())
+        .collect();
+    (points, labels)
+}
+
+/// True when every coordinate of every polygon is finite.
+pub(super) fn all_finite<'a>(polys: impl IntoIterator<Item = &'a Vec<[Real; 2]>>) -> bool {
+    polys
+        .into_iter()
+        .all(|p| p.iter().flatten().all(|x| x.is_finite()))
 }

@@ -82,10 +82,7 @@ impl Default for PatchRequest {
 impl PatchRequest {
     /// The scale's name and value in mm.
     pub(super) fn scale_value(&self) -> (&'static str, Real) {
-        match self.scale {
-            Scale::EdgeMm(v) => ("edge length", v),
-            Scale::WidthMm(v) => ("patch width", v),
-        }
+        scale_value(self.scale)
     }
 
     /// Checks sizes, scale, state and frame count (the kerf is checked by the deployment).
@@ -101,21 +98,39 @@ impl PatchRequest {
                 max: MAX_PATCH,
             });
         }
-        let (what, value) = self.scale_value();
-        if !(MIN_SIZE_MM..=MAX_SIZE_MM).contains(&value) {
-            return Err(ExportError::BadSize { what, value });
-        }
-        if let State::T(t) = self.state {
-            if !(0.0..=1.0).contains(&t) {
-                return Err(ExportError::StatePastTrajectory { t });
-            }
-        }
-        if !(2..=MAX_PATCH_FRAMES).contains(&self.frames) {
-            return Err(ExportError::FrameCount {
-                count: self.frames,
-                max: MAX_PATCH_FRAMES,
-            });
-        }
-        Ok(())
+        check_scale_state_frames(self.scale, self.state, self.frames)
     }
+}
+
+/// The scale's name and value in mm.
+pub(super) fn scale_value(scale: Scale) -> (&'static str, Real) {
+    match scale {
+        Scale::EdgeMm(v) => ("edge length", v),
+        Scale::WidthMm(v) => ("patch width", v),
+    }
+}
+
+/// Checks a scale, a state and a frame count against their limits (every patch request,
+/// a design's or a graded sheet's).
+pub(super) fn check_scale_state_frames(
+    scale: Scale,
+    state: State,
+    frames: usize,
+) -> Result<(), ExportError> {
+    let (what, value) = scale_value(scale);
+    if !(MIN_SIZE_MM..=MAX_SIZE_MM).contains(&value) {
+        return Err(ExportError::BadSize { what, value });
+    }
+    if let State::T(t) = state {
+        if !(0.0..=1.0).contains(&t) {
+            return Err(ExportError::StatePastTrajectory { t });
+        }
+    }
+    if !(2..=MAX_PATCH_FRAMES).contains(&frames) {
+        return Err(ExportError::FrameCount {
+            count: frames,
+            max: MAX_PATCH_FRAMES,
+        });
+    }
+    Ok(())
 }
