@@ -1,4 +1,5 @@
-//! `isogami export`: a patch of a design in millimetres, written in one format.
+//! `isogami export`: a patch of a design in millimetres, or a graded sheet (`--sheet`, the
+//! file `isogami graded` writes), written in one format.
 //!
 //! Arguments are read in two stages: the raw flags, then a validated [`PatchRequest`] and
 //! options that the library's one export entry point ([`export_design`]) checks again; every
@@ -10,10 +11,11 @@ use crate::output::{emit, write_atomic, CliResult, Outputs};
 use isogami::api::resolve_design;
 use isogami::contact::ContactSettings;
 use isogami::export::{
-    export_design, ExportError, ExportFiles, ExportOptions, Format, PatchRequest, Scale,
-    SettingsGroup, State, MAX_PATCH,
+    export_design, export_graded, read_graded, ExportError, ExportFiles, ExportOptions, Format,
+    GradedPatchRequest, PatchRequest, Scale, SettingsGroup, State, MAX_PATCH,
 };
 use isogami::finite::FiniteError;
+use isogami::stop::NEVER;
 use std::path::{Path, PathBuf};
 
 /// The `--format` values: the library's formats by name, each with its description.
@@ -29,8 +31,18 @@ fn format_parser() -> impl clap::builder::TypedValueParser<Value = Format> {
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// The design: a name (rotating-squares), a spec string, or design JSON.
-    #[arg(long, allow_hyphen_values = true)]
-    design: String,
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        required_unless_present = "sheet",
+        conflicts_with = "sheet"
+    )]
+    design: Option<String>,
+    /// A graded sheet instead of a design: the JSON file `isogami graded --out` writes (or a
+    /// bare graded sheet). Written closed for laser formats; --t is its opening (0 closed,
+    /// 1 or `open` the optimised state) and --frames keeps that many of its path's states.
+    #[arg(long)]
+    sheet: Option<PathBuf>,
     /// Output format.
     #[arg(long, value_parser = format_parser())]
     format: Format,
@@ -38,7 +50,7 @@ pub struct Args {
     #[arg(long)]
     out: PathBuf,
     /// Patch size ROWSxCOLS in cells (rows along w, columns along u), each 1..=40.
-    #[arg(long, default_value = "6x6")]
+    #[arg(long, default_value = "6x6", conflicts_with = "sheet")]
     patch: String,
     /// Mean tile edge length in mm [default: 20].
     #[arg(long, allow_hyphen_values = true, conflicts_with = "width_mm")]
@@ -47,11 +59,17 @@ pub struct Args {
     #[arg(long, allow_hyphen_values = true)]
     width_mm: Option<f64>,
     /// State: t in [0, 1] (the nearest accepted state; 0 closed) or `open` (largest area
-    /// ratio, at the contact limit).
+    /// ratio, at the contact limit). With --sheet: the opening in [0, 1] (the state of
+    /// nearest opening; 0 closed) or `open` (the optimised state).
     #[arg(long, default_value = "0", allow_hyphen_values = true)]
     t: String,
     /// Cut width relative to the mean edge length, for the deployment's contact model.
-    #[arg(long, default_value_t = ContactSettings::default().kerf, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        default_value_t = ContactSettings::default().kerf,
+        allow_hyphen_values = true,
+        conflicts_with = "sheet"
+    )]
     kerf: f64,
     /// Deployment states written as frames by animated formats (FOLD), 2..=100.
     #[arg(long, default_value_t = PatchRequest::default().frames)]
@@ -62,7 +80,7 @@ pub struct Args {
     /// boundary pruned, the ring of tiles that closes open linkage loops added), or the
     /// export is refused with the reason when there is none; `isogami sheet` shows what
     /// completion does.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "sheet")]
     raw: bool,
     /// The default (write the completion); kept for scripts written when it was opt-in.
     #[arg(long, hide = true, conflicts_with = "raw")]
@@ -76,30 +94,50 @@ pub struct Args {
 /// Builds the patch and writes the file(s).
 pub fn run(args: Args) -> CliResult {
     let request = request(&args)?;
-    // Only the format's own settings group is read (and checked); the others' flags are
-    // ignored.
-    let mut options = ExportOptions::default();
-    match args.format.settings_group() {
-        SettingsGroup::Laser => options.laser = args.laser.settings()?,
-        SettingsGroup::Print => {
-            options.print = args
-                .print
-                .settings(args.laser.hinge_mm, args.laser.thickness_mm)?
+    let options = options(&args)?;
+    let (patch, files) = match (&args.sheet, &args.design) {
+        (Some(path), _) => {
+            let graded = GradedPatchRequest {
+                scale: request.scale,
+                state: request.state,
+                frames: request.frames,
+            };
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| format!("--sheet {}: cannot read it: {e}", path.display()))?;
+            let input =
+                read_graded(&text).map_err(|e| format!("--sheet {}: {e}", path.display()))?;
+            export_graded(
+                &input.sheet,
+                input.path.as_ref(),
+                &graded,
+                args.format,
+                &options,
+                NEVER,
+            )
+            .map_err(|e| format!("--sheet {}: {e}", path.display()))?
         }
-        SettingsGroup::None => {}
-    }
-    options.validate(args.format).map_err(|e| e.to_string())?;
-    let design = resolve_design(&args.design).map_err(|e| e.to_string())?;
-    let (patch, files) = export_design(&design, &request, args.format, &options, &mut |_| true)
-        .map_err(|e| match e {
-            ExportError::Library(isogami::Error::Finite(FiniteError::NoOneDofSheet { .. })) => {
-                format!("{e}; --raw exports the rectangle as it is")
-            }
-            e => e.to_string(),
-        })?;
+        (None, design) => {
+            let design = design.as_deref().ok_or("--design or --sheet is required")?;
+            let design = resolve_design(design).map_err(|e| e.to_string())?;
+            export_design(&design, &request, args.format, &options, &mut |_| true).map_err(|e| {
+                match e {
+                    ExportError::Library(isogami::Error::Finite(FiniteError::NoOneDofSheet {
+                        ..
+                    })) => format!("{e}; --raw exports the rectangle as it is"),
+                    e => e.to_string(),
+                }
+            })?
+        }
+    };
     write_files(&args.out, &files)?;
     let f = &patch.finite;
-    let sheet = if f.completed {
+    let sheet = if let Some(g) = &f.graded {
+        format!(
+            "graded sheet, {} DOF at {:.0} % open",
+            g.dof.map_or("uncounted".into(), |d| d.to_string()),
+            100.0 * g.counted_at
+        )
+    } else if f.completed {
         format!(
             "one-DOF completion: {} of {} rectangle tiles kept, {} added, {:.1} % covered",
             f.requested_tiles - f.removed_tiles,
@@ -123,6 +161,23 @@ pub fn run(args: Args) -> CliResult {
         eprintln!("warning: {w}");
     }
     Ok(())
+}
+
+/// The format's own settings group, read from its flags and checked (the other groups'
+/// flags are ignored).
+fn options(args: &Args) -> Result<ExportOptions, String> {
+    let mut options = ExportOptions::default();
+    match args.format.settings_group() {
+        SettingsGroup::Laser => options.laser = args.laser.settings()?,
+        SettingsGroup::Print => {
+            options.print = args
+                .print
+                .settings(args.laser.hinge_mm, args.laser.thickness_mm)?
+        }
+        SettingsGroup::None => {}
+    }
+    options.validate(args.format).map_err(|e| e.to_string())?;
+    Ok(options)
 }
 
 fn write_files(out: &Path, files: &ExportFiles) -> CliResult {

@@ -15,6 +15,7 @@ mod export_cli;
 mod export_laser_cli;
 mod export_print_cli;
 mod graded_cli;
+mod graded_export;
 mod graded_svg_cli;
 mod inverse_checks;
 mod inverse_cli;
