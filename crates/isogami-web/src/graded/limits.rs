@@ -16,7 +16,7 @@ pub struct GradedLimits {
     /// Most tiles in the region before its completion, rows × columns × the design's tiles
     /// per cell (default 300).
     pub max_tiles: usize,
-    /// Most iterations of the fit (default 800, the library's default).
+    /// Most iterations of the fit (default 800; the library's default is lower).
     pub max_iterations: usize,
     /// Most states the pins must close in (default: the library's most).
     pub max_states: usize,
@@ -41,7 +41,7 @@ impl Default for GradedLimits {
             max_side: 8,
             max_cells: 36,
             max_tiles: 300,
-            max_iterations: GradedRequest::default().solve.max_iterations,
+            max_iterations: 800,
             max_states: MAX_STATES,
             max_running: 2,
             max_run: Duration::from_secs(180),
