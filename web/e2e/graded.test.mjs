@@ -113,6 +113,9 @@ test('a small sheet grades while the page watches, then reports, plays and downl
   assert.ok(new Set(whileRunning.map((d) => d.svg)).size >= 2, 'the drawing changed during the run');
   assert.ok(new Set(whileRunning.map((d) => d.iteration)).size >= 2, 'snapshots of different iterations');
   assert.equal(await byTestId(page, 'progress-bar').evaluate((b) => b.value === b.max), true);
+  assert.ok(await byTestId(page, 'live-sheet').isVisible(), 'the live drawing is on screen');
+  const liveBox = await byTestId(page, 'live-sheet').boundingBox();
+  assert.ok(liveBox.width > 200 && liveBox.height > 200, `live drawing ${liveBox.width}x${liveBox.height}`);
 
   // The report, as the job says.
   const id = await page.evaluate(() => document.body.dataset.jobId);
@@ -231,6 +234,7 @@ test('Stop ends a run, and a design page’s link pre-fills the design', async (
   await page.waitForFunction(() => document.body.dataset.gradedState === 'stopped', null, { timeout: 15000 });
   assert.match(await page.locator('#notice').textContent(), /grading stopped by request/);
   assert.ok(await page.locator('#results-section').isHidden());
+  assert.ok(await byTestId(page, 'live-sheet').isVisible(), 'the sheet as it stood is still shown');
   assert.equal(await byTestId(page, 'run').isDisabled(), false);
   assert.deepEqual(problems(page), []);
 });

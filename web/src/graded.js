@@ -285,7 +285,8 @@ function attach(id) {
   document.body.dataset.snapshotsDrawn = '0';
   $('results-section').hidden = true;
   $('live-sheet').replaceChildren();
-  $('live-sheet').hidden = true;
+  // An SVG element has no `hidden` property: the attribute itself.
+  $('live-sheet').setAttribute('hidden', '');
   $('stage-line').textContent = 'Starting: the design’s own finite sheet, opened…';
   setRunning(true);
   clearTimeout(timer);
@@ -346,7 +347,7 @@ function drawSnapshot(job) {
   live.frame = [Math.min(live.frame[0], b[0]), Math.min(live.frame[1], b[1]), Math.max(live.frame[2], b[2]), Math.max(live.frame[3], b[3])];
   live.count = snap.count;
   drawSheet($('live-sheet'), snap.polygons, { frame: live.frame, target });
-  $('live-sheet').hidden = false;
+  $('live-sheet').removeAttribute('hidden');
   $('live-sheet').dataset.iteration = String(snap.iteration);
   document.body.dataset.snapshotsDrawn = String(Number(document.body.dataset.snapshotsDrawn || 0) + 1);
 }
