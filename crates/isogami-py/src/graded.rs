@@ -343,7 +343,8 @@ fn region_of(region: &Bound<'_, PyAny>) -> PyResult<(usize, usize)> {
 /// (as ``isogami graded --target``); scaled to the area the design's own sheet covers open.
 /// ``t``: the opened state as the periodic deployment's t in (0, 1] (None: the state of
 /// largest area); ``states``: opened states the pins must close in (1 to 16); ``iterations``
-/// of the optimisation. Then checks that the graded closed tiling opens along one motion.
+/// of the optimisation (the defaults are the library's, as the CLI's). Then checks that the
+/// graded closed tiling opens along one motion.
 ///
 /// ``progress(iteration, cost)`` is called after every accepted step of the optimisation;
 /// returning False (or raising) stops the run, as do ``timeout`` seconds and Ctrl-C
@@ -358,7 +359,7 @@ fn region_of(region: &Bound<'_, PyAny>) -> PyResult<(usize, usize)> {
 /// ((16, 3), 16)
 #[pyfunction]
 #[pyo3(signature = (design, region=None, target="disc", t=None, states=None, iterations=None, *, progress=None, timeout=None),
-  text_signature = "(design, region=(3, 3), target='disc', t=None, states=8, iterations=800, *, progress=None, timeout=None)")]
+  text_signature = "(design, region=(3, 3), target='disc', t=None, states=8, iterations=400, *, progress=None, timeout=None)")]
 #[allow(clippy::too_many_arguments)]
 pub fn graded(
     py: Python<'_>,

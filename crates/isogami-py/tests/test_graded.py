@@ -53,6 +53,20 @@ def test_the_json_is_the_clis(run, cli_raw):
     assert "GradedRun(" in repr(run) and "16 tiles" in repr(run)
 
 
+def test_the_defaults_are_the_clis(cli_raw):
+    """The signature's defaults (from the library at run time, shown by help()) are the ones
+    `isogami graded --help` shows."""
+    import inspect
+
+    shown = cli_raw("graded", "--help").stdout.decode()
+    defaults = inspect.signature(isogami.graded).parameters
+    for name in ["states", "iterations"]:
+        found = re.search(rf"--{name} <\w+>\s+[^\[]*\[default: (\d+)\]", shown)
+        assert found, f"--{name} in {shown}"
+        assert defaults[name].default == int(found.group(1)), name
+    assert defaults["target"].default == "disc" and "[default: disc]" in shown
+
+
 def test_the_arrays_agree_with_the_json(run):
     sheet = json.loads(run.to_json())["sheet"]
     n = len(sheet["tiles"])

@@ -1026,7 +1026,7 @@ def graded(
     target: str = "disc",
     t: Optional[float] = None,
     states: int = 8,
-    iterations: int = 800,
+    iterations: int = 400,
     *,
     progress: Optional[GradedProgress] = None,
     timeout: Optional[float] = None,
