@@ -45,24 +45,26 @@ use serde::Serialize;
 pub struct Patch {
     /// The design's spec string.
     pub design: String,
-    /// Cells along w.
+    /// Cells along w (a graded sheet: the cells its tiles span).
     pub rows: usize,
-    /// Cells along u.
+    /// Cells along u (a graded sheet: the cells its tiles span).
     pub cols: usize,
     /// Tiles in one cell.
     pub tiles_per_cell: usize,
     /// What the sheet is as a mechanism: its degrees of freedom with a free boundary, and
     /// what completion did.
     pub finite: PatchMobility,
-    /// Kerf relative to the mean edge length (the deployment's setting).
+    /// Kerf relative to the mean edge length (the deployment's setting; 0 for a graded
+    /// sheet, whose path check looks for overlaps only).
     pub kerf: Real,
     /// Mean edge length of the tiles, mm.
     pub edge_mm: Real,
     /// Millimetres per tiling unit.
     pub mm_per_unit: Real,
-    /// t of the exported state.
+    /// t of the exported state (a graded sheet: its opening, 0 closed, 1 optimised).
     pub t: Real,
-    /// Area ratio det F of the exported state.
+    /// Area ratio det F of the exported state (a graded sheet: the area of its corners'
+    /// convex hull over the closed sheet's).
     pub area_ratio: Real,
     /// Bounding box size [width, height] of the tiles at the state, mm.
     pub size_mm: [Real; 2],
