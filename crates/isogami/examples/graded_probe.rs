@@ -45,6 +45,12 @@ fn main() {
             *slot = v;
         }
     }
+    if let Ok(text) = std::env::var("GRADED_TARGET") {
+        request.outline = isogami::graded::parse_outline(&text).expect("a target");
+    }
+    if let Ok(text) = std::env::var("GRADED_FIELD") {
+        request.field = Some(isogami::graded::parse_field(&text).expect("a field"));
+    }
     if let Some(v) = env("ITERATIONS") {
         request.solve.max_iterations = v as usize;
     }
@@ -53,6 +59,34 @@ fn main() {
     }
     let run = graded_sheet(&request, &mut |_| true, NEVER).expect("graded");
     let r = &run.report;
+    // Reflex corners of the closed tiles (a concave family).
+    let reflex = (0..run.sheet.tiles.len())
+        .map(|i| {
+            let p = run.sheet.closed_polygon(i);
+            let m = p.len();
+            (0..m)
+                .filter(|&v| {
+                    let (a, b) = (p[(v + 1) % m] - p[v], p[(v + m - 1) % m] - p[v]);
+                    a.x * b.y - a.y * b.x < 0.0
+                })
+                .count()
+        })
+        .sum::<usize>();
+    let (lo, hi) = run
+        .sheet
+        .nodes
+        .iter()
+        .fold(([f64::MAX; 2], [f64::MIN; 2]), |(l, h), p| {
+            (
+                [l[0].min(p[0]), l[1].min(p[1])],
+                [h[0].max(p[0]), h[1].max(p[1])],
+            )
+        });
+    println!("closed box {:.2} x {:.2}", hi[0] - lo[0], hi[1] - lo[1]);
+    println!(
+        "design {} reflex corners {reflex} field error {:?} over {} cells",
+        run.sheet.design, r.max_field_error, r.field_cells
+    );
     println!(
         "tiles {} iterations {} cost {:.3e} -> {:.3e} gap {:.1e} outline max {:.4} median {:.4} outside {:.4} corner {:.3} angle {:.1} edge {:.3} area {:.3} {:.2} s",
         r.tiles, r.iterations, r.cost[0], r.cost[1], r.joint_gap, r.max_outline_error,
@@ -63,6 +97,24 @@ fn main() {
         println!(
             "opening {:.3} gap {:.2e} dof {:?} smallest {:?} overlap {:?}",
             s.opening, s.joint_gap, s.dof, s.smallest, s.overlap
+        );
+    }
+    if let Some((a, b)) = run.path.states.iter().find_map(|s| s.overlap) {
+        let (ta, tb) = (&run.sheet.tiles[a], &run.sheet.tiles[b]);
+        let pinned = run
+            .sheet
+            .joints
+            .iter()
+            .any(|j| (j.a, j.b) == (a, b) || (j.a, j.b) == (b, a));
+        let shared: Vec<usize> = ta
+            .nodes
+            .iter()
+            .filter(|n| tb.nodes.contains(n))
+            .copied()
+            .collect();
+        println!(
+            "first overlap: tile {a} (cell {:?} tile {}) and {b} (cell {:?} tile {}), pinned {pinned}, shared nodes {shared:?}",
+            ta.cell, ta.tile, tb.cell, tb.tile
         );
     }
     println!(

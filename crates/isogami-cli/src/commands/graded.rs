@@ -5,7 +5,7 @@
 use crate::output::{emit, json_text, write_atomic, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami::api::{graded_sheet, GradedRun};
-use isogami::graded::{outline_from_svg, parse_outline, GradedRequest, Outline};
+use isogami::graded::{self, outline_from_svg, GradedRequest, Target};
 use isogami::stop::NEVER;
 use std::path::PathBuf;
 
@@ -22,9 +22,11 @@ pub struct Args {
     /// their ratio counts), polygon:x,y;x,y;… (star-shaped about its centroid) or @FILE.svg
     /// (the one closed shape drawn in an SVG file: path, polygon, rect, circle or ellipse,
     /// transforms applied, as seen on screen). Scaled to the area the design's own sheet
-    /// covers when open.
+    /// covers when open. Or field:FROM,TO[,DEGREES]: instead of an outline, a ramp of area
+    /// ratio across the sheet (FROM at one end, TO at the other, along DEGREES from +x), met
+    /// cell by cell.
     #[arg(long, default_value = "disc", value_parser = parse_target)]
-    target: Outline,
+    target: Target,
     /// The opened state as the periodic deployment's t in (0, 1] [default: the periodic
     /// state of largest area].
     #[arg(long)]
@@ -58,12 +60,14 @@ fn parse_cells(text: &str) -> Result<(usize, usize), String> {
 
 /// A target outline's text, or `@PATH`: the outline of the SVG file at PATH (clap's message
 /// names the value, so the errors do not repeat the path).
-fn parse_target(text: &str) -> Result<Outline, String> {
+fn parse_target(text: &str) -> Result<Target, String> {
     let Some(path) = text.strip_prefix('@') else {
-        return parse_outline(text).map_err(|e| e.to_string());
+        return graded::parse_target(text).map_err(|e| e.to_string());
     };
     let svg = std::fs::read_to_string(path).map_err(|e| format!("cannot read the file: {e}"))?;
-    outline_from_svg(&svg).map_err(|e| e.to_string())
+    outline_from_svg(&svg)
+        .map(Target::Outline)
+        .map_err(|e| e.to_string())
 }
 
 /// Grades one design towards one outline.
@@ -72,11 +76,11 @@ pub fn run(args: Args) -> CliResult {
         design: args.design.clone(),
         rows: args.region.0,
         cols: args.region.1,
-        outline: args.target.clone(),
         t: args.t,
         states: args.states,
         ..GradedRequest::default()
-    };
+    }
+    .with_target(args.target.clone());
     if args.iterations == 0 {
         return Err("--iterations must be at least 1".into());
     }
@@ -126,14 +130,21 @@ fn summary(run: &GradedRun, args: &Args) -> String {
         run.sheet.nodes.len(),
         run.sheet.path.len() + 1
     );
+    o += &match r.max_field_error {
+        Some(e) => format!(
+            "fit         area ratio within {e:.4} of the field in each of {} cells\n",
+            r.field_cells
+        ),
+        None => format!(
+            "fit         outline within {:.2} % (median {:.2} %), {:.2} % outside at most\n",
+            100.0 * r.max_outline_error,
+            100.0 * r.median_outline_error,
+            100.0 * r.max_outside
+        ),
+    };
     o += &format!(
-        "fit         outline within {:.2} % (median {:.2} %), {:.2} % outside at most\n",
-        100.0 * r.max_outline_error,
-        100.0 * r.median_outline_error,
-        100.0 * r.max_outside
-    );
-    o += &format!(
-        "shapes      corners keep ≥ {:.0} % of their turn, edges ≥ {:.0} % of their length, tiles ≥ {:.0} % of their area\n",
+        "shapes      smallest angle {:.1}°, corners keep ≥ {:.0} % of their sine, edges ≥ {:.0} % of their length, tiles ≥ {:.0} % of their area\n",
+        r.min_angle_degrees,
         100.0 * r.min_corner_fraction,
         100.0 * r.min_edge_fraction,
         100.0 * r.min_area_fraction

@@ -15,7 +15,8 @@
 //! (an isolated configuration); asking for the states between makes its shapes ones that
 //! move. The remaining groups concern the last (opened) state or the closed shapes:
 //! - **fit**: every outline point of the opened boundary lies on the target (radial error),
-//!   and no other boundary corner lies outside it (one-sided);
+//!   and no other boundary corner lies outside it (one-sided); or, for a field target, every
+//!   measured cell opens by the area ratio the field asks of it ([`super::field`]);
 //! - **smoothness**: lattice neighbours (the same tile of the cell in adjacent cells) keep
 //!   similar shapes (their edge vectors from the first corner agree);
 //! - **prior**: a weak pull of the closed nodes to their start (fixes the gauge);
@@ -24,6 +25,7 @@
 //!   reflex stays reflex) and of its starting triangle's area (no slivers), and every edge a
 //!   fraction of its starting length.
 
+use super::field::FieldCell;
 use super::model::GradedSheet;
 use super::target::Outline;
 use crate::math::{perp, rotation, DVec, Real, Vec2};
@@ -92,6 +94,8 @@ pub struct Problem {
     pub scale: Real,
     /// Lattice-neighbour tile pairs with the same corner count.
     pub neighbours: Vec<(usize, usize)>,
+    /// Cells whose opened area ratio is fitted to a target field (empty: an outline target).
+    pub field: Vec<FieldCell>,
     /// Starting node positions (prior).
     pub start: Vec<Vec2>,
     /// Starting corner sines, per tile per corner.
@@ -356,6 +360,43 @@ impl Problem {
         for &(i, n) in &self.inside {
             fit(i, n, true, &mut out);
         }
+        // Area-ratio field: (opened area − target × closed area) / starting closed area.
+        for cell in &self.field {
+            let closed: Vec<Vec2> = cell.corners.iter().map(|&(_, n)| x(n)).collect();
+            let opened: Vec<(Vec2, CornerJacobian)> = cell
+                .corners
+                .iter()
+                .map(|&(i, n)| self.corner(z, nodes, last, i, n))
+                .collect();
+            let points: Vec<Vec2> = opened.iter().map(|o| o.0).collect();
+            let a_open = crate::geometry::signed_area(&points);
+            let a_closed = crate::geometry::signed_area(&closed);
+            let k = w.fit / cell.start_area;
+            let value = k * (a_open - cell.target * a_closed);
+            // ∂A/∂p_j = ½ (p_{j+1}.y − p_{j−1}.y, p_{j−1}.x − p_{j+1}.x)
+            let grad = |p: &[Vec2], j: usize| {
+                let (next, prev) = (p[(j + 1) % 4], p[(j + 3) % 4]);
+                Vec2::new(next.y - prev.y, prev.x - next.x) * 0.5
+            };
+            let mut e = Vec::with_capacity(32);
+            for j in 0..4 {
+                let g = grad(&points, j);
+                for row in 0..2 {
+                    e.extend(
+                        opened[j]
+                            .1
+                            .row(row)
+                            .iter()
+                            .map(|&(c, v)| (c, k * g[row] * v)),
+                    );
+                }
+                let g = grad(&closed, j) * (-k * cell.target);
+                let n = cell.corners[j].1;
+                e.push((node_col(n), g.x));
+                e.push((node_col(n) + 1, g.y));
+            }
+            out.push(value, e);
+        }
         // Smoothness between lattice neighbours.
         for &(a, b) in &self.neighbours {
             let (ta, tb) = (&self.tiles[a], &self.tiles[b]);
@@ -455,14 +496,27 @@ mod tests {
     /// start where the one-sided terms are active.
     #[test]
     fn the_jacobian_matches_finite_differences() {
-        let request = GradedRequest {
+        let outline = GradedRequest {
             design: "rotating-squares".into(),
             rows: 2,
             cols: 2,
             outline: Outline::Ellipse { a: 1.5, b: 1.0 },
             ..GradedRequest::default()
         };
-        let (sheet, mut problem) = setup(&request).unwrap();
+        let field = GradedRequest {
+            rows: 3,
+            states: 2,
+            field: Some(crate::graded::parse_field("field:1.3,1.8,30").unwrap()),
+            ..outline.clone()
+        };
+        for request in [outline, field] {
+            jacobian_matches_finite_differences(&request);
+        }
+    }
+
+    fn jacobian_matches_finite_differences(request: &GradedRequest) {
+        let (sheet, mut problem) = setup(request).unwrap();
+        assert!(request.field.is_none() || !problem.field.is_empty());
         // Strong shape bounds so that some are active after the perturbation.
         problem.weights.corner_fraction = 0.99;
         problem.weights.angle_fraction = 0.99;

@@ -74,6 +74,11 @@ pub struct GradedReport {
     pub min_area_fraction: Real,
     /// Wall time, seconds.
     pub seconds: Real,
+    /// A field target: the largest difference between a measured cell's opened area ratio
+    /// and the field's (None for an outline target).
+    pub max_field_error: Option<Real>,
+    /// Cells measured for the field.
+    pub field_cells: usize,
     /// The target outline at the scale fitted, in the sheet's units (the opened sheet is
     /// centred on the origin): corners of a polygon, 128 points around a disc or ellipse.
     pub target: Vec<[Real; 2]>,
@@ -311,7 +316,19 @@ pub fn measure(sheet: &GradedSheet, problem: &Problem) -> GradedReport {
         min_edge_fraction: min_edge,
         min_area_fraction: min_area,
         seconds: 0.0,
-        target: problem.outline.boundary(problem.scale, 128),
+        max_field_error: (!problem.field.is_empty()).then(|| {
+            super::field::cell_ratios(sheet, &problem.field)
+                .iter()
+                .zip(&problem.field)
+                .map(|(r, c)| (r - c.target).abs())
+                .fold(0.0, Real::max)
+        }),
+        field_cells: problem.field.len(),
+        target: if problem.field.is_empty() {
+            problem.outline.boundary(problem.scale, 128)
+        } else {
+            Vec::new()
+        },
     }
 }
 
