@@ -357,7 +357,7 @@ pub const FIELD_SMOOTHING: Real = 0.1;
 pub const MAX_STATES: usize = 16;
 
 /// Sign of every pin's relative rotation in the opened state (0 where it does not turn).
-fn joint_signs(graded: &GradedSheet) -> Vec<Real> {
+pub(crate) fn joint_signs(graded: &GradedSheet) -> Vec<Real> {
     graded
         .joints
         .iter()
@@ -373,7 +373,7 @@ fn joint_signs(graded: &GradedSheet) -> Vec<Real> {
 }
 
 /// Mean signed relative rotation across the pins of one state's poses.
-fn mean_opening(poses: &[OpenedPose], graded: &GradedSheet, signs: &[Real]) -> Real {
+pub(crate) fn mean_opening(poses: &[OpenedPose], graded: &GradedSheet, signs: &[Real]) -> Real {
     graded
         .joints
         .iter()

@@ -379,16 +379,10 @@ impl Problem {
                 Vec2::new(next.y - prev.y, prev.x - next.x) * 0.5
             };
             let mut e = Vec::with_capacity(32);
-            for j in 0..4 {
+            for (j, (_, jacobian)) in opened.iter().enumerate() {
                 let g = grad(&points, j);
                 for row in 0..2 {
-                    e.extend(
-                        opened[j]
-                            .1
-                            .row(row)
-                            .iter()
-                            .map(|&(c, v)| (c, k * g[row] * v)),
-                    );
+                    e.extend(jacobian.row(row).iter().map(|&(c, v)| (c, k * g[row] * v)));
                 }
                 let g = grad(&closed, j) * (-k * cell.target);
                 let n = cell.corners[j].1;

@@ -306,25 +306,9 @@ fn states(sheet: &GradedSheet, path: Option<&PathCheck>) -> Vec<Posed> {
             }));
         }
         None => {
-            let signs: Vec<Real> = sheet
-                .joints
-                .iter()
-                .map(|j| {
-                    let r = sheet.opened[j.b].theta - sheet.opened[j.a].theta;
-                    if r.abs() > 1e-9 {
-                        r.signum()
-                    } else {
-                        0.0
-                    }
-                })
-                .collect();
+            let signs = crate::graded::joint_signs(sheet);
             let opening = |poses: &[OpenedPose]| -> Real {
-                sheet
-                    .joints
-                    .iter()
-                    .zip(&signs)
-                    .map(|(j, s)| s * (poses[j.b].theta - poses[j.a].theta))
-                    .sum()
+                crate::graded::mean_opening(poses, sheet, &signs)
             };
             let full = opening(&sheet.opened);
             let n = sheet.path.len();
