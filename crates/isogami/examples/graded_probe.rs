@@ -113,8 +113,17 @@ fn main() {
             .copied()
             .collect();
         println!(
-            "first overlap: tile {a} (cell {:?} tile {}) and {b} (cell {:?} tile {}), pinned {pinned}, shared nodes {shared:?}",
-            ta.cell, ta.tile, tb.cell, tb.tile
+            "first overlap (signs {:?}): tile {a} (cell {:?} tile {}) and {b} (cell {:?} tile {}), pinned {pinned}, shared nodes {shared:?}",
+            run.sheet
+                .joints
+                .iter()
+                .filter(|j| (j.a, j.b) == (a, b) || (j.a, j.b) == (b, a))
+                .map(|j| run.sheet.opened[j.b].theta - run.sheet.opened[j.a].theta)
+                .collect::<Vec<_>>(),
+            ta.cell,
+            ta.tile,
+            tb.cell,
+            tb.tile
         );
     }
     println!(

@@ -324,10 +324,12 @@ pub fn problem_of(graded: &GradedSheet, outline: Outline, weights: Weights) -> P
                 .collect()
         })
         .collect();
+    let pin_gaps = pin_gaps(graded);
     Problem {
         tiles,
         joints,
         joint_signs,
+        pin_gaps,
         openings,
         tips,
         inside,
@@ -370,6 +372,47 @@ pub(crate) fn joint_signs(graded: &GradedSheet) -> Vec<Real> {
             }
         })
         .collect()
+}
+
+/// The two angular gaps around every pin between its tiles' corners at the start (see
+/// [`problem::PinGap`]), found from the tiles' node lists: around node n, tile a's corner runs
+/// counter-clockwise from its edge to its next node to its edge to its previous node; the gap
+/// after it ends where b's corner starts (b's edge to its next node), and the other way round.
+fn pin_gaps(graded: &GradedSheet) -> Vec<problem::PinGap> {
+    let mut gaps = Vec::new();
+    for (k, j) in graded.joints.iter().enumerate() {
+        let ends = |tile: usize| {
+            let nodes = &graded.tiles[tile].nodes;
+            let m = nodes.len();
+            let at = nodes.iter().position(|&n| n == j.node)?;
+            Some((nodes[(at + 1) % m], nodes[(at + m - 1) % m]))
+        };
+        let (Some((next_a, prev_a)), Some((next_b, prev_b))) = (ends(j.a), ends(j.b)) else {
+            continue;
+        };
+        for (from, to, sign) in [(prev_a, next_b, 1.0), (prev_b, next_a, -1.0)] {
+            let (v, u) = (
+                graded.node(from) - graded.node(j.node),
+                graded.node(to) - graded.node(j.node),
+            );
+            let raw = crate::math::cross(&v, &u).atan2(v.dot(&u));
+            // A shared edge is a gap of exactly 0 (from == to), never 2π.
+            let start = if from == to {
+                0.0
+            } else {
+                raw.rem_euclid(std::f64::consts::TAU)
+            };
+            gaps.push(problem::PinGap {
+                joint: k,
+                from,
+                to,
+                sign,
+                start,
+                start_raw: raw,
+            });
+        }
+    }
+    gaps
 }
 
 /// Mean signed relative rotation across the pins of one state's poses.

@@ -82,6 +82,8 @@ pub struct Problem {
     pub joints: Vec<(usize, usize, usize)>,
     /// Sign of each pin's relative rotation at the start.
     pub joint_signs: Vec<Real>,
+    /// The two angular gaps around every pin between its tiles' corners (see [`PinGap`]).
+    pub pin_gaps: Vec<PinGap>,
     /// The mean signed relative rotation of each state, the opened state last.
     pub openings: Vec<Real>,
     /// Outline points (tile, node) fitted to the target.
@@ -175,6 +177,37 @@ struct CornerJacobian {
 impl CornerJacobian {
     fn row(&self, r: usize) -> &[(usize, Real)] {
         &self.entries[r][..self.len]
+    }
+}
+
+/// One of the two angular gaps around a pin between its two tiles' corners, in the closed
+/// sheet: counter-clockwise from the edge `node → from` (one tile's last edge at the node) to
+/// the edge `node → to` (the other's first). When tile b turns by Δθ relative to tile a the
+/// gap becomes gap + sign·Δθ, which must stay ≥ 0: otherwise the two tiles overlap around
+/// their pin (the pin opened past the room its corners leave).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PinGap {
+    /// Index of the pin in [`Problem::joints`].
+    pub joint: usize,
+    /// Node at the far end of the gap's first edge.
+    pub from: usize,
+    /// Node at the far end of its second edge.
+    pub to: usize,
+    /// +1 for the gap from a's corner to b's, −1 for the one from b's to a's.
+    pub sign: Real,
+    /// The gap at the start, in [0, 2π).
+    pub start: Real,
+    /// atan2 of the start, the branch the gap is followed from.
+    pub start_raw: Real,
+}
+
+/// The angle wrapped to (−π, π].
+pub fn wrap_angle(a: Real) -> Real {
+    let w = (a + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
+    if w <= -std::f64::consts::PI {
+        w + std::f64::consts::TAU
+    } else {
+        w
     }
 }
 
@@ -326,11 +359,47 @@ impl Problem {
                 if s == 0.0 {
                     continue;
                 }
+                let floor = w.pin_fraction * opening;
                 let ca = self.pose_col(nodes, state, a) + 2;
                 let cb = self.pose_col(nodes, state, b) + 2;
-                let value = w.pin_fraction * opening - s * (z[cb] - z[ca]);
+                let value = floor - s * (z[cb] - z[ca]);
                 if every || value > 0.0 {
                     out.push(w.bounds * value, [(cb, -w.bounds * s), (ca, w.bounds * s)]);
+                }
+            }
+            // The two tiles of a pin never turn into each other around it: each angular gap
+            // between their corners stays open (one-sided).
+            for gap in &self.pin_gaps {
+                let (a, b, n) = self.joints[gap.joint];
+                let (v, u) = (x(gap.from) - x(n), x(gap.to) - x(n));
+                let (lv, lu) = (v.norm_squared(), u.norm_squared());
+                if lv == 0.0 || lu == 0.0 {
+                    continue;
+                }
+                let raw = crate::math::cross(&v, &u).atan2(v.dot(&u));
+                let closed_gap = gap.start + wrap_angle(raw - gap.start_raw);
+                let ca = self.pose_col(nodes, state, a) + 2;
+                let cb = self.pose_col(nodes, state, b) + 2;
+                let value = -(closed_gap + gap.sign * (z[cb] - z[ca]));
+                if every || value > 0.0 {
+                    // ∂arg(u)/∂u = perp(u)/|u|², ∂arg(v)/∂v likewise, gap = arg u − arg v.
+                    let du = Vec2::new(-u.y, u.x) / lu;
+                    let dv = -Vec2::new(-v.y, v.x) / lv;
+                    let dn = -(du + dv);
+                    let k = -w.bounds;
+                    out.push(
+                        w.bounds * value,
+                        [
+                            (node_col(gap.to), k * du.x),
+                            (node_col(gap.to) + 1, k * du.y),
+                            (node_col(gap.from), k * dv.x),
+                            (node_col(gap.from) + 1, k * dv.y),
+                            (node_col(n), k * dn.x),
+                            (node_col(n) + 1, k * dn.y),
+                            (cb, k * gap.sign),
+                            (ca, -k * gap.sign),
+                        ],
+                    );
                 }
             }
         }
@@ -565,6 +634,51 @@ mod tests {
                     exact[c]
                 );
             }
+        }
+    }
+
+    /// The pin gaps are the room around each pin: at the ungraded opened start (a periodic
+    /// state, no overlap) no gap row is active; turning one tile of a pin past a gap makes
+    /// that gap's row active and the two tiles overlap (the independent overlap test agrees).
+    #[test]
+    fn a_pin_turned_past_its_gap_is_an_overlap() {
+        let request = GradedRequest {
+            design: "rotating-squares".into(),
+            rows: 2,
+            cols: 2,
+            states: 1,
+            ..GradedRequest::default()
+        };
+        let (sheet, problem) = setup(&request).unwrap();
+        let z = Problem::pack(&sheet);
+        let active = |z: &DVec| problem.rows(z).values.len();
+        let at_rest = active(&z);
+        assert!(!problem.pin_gaps.is_empty());
+        for gap in problem.pin_gaps.iter().step_by(3) {
+            let (a, b, _) = problem.joints[gap.joint];
+            if b == 0 || a == 0 {
+                continue;
+            }
+            // Turn tile b about the pin's node, past the gap by 0.2 rad.
+            let mut turned = sheet.clone();
+            let (ta, tb) = (turned.opened[a].theta, turned.opened[b].theta);
+            let now = gap.start + gap.sign * (tb - ta);
+            let delta = -gap.sign * (now + 0.2);
+            let pin = turned.opened_corner(b, problem.joints[gap.joint].2);
+            let pose = &mut turned.opened[b];
+            let r = rotation(delta);
+            let first = Vec2::new(pose.x, pose.y);
+            let moved = pin + r * (first - pin);
+            pose.x = moved.x;
+            pose.y = moved.y;
+            pose.theta += delta;
+            let zt = Problem::pack(&turned);
+            assert!(active(&zt) > at_rest, "gap {gap:?}: no row became active");
+            let overlap = crate::graded::deploy::overlap(&turned);
+            assert!(
+                overlap.is_some(),
+                "gap {gap:?}: turned past it, yet no overlap"
+            );
         }
     }
 }
