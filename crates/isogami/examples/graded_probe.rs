@@ -31,6 +31,7 @@ fn main() {
     let w = &mut request.weights;
     for (name, slot) in [
         ("FIT", &mut w.fit),
+        ("FIELDW", &mut w.field),
         ("SMOOTH", &mut w.smooth),
         ("BOUNDS", &mut w.bounds),
         ("JOINTS", &mut w.joints),

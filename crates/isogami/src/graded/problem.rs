@@ -37,8 +37,10 @@ pub struct Weights {
     pub joints: Real,
     /// Mean opening.
     pub opening: Real,
-    /// Target fit.
+    /// Target fit (outline).
     pub fit: Real,
+    /// Target fit (area-ratio field; its residual is a ratio, not a length).
+    pub field: Real,
     /// Shape smoothness between lattice neighbours.
     pub smooth: Real,
     /// Pull to the start.
@@ -62,6 +64,7 @@ impl Default for Weights {
             joints: 30.0,
             opening: 30.0,
             fit: 3.0,
+            field: 10.0,
             smooth: 0.3,
             prior: 1e-3,
             bounds: 30.0,
@@ -440,7 +443,7 @@ impl Problem {
             let points: Vec<Vec2> = opened.iter().map(|o| o.0).collect();
             let a_open = crate::geometry::signed_area(&points);
             let a_closed = crate::geometry::signed_area(&closed);
-            let k = w.fit / cell.start_area;
+            let k = w.field / cell.start_area;
             let value = k * (a_open - cell.target * a_closed);
             // ∂A/∂p_j = ½ (p_{j+1}.y − p_{j−1}.y, p_{j−1}.x − p_{j+1}.x)
             let grad = |p: &[Vec2], j: usize| {
