@@ -381,8 +381,14 @@ test('rows × columns beyond the server’s limits are refused beside the field 
   assert.equal(await byTestId(page, 'export-download').isDisabled(), true, 'Download is disabled');
   assert.equal(await byTestId(page, 'export-rows').getAttribute('aria-invalid'), 'true');
   // Beside the field: just under the rows × columns row.
-  const field = await byTestId(page, 'export-rows').boundingBox();
-  const box = await error.boundingBox();
+  // Both boxes in one layout (two separate reads straddled a late layout shift once: the
+  // message 67 px below a field read before the shift).
+  const [field, box] = await page.evaluate(() =>
+    ['export-rows', 'export-patch-error'].map((id) => {
+      const r = document.querySelector(`[data-testid="${id}"]`).getBoundingClientRect();
+      return { y: r.y, height: r.height };
+    }),
+  );
   assert.ok(box.y >= field.y && box.y - (field.y + field.height) < 40, `the message is beside the field (${box.y} vs ${field.y})`);
 
   // Within the library's limit but over the server's tile cap.
