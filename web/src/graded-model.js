@@ -251,7 +251,7 @@ export function reportLines(result) {
   });
   lines.push({
     key: 'pins',
-    text: `Pins closed to ${r.joint_gap.toExponential(1)} L after the optimisation; corners keep ≥ ${(100 * r.min_corner_fraction).toFixed(0)} % of their turn, edges ≥ ${(100 * r.min_edge_fraction).toFixed(0)} % of their length, tiles ≥ ${(100 * r.min_area_fraction).toFixed(0)} % of their area.`,
+    text: `Pins closed to ${r.joint_gap.toExponential(1)} L after the optimisation; smallest angle ${r.min_angle_degrees.toFixed(1)}°, corners keep ≥ ${(100 * r.min_corner_fraction).toFixed(0)} % of their sine, edges ≥ ${(100 * r.min_edge_fraction).toFixed(0)} % of their length, tiles ≥ ${(100 * r.min_area_fraction).toFixed(0)} % of their area.`,
   });
   const open = p.states.filter((s) => s.opening > 0);
   const dofs = open.map((s) => (s.dof === null || s.dof === undefined ? '?' : String(s.dof)));
@@ -260,7 +260,7 @@ export function reportLines(result) {
   lines.push({
     key: 'path',
     text: p.reached
-      ? `Opens along one motion: the path check reached the closed tiling from the opened state in ${p.states.length} states, one DOF at each, pins closed to ${gap.toExponential(1)} L, no overlap.`
+      ? `Opens along one motion: the path check reached the closed tiling from the opened state in ${p.states.length} states, one DOF at each from 10 % open (the closed tiling is singular), pins closed to ${gap.toExponential(1)} L, no overlap.`
       : `Does NOT open along one motion: ${[
         oneDof ? 'one DOF at every state' : `DOF ${dofs.join(' ')} from open to closed`,
         `pins closed to ${gap.toExponential(1)} L on the way (closed means below 1e-6 L)`,

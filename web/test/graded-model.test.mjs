@@ -105,14 +105,14 @@ test('the report names the fit, the path’s verdict and the overlapping tiles',
     sheet: { joints: [1, 2, 3], nodes: [1, 2, 3, 4, 5] },
     report: {
       tiles: 2, iterations: 60, cost: [9.4, 0.55], seconds: 0.5, joint_gap: 4.6e-6, max_outline_error: 0.0212,
-      median_outline_error: 0.0027, max_outside: 0.0212, min_corner_fraction: 0.35, min_edge_fraction: 0.44,
+      median_outline_error: 0.0027, max_outside: 0.0212, min_corner_fraction: 0.35, min_angle_degrees: 31.5, min_edge_fraction: 0.44,
       min_area_fraction: 0.52, target: [],
     },
     path: { states: [state(1), state(0.5, { overlap: [3, 7] }), state(0)], closed_spread: 2e-16, reached: false },
   };
   const lines = Object.fromEntries(reportLines(result).map((l) => [l.key, l.text]));
   assert.match(lines.fit, /within 2\.12 % of the target \(median 0\.27 %\)/);
-  assert.match(lines.pins, /^Pins closed to 4\.6e-6 L/);
+  assert.match(lines.pins, /^Pins closed to 4\.6e-6 L.*smallest angle 31\.5°, corners keep ≥ 35 % of their sine/);
   assert.match(lines.path, /^Does NOT open along one motion: one DOF at every state/);
   assert.equal(lines.overlaps, 'Overlaps: tiles 3 and 7 at 50 % open.');
   result.path.reached = true;
