@@ -14,6 +14,7 @@
 //! The start is the design's own finite sheet (completed to one degree of freedom, issue 15)
 //! at its opened state, the target scaled to the area that sheet covers open.
 
+pub mod contact;
 pub mod deploy;
 pub mod error;
 pub mod field;
@@ -325,11 +326,13 @@ pub fn problem_of(graded: &GradedSheet, outline: Outline, weights: Weights) -> P
         })
         .collect();
     let pin_gaps = pin_gaps(graded);
+    let contacts = contact::contacts(&tiles, &joints);
     Problem {
         tiles,
         joints,
         joint_signs,
         pin_gaps,
+        contacts,
         openings,
         tips,
         inside,

@@ -25,6 +25,7 @@
 //!   reflex stays reflex) and of its starting triangle's area (no slivers), and every edge a
 //!   fraction of its starting length.
 
+use super::contact::Contact;
 use super::field::FieldCell;
 use super::model::GradedSheet;
 use super::target::Outline;
@@ -87,6 +88,9 @@ pub struct Problem {
     pub joint_signs: Vec<Real>,
     /// The two angular gaps around every pin between its tiles' corners (see [`PinGap`]).
     pub pin_gaps: Vec<PinGap>,
+    /// Pairs of tiles sharing a closed node, kept apart in every state (see
+    /// [`super::contact`]).
+    pub contacts: Vec<Contact>,
     /// The mean signed relative rotation of each state, the opened state last.
     pub openings: Vec<Real>,
     /// Outline points (tile, node) fitted to the target.
@@ -144,7 +148,7 @@ impl Default for Rows {
 }
 
 impl Rows {
-    fn push(&mut self, value: Real, entries: impl IntoIterator<Item = (usize, Real)>) {
+    pub(super) fn push(&mut self, value: Real, entries: impl IntoIterator<Item = (usize, Real)>) {
         self.values.push(value);
         self.entries.extend(entries);
         self.starts.push(self.entries.len());
@@ -172,13 +176,13 @@ impl Rows {
 }
 
 /// The Jacobian of an opened corner: 2 rows of 2 to 6 entries.
-struct CornerJacobian {
+pub(super) struct CornerJacobian {
     entries: [[(usize, Real); 6]; 2],
     len: usize,
 }
 
 impl CornerJacobian {
-    fn row(&self, r: usize) -> &[(usize, Real)] {
+    pub(super) fn row(&self, r: usize) -> &[(usize, Real)] {
         &self.entries[r][..self.len]
     }
 }
@@ -279,7 +283,7 @@ impl Problem {
     }
 
     /// Opened position of node `n` as a corner of tile `i`, and its derivative entries.
-    fn corner(
+    pub(super) fn corner(
         &self,
         z: &DVec,
         nodes: usize,
@@ -404,6 +408,9 @@ impl Problem {
                         ],
                     );
                 }
+            }
+            if self.full {
+                self.contact_rows(z, nodes, state, every, &mut out);
             }
         }
         if !self.full {
@@ -575,14 +582,45 @@ mod tests {
             field: Some(crate::graded::parse_field("field:1.3,1.8,30").unwrap()),
             ..outline.clone()
         };
+        let pushed = GradedRequest {
+            states: 2,
+            ..outline.clone()
+        };
         for request in [outline, field] {
-            jacobian_matches_finite_differences(&request);
+            jacobian_matches_finite_differences(&request, false);
         }
+        // Contact rows active: a tile pushed into its neighbour in the opened state.
+        jacobian_matches_finite_differences(&pushed, true);
     }
 
-    fn jacobian_matches_finite_differences(request: &GradedRequest) {
-        let (sheet, mut problem) = setup(request).unwrap();
+    /// Moves the opened pose of the second tile of the first unpinned contact pair halfway
+    /// towards the first tile's; returns the pair.
+    fn push_into_neighbour(sheet: &mut GradedSheet, problem: &Problem) -> (usize, usize) {
+        let c = problem
+            .contacts
+            .iter()
+            .find(|c| c.pin.is_none())
+            .expect("an unpinned pair");
+        let centre = |p: Vec<Vec2>| p.iter().sum::<Vec2>() / p.len() as Real;
+        let shift = (centre(sheet.opened_polygon(c.a)) - centre(sheet.opened_polygon(c.b))) * 0.5;
+        sheet.opened[c.b].x += shift.x;
+        sheet.opened[c.b].y += shift.y;
+        (c.a, c.b)
+    }
+
+    fn jacobian_matches_finite_differences(request: &GradedRequest, push_in: bool) {
+        let (mut sheet, mut problem) = setup(request).unwrap();
         assert!(request.field.is_none() || !problem.field.is_empty());
+        if push_in {
+            push_into_neighbour(&mut sheet, &problem);
+            let z = Problem::pack(&sheet);
+            let mut without = problem.clone();
+            without.contacts.clear();
+            assert!(
+                problem.rows(&z).values.len() > without.rows(&z).values.len(),
+                "no contact row is active"
+            );
+        }
         // Strong shape bounds so that some are active after the perturbation.
         problem.weights.corner_fraction = 0.99;
         problem.weights.angle_fraction = 0.99;
@@ -638,6 +676,33 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// Two tiles that meet in the closed sheet, pushed into each other in the opened state:
+    /// contact rows become active and the independent overlap test agrees that the pair
+    /// overlaps; the unpushed start (a periodic state) has none active.
+    #[test]
+    fn a_tile_pushed_into_its_neighbour_is_a_contact() {
+        let request = GradedRequest {
+            design: "rotating-squares".into(),
+            rows: 2,
+            cols: 2,
+            states: 1,
+            ..GradedRequest::default()
+        };
+        let (mut sheet, problem) = setup(&request).unwrap();
+        let mut without = problem.clone();
+        without.contacts.clear();
+        let z = Problem::pack(&sheet);
+        assert_eq!(problem.rows(&z).values.len(), without.rows(&z).values.len());
+        let (a, b) = push_into_neighbour(&mut sheet, &problem);
+        let z = Problem::pack(&sheet);
+        assert!(problem.rows(&z).values.len() > without.rows(&z).values.len());
+        assert!(crate::geometry::interiors_overlap(
+            &sheet.opened_polygon(a),
+            &sheet.opened_polygon(b),
+            crate::graded::deploy::OVERLAP_TOLERANCE
+        ));
     }
 
     /// The pin gaps are the room around each pin: at the ungraded opened start (a periodic

@@ -1,0 +1,197 @@
+//! Tiles that meet in the closed sheet stay apart as it opens: the contact rows of the
+//! graded problem.
+//!
+//! A graded sheet's tiles may change shape so much that two tiles beside each other (sharing a
+//! closed node, pinned or not) run into each other part of the way open, although the
+//! periodic design's never do. The pin gaps ([`super::problem::PinGap`]) keep a pinned pair
+//! from turning into each other around its pin; these rows keep every corner of one tile of a
+//! pair out of the other tile, in every state: a corner inside is a one-sided residual, its
+//! depth (distance to the other tile's nearest boundary point), with exact derivatives through
+//! both tiles' opened corners. The pin's own node, on both tiles' boundaries, is left out.
+
+use super::problem::{Problem, Rows};
+use crate::geometry::point_in_polygon_strict;
+use crate::math::{cross, DVec, Real, Vec2};
+
+/// Two tiles that share a closed node: their opened interiors must stay apart.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Contact {
+    /// One tile.
+    pub a: usize,
+    /// The other.
+    pub b: usize,
+    /// The node they are pinned at, if they are (left out of the check).
+    pub pin: Option<usize>,
+}
+
+/// Every pair of tiles sharing a closed node, with the node they are pinned at.
+pub fn contacts(tiles: &[Vec<usize>], joints: &[(usize, usize, usize)]) -> Vec<Contact> {
+    let nodes = tiles.iter().flatten().max().map_or(0, |&n| n + 1);
+    let mut at: Vec<Vec<usize>> = vec![Vec::new(); nodes];
+    for (i, t) in tiles.iter().enumerate() {
+        for &n in t {
+            at[n].push(i);
+        }
+    }
+    let mut pairs: Vec<(usize, usize)> = at
+        .iter()
+        .flat_map(|ts| {
+            ts.iter()
+                .flat_map(move |&a| ts.iter().filter(move |&&b| b > a).map(move |&b| (a, b)))
+        })
+        .collect();
+    pairs.sort_unstable();
+    pairs.dedup();
+    pairs
+        .into_iter()
+        .map(|(a, b)| Contact {
+            a,
+            b,
+            pin: joints
+                .iter()
+                .find(|&&(p, q, _)| (p, q) == (a, b) || (p, q) == (b, a))
+                .map(|j| j.2),
+        })
+        .collect()
+}
+
+/// The depth of `p` inside the counter-clockwise polygon `poly` (distance to its nearest
+/// boundary point) and its gradients with respect to `p` and to each polygon corner, or None
+/// when `p` is not strictly inside.
+fn depth(p: Vec2, poly: &[Vec2]) -> Option<(Real, Vec2, Vec<(usize, Vec2)>)> {
+    if !point_in_polygon_strict(&p, poly, 0.0) {
+        return None;
+    }
+    let m = poly.len();
+    let mut best: Option<(Real, Vec2, Vec<(usize, Vec2)>)> = None;
+    for k in 0..m {
+        let (q0, q1) = (poly[k], poly[(k + 1) % m]);
+        let e = q1 - q0;
+        let w = p - q0;
+        let len2 = e.norm_squared();
+        if len2 == 0.0 {
+            continue;
+        }
+        let s = w.dot(&e) / len2;
+        let candidate = if s <= 0.0 || s >= 1.0 {
+            // Nearest at a corner: |p − q|.
+            let (j, q) = if s <= 0.0 { (k, q0) } else { ((k + 1) % m, q1) };
+            let d = (p - q).norm();
+            if d == 0.0 {
+                continue;
+            }
+            let g = (p - q) / d;
+            (d, g, vec![(j, -g)])
+        } else {
+            // Nearest on the edge: the signed distance cross(e, w)/|e| (positive inside).
+            let len = len2.sqrt();
+            let c = cross(&e, &w);
+            let d = c / len;
+            let dp = Vec2::new(-e.y, e.x) / len;
+            let dce = Vec2::new(w.y, -w.x);
+            let dq1 = dce / len - e * (c / (len * len2));
+            let dq0 = -dq1 - dp;
+            (d, dp, vec![(k, dq0), ((k + 1) % m, dq1)])
+        };
+        if best.as_ref().is_none_or(|b| candidate.0 < b.0) {
+            best = Some(candidate);
+        }
+    }
+    best
+}
+
+impl Problem {
+    /// The contact rows of state `state`: every pair, each corner of one tile inside the other.
+    pub(super) fn contact_rows(
+        &self,
+        z: &DVec,
+        nodes: usize,
+        state: usize,
+        every: bool,
+        out: &mut Rows,
+    ) {
+        let weight = self.weights.bounds;
+        for contact in &self.contacts {
+            let opened = |i: usize| -> Vec<_> {
+                self.tiles[i]
+                    .iter()
+                    .map(|&n| self.corner(z, nodes, state, i, n))
+                    .collect()
+            };
+            let (ca, cb) = (opened(contact.a), opened(contact.b));
+            if every {
+                // The pattern: one row over every column of both tiles.
+                let e = ca.iter().chain(&cb).flat_map(|(_, j)| {
+                    (0..2).flat_map(move |r| j.row(r).iter().map(|&(c, _)| (c, 1.0)))
+                });
+                out.push(0.0, e);
+                continue;
+            }
+            for (corners, other, tile) in [(&ca, &cb, contact.a), (&cb, &ca, contact.b)] {
+                let poly: Vec<Vec2> = other.iter().map(|c| c.0).collect();
+                for (v, (p, jp)) in corners.iter().enumerate() {
+                    if Some(self.tiles[tile][v]) == contact.pin {
+                        continue;
+                    }
+                    let Some((d, dp, dq)) = depth(*p, &poly) else {
+                        continue;
+                    };
+                    let mut e = Vec::with_capacity(24);
+                    for r in 0..2 {
+                        e.extend(jp.row(r).iter().map(|&(c, x)| (c, weight * dp[r] * x)));
+                        for (k, g) in &dq {
+                            let jq = &other[*k].1;
+                            e.extend(jq.row(r).iter().map(|&(c, x)| (c, weight * g[r] * x)));
+                        }
+                    }
+                    out.push(weight * d, e);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The depth's gradients match central differences (inside near an edge, and near a
+    /// corner of an L-shaped, concave polygon).
+    #[test]
+    fn the_depth_gradient_matches_finite_differences() {
+        let l = [
+            Vec2::new(0.0, 0.0),
+            Vec2::new(2.0, 0.0),
+            Vec2::new(2.0, 1.0),
+            Vec2::new(1.0, 1.0),
+            Vec2::new(1.0, 2.0),
+            Vec2::new(0.0, 2.0),
+        ];
+        let h = 1e-7;
+        for p in [
+            Vec2::new(1.7, 0.2),
+            Vec2::new(0.8, 0.9),
+            Vec2::new(0.3, 1.6),
+        ] {
+            let (d, dp, dq) = depth(p, &l).expect("inside");
+            assert!(d > 0.0);
+            for r in 0..2 {
+                let mut e = Vec2::zeros();
+                e[r] = h;
+                let fd = (depth(p + e, &l).unwrap().0 - depth(p - e, &l).unwrap().0) / (2.0 * h);
+                assert!((fd - dp[r]).abs() < 1e-6, "p {p:?}: {fd} vs {}", dp[r]);
+                for (k, g) in &dq {
+                    let (mut lp, mut lm) = (l, l);
+                    lp[*k] += e;
+                    lm[*k] -= e;
+                    let fd = (depth(p, &lp).unwrap().0 - depth(p, &lm).unwrap().0) / (2.0 * h);
+                    assert!((fd - g[r]).abs() < 1e-6, "corner {k}: {fd} vs {}", g[r]);
+                }
+            }
+        }
+        assert!(
+            depth(Vec2::new(1.5, 1.5), &l).is_none(),
+            "the notch is outside"
+        );
+    }
+}
