@@ -5,7 +5,7 @@
 //!
 //! | module | what |
 //! |---|---|
-//! | [`query`] | query string → design, format, patch request, options |
+//! | [`query`] | query string → design, format, patch request, options (or a graded sheet's scale, opening, frames, options) |
 //! | [`groups`] | settings groups (laser, …): query keys, form fields, defaults |
 //! | [`archive`] | a folder export as one zip file |
 
@@ -17,17 +17,17 @@ use crate::error::{ApiError, ApiResult};
 use crate::live::{explain, run_answered, timed_out};
 use crate::site::slug;
 use axum::http::StatusCode;
-use isogami::api::resolve_design;
+use isogami::api::{resolve_design, GradedRun};
 use isogami::contact::ContactSettings;
 use isogami::deploy::DeployError;
 use isogami::export::laser::LaserError;
 use isogami::export::{
-    export_files_until, patch_at_with, ExportError, ExportFiles, Format, PatchRequest, MAX_PATCH,
-    MAX_PATCH_FRAMES,
+    export_files_until, export_graded, patch_at_with, read_graded, ExportError, ExportFiles,
+    Format, PatchRequest, MAX_PATCH, MAX_PATCH_FRAMES,
 };
 use isogami::finite::FiniteError;
 use isogami::Error;
-use query::ExportQuery;
+use query::{ExportQuery, GradedExportQuery};
 use serde_json::{json, Value};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -202,6 +202,82 @@ pub async fn export_bounded(
             bytes: archive::zip_files(&named)?,
             media_type: ZIP,
             file_name: name,
+            warning,
+        },
+    })
+}
+
+/// The download's file name of a graded sheet's export: `<stem>.<ext>`, or
+/// `<stem>.<format>.zip` for a folder format.
+pub fn graded_file_name(stem: &str, format: Format) -> String {
+    match format.extension() {
+        Some(ext) => format!("{stem}.{ext}"),
+        None => format!("{stem}.{}.zip", format.name()),
+    }
+}
+
+/// Runs the export of a finished graded run on the blocking pool, bounded as
+/// [`export_bounded`] is (its tiles checked against [`MAX_EXPORT_TILES`], one `heavy` permit,
+/// `timeout`, stopped when the caller goes away). The run is written as `isogami graded --out`
+/// writes it and read back by `export::read_graded`, so that the file equals what
+/// `isogami export --sheet` makes of the downloaded sheet; then `export::export_graded`.
+pub async fn export_graded_bounded(
+    run: Arc<GradedRun>,
+    query: GradedExportQuery,
+    stem: &str,
+    timeout: Duration,
+    heavy: Arc<Semaphore>,
+) -> ApiResult<Download> {
+    let tiles = run.sheet.tiles.len();
+    if tiles > MAX_EXPORT_TILES {
+        return Err(ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "too_large",
+            format!(
+                "a graded sheet of {tiles} tiles: the server exports at most {MAX_EXPORT_TILES}"
+            ),
+            "run `isogami export --sheet` from the command line (no limit)",
+        ));
+    }
+    let started = Instant::now();
+    let permit = tokio::time::timeout(timeout, heavy.acquire_owned())
+        .await
+        .map_err(|_| busy())?
+        .map_err(|_| ApiError::internal("the export permits were closed"))?;
+    let left = timeout.saturating_sub(started.elapsed());
+    let format = query.format;
+    let (patch, files) = run_answered(left, move |deadline| {
+        let _permit = permit;
+        let text = serde_json::to_string_pretty(&*run).map_err(|e| ExportError::Read {
+            format: "graded sheet",
+            reason: e.to_string(),
+        })?;
+        let input = read_graded(&text)?;
+        export_graded(
+            &input.sheet,
+            input.path.as_ref(),
+            &query.request,
+            format,
+            &query.options,
+            &|| deadline.keep_going(),
+        )
+    })
+    .await
+    .map_err(|e| export_timeout(e, timeout))?
+    .map_err(|e| explain_export(&e, timeout))?;
+    let warning = patch.finite.warning();
+    let file_name = graded_file_name(stem, format);
+    Ok(match files {
+        ExportFiles::One(bytes) => Download {
+            bytes,
+            media_type: format.media_type(),
+            file_name,
+            warning,
+        },
+        ExportFiles::Folder(named) => Download {
+            bytes: archive::zip_files(&named)?,
+            media_type: ZIP,
+            file_name,
             warning,
         },
     })

@@ -4,12 +4,16 @@
 //! is refused, and the library's own validation runs before anything is deployed. The sheet
 //! written is the R×C rectangle's completion to a one-DOF sheet unless `raw=true` asks for
 //! the rectangle as it is (`complete=true|false` is still read: `complete=false` is raw).
+//! A graded sheet's export (`GET /api/graded/{id}/export`) reads the keys the two share
+//! ([`parse_graded_export`]).
 
 use super::groups::{group_keys, Values, GROUPS};
 use crate::error::{ApiError, ApiResult};
 use crate::filters::truncate;
 use isogami::contact::ContactSettings;
-use isogami::export::{ExportOptions, Format, PatchRequest, Scale, State, MAX_PATCH};
+use isogami::export::{
+    ExportOptions, Format, GradedPatchRequest, PatchRequest, Scale, State, MAX_PATCH,
+};
 
 /// Longest design text (a spec, a name or design JSON), as for `POST /api/deploy`.
 pub const MAX_DESIGN: usize = 16 * 1024;
@@ -38,11 +42,11 @@ pub struct ExportQuery {
     pub options: ExportOptions,
 }
 
-/// Reads and checks the query pairs.
-pub fn parse_export(pairs: &[(String, String)]) -> ApiResult<ExportQuery> {
+/// Refuses a key that is neither one of `own` nor a settings group's, and a repeated key.
+fn check_keys(pairs: &[(String, String)], own: &[&str]) -> ApiResult<()> {
     let groups = group_keys();
     for (k, (key, _)) in pairs.iter().enumerate() {
-        if !REQUEST_KEYS.contains(&key.as_str()) && !groups.contains(&key.as_str()) {
+        if !own.contains(&key.as_str()) && !groups.contains(&key.as_str()) {
             return Err(ApiError::bad_parameter(format!(
                 "unknown parameter {:?}",
                 truncate(key)
@@ -54,6 +58,76 @@ pub fn parse_export(pairs: &[(String, String)]) -> ApiResult<ExportQuery> {
             )));
         }
     }
+    Ok(())
+}
+
+/// `format`, by the library's names.
+fn format_of(values: &Values<'_>) -> ApiResult<Format> {
+    values
+        .get("format")
+        .ok_or_else(|| ApiError::bad_parameter("missing parameter format"))?
+        .parse()
+        .map_err(|e: isogami::export::ExportError| ApiError::bad_parameter(e.to_string()))
+}
+
+/// `edge_mm` or `width_mm` (`default` when neither).
+fn scale_of(values: &Values<'_>, default: Scale) -> ApiResult<Scale> {
+    Ok(
+        match (values.number("edge_mm")?, values.number("width_mm")?) {
+            (Some(_), Some(_)) => {
+                return Err(ApiError::bad_parameter(
+                    "give edge_mm or width_mm, not both",
+                ))
+            }
+            (_, Some(w)) => Scale::WidthMm(w),
+            (Some(e), None) => Scale::EdgeMm(e),
+            (None, None) => default,
+        },
+    )
+}
+
+/// `t`: a number or `open` (`default` when not given).
+fn state_of(values: &Values<'_>, default: State) -> ApiResult<State> {
+    Ok(match values.get("t") {
+        None => default,
+        Some("open") => State::Open,
+        Some(text) => State::T(text.parse::<f64>().map_err(|_| {
+            ApiError::bad_parameter(format!(
+                "t {:?}: expected a number in [0, 1] or 'open'",
+                truncate(text)
+            ))
+        })?),
+    })
+}
+
+/// `frames` (`default` when not given).
+fn frames_of(values: &Values<'_>, default: usize) -> ApiResult<usize> {
+    match values.get("frames") {
+        None => Ok(default),
+        Some(text) => text.parse::<usize>().map_err(|_| {
+            ApiError::bad_parameter(format!(
+                "frames {:?}: expected a whole number",
+                truncate(text)
+            ))
+        }),
+    }
+}
+
+/// The format options: every settings group's keys read, then checked for `format`.
+fn options_of(values: &Values<'_>, format: Format) -> ApiResult<ExportOptions> {
+    let mut options = ExportOptions::default();
+    for group in GROUPS {
+        (group.apply)(&mut options, values)?;
+    }
+    options
+        .validate(format)
+        .map_err(|e| ApiError::bad_parameter(e.to_string()))?;
+    Ok(options)
+}
+
+/// Reads and checks the query pairs.
+pub fn parse_export(pairs: &[(String, String)]) -> ApiResult<ExportQuery> {
+    check_keys(pairs, &REQUEST_KEYS)?;
     let values = Values(pairs);
     let design = values
         .get("design")
@@ -62,49 +136,19 @@ pub fn parse_export(pairs: &[(String, String)]) -> ApiResult<ExportQuery> {
     if design.len() > MAX_DESIGN {
         return Err(ApiError::bad_parameter("design text longer than 16 KiB"));
     }
-    let format: Format = values
-        .get("format")
-        .ok_or_else(|| ApiError::bad_parameter("missing parameter format"))?
-        .parse()
-        .map_err(|e: isogami::export::ExportError| ApiError::bad_parameter(e.to_string()))?;
+    let format = format_of(&values)?;
 
     let defaults = PatchRequest::default();
     let (rows, cols) = match values.get("patch") {
         Some(text) => parse_patch(text)?,
         None => (defaults.rows, defaults.cols),
     };
-    let scale = match (values.number("edge_mm")?, values.number("width_mm")?) {
-        (Some(_), Some(_)) => {
-            return Err(ApiError::bad_parameter(
-                "give edge_mm or width_mm, not both",
-            ))
-        }
-        (_, Some(w)) => Scale::WidthMm(w),
-        (Some(e), None) => Scale::EdgeMm(e),
-        (None, None) => defaults.scale,
-    };
-    let state = match values.get("t") {
-        None => defaults.state,
-        Some("open") => State::Open,
-        Some(text) => State::T(text.parse::<f64>().map_err(|_| {
-            ApiError::bad_parameter(format!(
-                "t {:?}: expected a number in [0, 1] or 'open'",
-                truncate(text)
-            ))
-        })?),
-    };
+    let scale = scale_of(&values, defaults.scale)?;
+    let state = state_of(&values, defaults.state)?;
     let kerf = values
         .number("kerf")?
         .unwrap_or(ContactSettings::default().kerf);
-    let frames = match values.get("frames") {
-        None => defaults.frames,
-        Some(text) => text.parse::<usize>().map_err(|_| {
-            ApiError::bad_parameter(format!(
-                "frames {:?}: expected a whole number",
-                truncate(text)
-            ))
-        })?,
-    };
+    let frames = frames_of(&values, defaults.frames)?;
     // The completed sheet unless the rectangle is asked for, by either key.
     let complete = match (values.flag("raw")?, values.flag("complete")?) {
         (Some(raw), Some(complete)) if raw == complete => {
@@ -134,16 +178,48 @@ pub fn parse_export(pairs: &[(String, String)]) -> ApiResult<ExportQuery> {
              on the server (fewer frames or a smaller patch, or `isogami export`)"
         )));
     }
-
-    let mut options = ExportOptions::default();
-    for group in GROUPS {
-        (group.apply)(&mut options, &values)?;
-    }
-    options
-        .validate(format)
-        .map_err(|e| ApiError::bad_parameter(e.to_string()))?;
+    let options = options_of(&values, format)?;
     Ok(ExportQuery {
         design: design.to_string(),
+        format,
+        request,
+        options,
+    })
+}
+
+/// Keys of a graded sheet's export, named as `isogami export --sheet`'s flags (the settings
+/// groups add theirs): no design, patch, kerf or completion — the sheet is the job's.
+pub const GRADED_KEYS: [&str; 5] = ["format", "edge_mm", "width_mm", "t", "frames"];
+
+/// A parsed export request of a graded sheet.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GradedExportQuery {
+    /// The format.
+    pub format: Format,
+    /// Scale, state (the opening) and frames, checked by [`GradedPatchRequest::validate`].
+    pub request: GradedPatchRequest,
+    /// The format options, checked by [`ExportOptions::validate`] for this format.
+    pub options: ExportOptions,
+}
+
+/// Reads and checks the query pairs of a graded sheet's export: the keys, values and
+/// defaults of [`parse_export`] for what they share (`t` is the sheet's opening: 0 closed,
+/// 1 or `open` the optimised state).
+pub fn parse_graded_export(pairs: &[(String, String)]) -> ApiResult<GradedExportQuery> {
+    check_keys(pairs, &GRADED_KEYS)?;
+    let values = Values(pairs);
+    let format = format_of(&values)?;
+    let defaults = GradedPatchRequest::default();
+    let request = GradedPatchRequest {
+        scale: scale_of(&values, defaults.scale)?,
+        state: state_of(&values, defaults.state)?,
+        frames: frames_of(&values, defaults.frames)?,
+    };
+    request
+        .validate()
+        .map_err(|e| ApiError::bad_parameter(e.to_string()))?;
+    let options = options_of(&values, format)?;
+    Ok(GradedExportQuery {
         format,
         request,
         options,

@@ -1,6 +1,8 @@
 //! The body of `POST /api/graded` → the library's [`GradedRequest`], with the meaning of
-//! `isogami graded`'s flags (a left-out field is the flag's default; `outline` is `--target`'s
-//! text, read by the library's own parser), checked against this server's caps.
+//! `isogami graded`'s flags (a left-out field is the flag's default; `target` — or its older
+//! name `outline` — is `--target`'s text, read by the library's own parser, and `svg` the text
+//! of the file `--target @FILE.svg` names, read by `graded::outline_from_svg`), checked against
+//! this server's caps.
 
 use super::limits::GradedLimits;
 use crate::error::{ApiError, ApiResult};
@@ -8,12 +10,17 @@ use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
 use axum::http::StatusCode;
 use isogami::api::resolve_design;
-use isogami::graded::{parse_outline, GradedRequest, Outline};
+use isogami::graded::{
+    outline_from_svg, parse_outline, parse_target, GradedRequest, Outline, Target,
+};
 use serde::Deserialize;
 use serde_json::{json, Value};
 
 /// Longest design or outline text accepted.
 pub const MAX_TEXT: usize = 16 * 1024;
+
+/// Longest SVG text accepted (a body is at most 64 KiB of JSON on this server).
+pub const MAX_SVG: usize = 48 * 1024;
 
 /// Points drawn around a disc or an ellipse for the page (as the library's report does).
 const OUTLINE_SAMPLES: usize = 128;
@@ -28,8 +35,15 @@ pub struct GradedBody {
     pub rows: Option<usize>,
     /// Cells along u (`--region _×C`; default 3).
     pub cols: Option<usize>,
-    /// The target outline: `disc`, `ellipse:A,B` or `polygon:x,y;x,y;…` (`--target`).
-    pub outline: Option<String>,
+    /// The target: an outline `disc`, `ellipse:A,B` or `polygon:x,y;x,y;…`, or an area-ratio
+    /// field `field:FROM,TO[,DEGREES]` (`--target`; `outline` is its older name).
+    #[serde(alias = "outline")]
+    pub target: Option<String>,
+    /// An SVG file's text whose one closed shape is the target outline (`--target @FILE.svg`),
+    /// instead of `target`.
+    pub svg: Option<String>,
+    /// The SVG file's name, for the echo and the command line (default `outline.svg`).
+    pub svg_name: Option<String>,
     /// The opened state as the periodic deployment's t in (0, 1] (`--t`).
     pub t: Option<f64>,
     /// States the pins must close in (`--states`).
@@ -44,7 +58,8 @@ fn bad_target(message: String) -> ApiError {
         StatusCode::BAD_REQUEST,
         "bad_target",
         message,
-        "an outline is disc, ellipse:A,B or polygon:x,y;x,y;… seen whole from its centroid",
+        "a target is disc, ellipse:A,B, polygon:x,y;x,y;… seen whole from its centroid, \
+         field:FROM,TO[,DEGREES] or an SVG file with one closed shape",
     )
 }
 
@@ -64,6 +79,28 @@ pub fn outline_of(text: &str) -> ApiResult<Outline> {
         return Err(bad_target("outline longer than 16 KiB".into()));
     }
     parse_outline(text).map_err(|e| bad_target(e.to_string()))
+}
+
+/// The target of `text` (an outline or a field) read by the library, or 400 with its
+/// one-line message.
+pub fn target_of(text: &str) -> ApiResult<Target> {
+    if text.len() > MAX_TEXT {
+        return Err(bad_target("target longer than 16 KiB".into()));
+    }
+    parse_target(text).map_err(|e| bad_target(e.to_string()))
+}
+
+/// The outline of an SVG file's text read by the library, or 400 with its one-line message
+/// (naming the file as `name`).
+pub fn svg_outline(svg: &str, name: &str) -> ApiResult<Outline> {
+    if svg.len() > MAX_SVG {
+        return Err(bad_target(format!(
+            "{}: SVG longer than 48 KiB (this server's limit; `isogami graded --target @FILE.svg` has none)",
+            crate::filters::truncate(name)
+        )));
+    }
+    outline_from_svg(svg)
+        .map_err(|e| bad_target(format!("{}: {e}", crate::filters::truncate(name))))
 }
 
 /// What the page draws of an outline: the text and its boundary at scale 1 (centred on its
@@ -86,9 +123,38 @@ impl GradedBody {
         })
     }
 
-    /// The outline's text as given (default `disc`).
-    pub fn outline_text(&self) -> &str {
-        self.outline.as_deref().unwrap_or("disc")
+    /// The target's text as given (default `disc`; `@NAME` for an SVG file, as the CLI
+    /// takes it).
+    pub fn outline_text(&self) -> String {
+        match &self.svg {
+            Some(_) => format!("@{}", self.svg_file_name()),
+            None => self.target.as_deref().unwrap_or("disc").to_string(),
+        }
+    }
+
+    /// The SVG file's name (`outline.svg` when not given), without any folder.
+    fn svg_file_name(&self) -> String {
+        let name = self.svg_name.as_deref().unwrap_or("").trim();
+        let name = name.rsplit(['/', '\\']).next().unwrap_or("");
+        let name: String = name
+            .chars()
+            .filter(|c| !c.is_control() && !c.is_whitespace())
+            .take(80)
+            .collect();
+        if name.is_empty() {
+            "outline.svg".into()
+        } else {
+            name
+        }
+    }
+
+    /// The target: the SVG file's outline, or the target text's outline or field.
+    fn target(&self) -> ApiResult<Target> {
+        match (&self.svg, &self.target) {
+            (Some(_), Some(_)) => Err(ApiError::bad_parameter("give target or svg, not both")),
+            (Some(svg), None) => svg_outline(svg, &self.svg_file_name()).map(Target::Outline),
+            (None, text) => target_of(text.as_deref().unwrap_or("disc")),
+        }
     }
 
     /// The library's request, checked against `limits` (the design read and its cell built,
@@ -126,7 +192,7 @@ impl GradedBody {
                 limits.max_cells
             )));
         }
-        r.outline = outline_of(self.outline_text())?;
+        r = r.with_target(self.target()?);
         if let Some(t) = self.t {
             if !(t.is_finite() && t > 0.0 && t <= 1.0) {
                 return Err(ApiError::bad_parameter(format!(
@@ -205,6 +271,22 @@ mod tests {
         assert_eq!((r.rows, r.cols), (2, 4));
         assert_eq!(r.outline, Outline::Ellipse { a: 1.4, b: 1.0 });
         assert_eq!((r.t, r.states, r.solve.max_iterations), (Some(0.5), 4, 60));
+        // `target` is `outline`'s newer name, and takes a field too.
+        let r = body(json!({"target": "field:1.2,1.8,90"}))
+            .request(&limits)
+            .unwrap();
+        assert_eq!(
+            r.field,
+            Some(isogami::graded::parse_field("field:1.2,1.8,90").unwrap())
+        );
+        // An SVG file's text: the library's outline of it, echoed as `@NAME`.
+        let svg = r#"<svg><polygon points="0,0 2,0 2,1 0,1"/></svg>"#;
+        let b = body(json!({"svg": svg, "svg_name": "/tmp/x/box.svg"}));
+        assert_eq!(b.outline_text(), "@box.svg");
+        assert_eq!(
+            b.request(&limits).unwrap().outline,
+            outline_from_svg(svg).unwrap()
+        );
     }
 
     #[test]
@@ -224,6 +306,17 @@ mod tests {
             (json!({"states": 0}), "bad_parameter", "0 states"),
             (json!({"iterations": 801}), "over_limit", "iterations 801"),
             (json!({"iterations": 0}), "bad_parameter", "iterations"),
+            (json!({"target": "field:1.2"}), "bad_target", "field:"),
+            (
+                json!({"svg": "<svg/>", "svg_name": "a.svg"}),
+                "bad_target",
+                "a.svg: ",
+            ),
+            (
+                json!({"svg": "<svg/>", "target": "disc"}),
+                "bad_parameter",
+                "not both",
+            ),
             (
                 json!({"design": "no-such-design"}),
                 "bad_design",

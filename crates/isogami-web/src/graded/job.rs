@@ -9,7 +9,7 @@ use crate::error::ApiError;
 use crate::inverse::view::{JobError, JobState};
 use axum::http::StatusCode;
 use isogami::api::{graded_sheet, GradedRun};
-use isogami::graded::{GradedProgress, GradedRequest, GradedSheet};
+use isogami::graded::{AreaField, GradedProgress, GradedRequest, GradedSheet};
 use serde::Serialize;
 use serde_json::Value;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -25,11 +25,14 @@ pub struct Echo {
     pub rows: usize,
     /// Cells along u.
     pub cols: usize,
-    /// The outline's text as given.
+    /// The target's text as given (`@NAME` for an uploaded SVG file, as the CLI takes it).
     pub outline: String,
     /// The outline at scale 1, centred on its centroid, counter-clockwise (128 points around
-    /// a disc or an ellipse): what the page draws, sized to the sheet, while the run goes.
+    /// a disc or an ellipse): what the page draws, sized to the sheet, while the run goes
+    /// (empty for a field target).
     pub outline_points: Value,
+    /// A field target: the ramp of area ratio (null for an outline).
+    pub field: Option<AreaField>,
     /// The opened state asked for (null: the state of largest area).
     pub t: Option<f64>,
     /// States the pins must close in.
@@ -163,7 +166,11 @@ impl GradedJob {
                 rows: request.rows,
                 cols: request.cols,
                 outline: outline.to_string(),
-                outline_points: outline_view(outline, &request.outline)["points"].clone(),
+                outline_points: match request.field {
+                    Some(_) => Value::Array(Vec::new()),
+                    None => outline_view(outline, &request.outline)["points"].clone(),
+                },
+                field: request.field,
                 t: request.t,
                 states: request.states,
                 iterations: request.solve.max_iterations,

@@ -2,7 +2,7 @@
 
 use crate::error::ApiResult;
 use crate::export::query::parse_export;
-use crate::export::{catalog, export_bounded};
+use crate::export::{catalog, export_bounded, Download};
 use crate::filters::pairs;
 use crate::state::AppState;
 use axum::extract::{RawQuery, State};
@@ -29,6 +29,11 @@ pub async fn export(State(state): State<AppState>, RawQuery(raw): RawQuery) -> A
     let query = parse_export(&pairs(raw.as_deref()))?;
     let download =
         export_bounded(query, state.settings().sim_timeout, state.heavy().clone()).await?;
+    Ok(download_response(download))
+}
+
+/// A finished export as an attachment, with the library's warning in [`WARNING_HEADER`].
+pub fn download_response(download: Download) -> Response {
     let mut response = (
         [
             (header::CONTENT_TYPE, download.media_type.to_string()),
@@ -48,5 +53,5 @@ pub async fn export(State(state): State<AppState>, RawQuery(raw): RawQuery) -> A
             response.headers_mut().insert(WARNING_HEADER, value);
         }
     }
-    Ok(response)
+    response
 }

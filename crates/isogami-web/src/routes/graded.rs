@@ -1,9 +1,12 @@
-//! Graded-sheet endpoints (see [`crate::graded`]): the page's settings, an outline checked by
-//! the library, starting a job, polling it, stopping it, and downloading its graded sheet.
+//! Graded-sheet endpoints (see [`crate::graded`]): the page's settings, an outline (or an SVG
+//! file's) checked by the library, starting a job, polling it, stopping it, and downloading its
+//! graded sheet as JSON or exported (laser, print and every other format).
 
 use crate::error::{ApiError, ApiResult};
+use crate::export::export_graded_bounded;
+use crate::export::query::parse_graded_export;
 use crate::filters::{get as param, pairs, truncate};
-use crate::graded::body::outline_of;
+use crate::graded::body::{outline_of, svg_outline};
 use crate::graded::{outline_view, GradedBody, GradedJob, GradedView};
 use crate::inverse::JobState;
 use crate::state::AppState;
@@ -40,6 +43,37 @@ pub async fn outline(RawQuery(raw): RawQuery) -> ApiResult<Json<Value>> {
     Ok(Json(outline_view(text, &outline)))
 }
 
+/// `POST /api/graded/svg?name=FILE`: the body is an SVG file's text; answers its one closed
+/// shape read by the library (`graded::outline_from_svg`) as the outline's polygon text and
+/// its boundary at scale 1 (what `--target @FILE.svg` grades towards), or 400 `bad_target`
+/// with the library's one-line message naming the file.
+pub async fn svg(
+    RawQuery(raw): RawQuery,
+    body: Result<Bytes, BytesRejection>,
+) -> ApiResult<Json<Value>> {
+    let pairs = pairs(raw.as_deref());
+    if let Some((k, _)) = pairs.iter().find(|(k, _)| k != "name") {
+        return Err(ApiError::bad_parameter(format!(
+            "unknown parameter {:?}",
+            truncate(k)
+        )));
+    }
+    let name = param(&pairs, "name").unwrap_or("outline.svg");
+    let bytes = body.map_err(|e| ApiError::bad_body(&e))?;
+    let text = std::str::from_utf8(&bytes).map_err(|_| {
+        ApiError::new(
+            StatusCode::BAD_REQUEST,
+            "bad_target",
+            format!("{}: not UTF-8 text (an SVG file is XML)", truncate(name)),
+            "upload an SVG file with one closed shape",
+        )
+    })?;
+    let outline = svg_outline(text, name)?;
+    let mut view = outline_view(&format!("@{name}"), &outline);
+    view["name"] = json!(name);
+    Ok(Json(view))
+}
+
 /// `POST /api/graded`: checks the request (400 with a one-line message), refuses a job over
 /// the running cap (409), starts the run on the blocking pool and answers 202 `{id}`.
 pub async fn start(
@@ -51,7 +85,7 @@ pub async fn start(
     let request = body.request(&limits)?;
     let job = state
         .graded_jobs()
-        .start(&request, body.outline_text(), &limits)?;
+        .start(&request, &body.outline_text(), &limits)?;
     let id = job.id();
     tokio::task::spawn_blocking(move || job.run(&request));
     Ok((
@@ -115,4 +149,38 @@ pub async fn sheet(State(state): State<AppState>, Path(id): Path<String>) -> Api
         text + "\n",
     )
         .into_response())
+}
+
+/// `GET /api/graded/{id}/export?format=&edge_mm=|width_mm=&t=&frames=&…`: a finished job's
+/// graded sheet written by the library's `export::export_graded` in `format` (keys named as
+/// `isogami export --sheet`'s flags, checked as `GET /api/export` checks them; `t` is the
+/// opening, 0 closed — the default, what a laser cuts —, 1 or `open` the optimised state),
+/// as an attachment `graded-<R>x<C>.<ext>` (a folder format zipped), bounded as a design's
+/// export is; 409 before the job is done.
+pub async fn export(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    RawQuery(raw): RawQuery,
+) -> ApiResult<Response> {
+    let query = parse_graded_export(&pairs(raw.as_deref()))?;
+    let job = job(&state, &id)?;
+    let run = job.run_result().ok_or_else(|| {
+        ApiError::new(
+            StatusCode::CONFLICT,
+            "not_done",
+            format!("graded-sheet job {} has no sheet to export", job.id()),
+            "export once the job's state is done",
+        )
+    })?;
+    let echo = job.echo();
+    let stem = format!("graded-{}x{}", echo.rows, echo.cols);
+    let download = export_graded_bounded(
+        run,
+        query,
+        &stem,
+        state.settings().sim_timeout,
+        state.heavy().clone(),
+    )
+    .await?;
+    Ok(super::export::download_response(download))
 }

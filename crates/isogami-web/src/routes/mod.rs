@@ -28,10 +28,12 @@
 //! | `POST /api/inverse/{id}/save` | save its refined designs as user designs |
 //! | `GET /api/graded` | graded sheets' defaults, caps, running jobs |
 //! | `GET /api/graded/outline?outline=` | a target outline read by the library, or its one-line error |
+//! | `POST /api/graded/svg?name=` | an SVG file's outline read by the library, or its one-line error |
 //! | `POST /api/graded` | start a graded-sheet job (202 `{id}`; 409 over the running cap) |
 //! | `GET /api/graded/{id}` | its state, progress, snapshot of the sheet as it stands, result |
 //! | `DELETE /api/graded/{id}` | stop it |
 //! | `GET /api/graded/{id}/sheet` | its graded sheet as `isogami graded --out` writes it |
+//! | `GET /api/graded/{id}/export?format=&…` | its graded sheet exported (laser, print, …) as `isogami export --sheet` |
 //! | `GET /data/site.json` | `{"mode": "server"}`: what a page asks first (a static site's file says `static`) |
 
 mod assets;
@@ -86,8 +88,10 @@ pub fn router(state: AppState) -> Router {
         .route("/inverse/{id}/save", post(inverse::save))
         .route("/graded", get(graded::settings).post(graded::start))
         .route("/graded/outline", get(graded::outline))
+        .route("/graded/svg", post(graded::svg))
         .route("/graded/{id}", get(graded::status).delete(graded::stop))
         .route("/graded/{id}/sheet", get(graded::sheet))
+        .route("/graded/{id}/export", get(graded::export))
         .fallback(|| async { ApiError::no_endpoint() })
         .method_not_allowed_fallback(|| async { ApiError::method_not_allowed() });
     Router::new()

@@ -316,3 +316,200 @@ async fn the_time_limit_stops_a_run() {
         "{end}"
     );
 }
+
+/// A field job of a second or so: 2×2 cells of rotating squares towards a ramp of area ratio.
+const FIELD: &str = r#"{"design": "rotating-squares", "rows": 2, "cols": 2, "target": "field:1.3,1.7,90", "iterations": 60}"#;
+
+/// An SVG file with one closed shape (a pentagon, star-shaped about its centroid).
+const PENTAGON_SVG: &str = r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="-3 -3 6 6"><path d="M 0 -2 L 2 -0.5 L 1.2 2 L -1.2 2 L -2 -0.5 Z"/></svg>"#;
+
+#[tokio::test]
+async fn a_field_job_reports_every_cells_ratio_and_exports_as_the_library_does() {
+    let app = app();
+    let id = start(&app, FIELD).await;
+    let end = until_ended(&app, id).await.pop().unwrap();
+    assert_eq!(end["state"], "done", "{}", end["error"]);
+    assert_eq!(end["request"]["outline"], "field:1.3,1.7,90");
+    assert_eq!(end["request"]["outline_points"], serde_json::json!([]));
+    assert_eq!(end["request"]["field"]["from"], 1.3);
+    assert_eq!(end["request"]["field"]["direction_degrees"], 90.0);
+    let result = &end["result"];
+    let cells = result["field"].as_array().expect("per-cell field results");
+    assert!(!cells.is_empty());
+    assert_eq!(result["report"]["field_cells"], cells.len());
+    // The report's largest error is the largest of the cells' own.
+    let worst = cells
+        .iter()
+        .map(|c| (c["ratio"].as_f64().unwrap() - c["target"].as_f64().unwrap()).abs())
+        .fold(0.0, f64::max);
+    let reported = result["report"]["max_field_error"].as_f64().unwrap();
+    assert!((worst - reported).abs() < 1e-12, "{worst} vs {reported}");
+    for c in cells {
+        let t = c["target"].as_f64().unwrap();
+        assert!((1.3 - 1e-9..=1.7 + 1e-9).contains(&t), "{c}");
+        assert_eq!(c["opened"].as_array().unwrap().len(), 4);
+    }
+
+    // The same request through the library: the same cells.
+    let request = GradedRequest {
+        rows: 2,
+        cols: 2,
+        solve: isogami::graded::SolveSettings {
+            max_iterations: 60,
+            ..Default::default()
+        },
+        ..GradedRequest::default()
+    }
+    .with_target(isogami::graded::parse_target("field:1.3,1.7,90").unwrap());
+    let run = graded_sheet(&request, &mut |_| true, NEVER).unwrap();
+    assert_eq!(run.field.len(), cells.len());
+    for (mine, theirs) in run.field.iter().zip(cells) {
+        assert_eq!(theirs["target"].as_f64().unwrap(), mine.target);
+    }
+
+    // Exports: the library's export_graded of the downloaded sheet, byte for byte, with the
+    // query read as `isogami export --sheet`'s flags.
+    let sheet = get(&app, &format!("/api/graded/{id}/sheet")).await.text();
+    let input = isogami::export::read_graded(&sheet).unwrap();
+    for (format, query, check) in [
+        ("svg", "&hinge_mm=1.2", "<svg"),
+        ("dxf", "&edge_mm=15", "SECTION"),
+        ("stl", "", ""),
+        ("fold", "&t=open&frames=4", "file_spec"),
+    ] {
+        let reply = get(
+            &app,
+            &format!("/api/graded/{id}/export?format={format}{query}"),
+        )
+        .await;
+        assert_eq!(reply.status, StatusCode::OK, "{format}: {}", reply.text());
+        let f: isogami::export::Format = format.parse().unwrap();
+        assert_eq!(reply.content_type, f.media_type());
+        let pairs: Vec<(String, String)> =
+            form_urlencoded::parse(format!("format={format}{query}").as_bytes())
+                .into_owned()
+                .collect();
+        let mut request = isogami::export::GradedPatchRequest::default();
+        let mut options = isogami::export::ExportOptions::default();
+        for (k, v) in &pairs {
+            match k.as_str() {
+                "hinge_mm" => options.laser.hinge_mm = v.parse().unwrap(),
+                "edge_mm" => request.scale = isogami::export::Scale::EdgeMm(v.parse().unwrap()),
+                "t" => request.state = isogami::export::State::Open,
+                "frames" => request.frames = v.parse().unwrap(),
+                _ => {}
+            }
+        }
+        let (_, files) = isogami::export::export_graded(
+            &input.sheet,
+            input.path.as_ref(),
+            &request,
+            f,
+            &options,
+            NEVER,
+        )
+        .unwrap();
+        let isogami::export::ExportFiles::One(bytes) = files else {
+            panic!("{format}: one file")
+        };
+        assert_eq!(reply.body, bytes, "{format}");
+        if format == "stl" {
+            let triangles = u32::from_le_bytes(reply.body[80..84].try_into().unwrap());
+            assert!(triangles > 0 && reply.body.len() == 84 + 50 * triangles as usize);
+        } else {
+            assert!(reply.text().contains(check), "{format}");
+        }
+    }
+    // A folder format is a zip.
+    let reply = get(
+        &app,
+        &format!("/api/graded/{id}/export?format=kirigami-sim"),
+    )
+    .await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.text());
+    assert_eq!(reply.content_type, "application/zip");
+    assert_eq!(&reply.body[..2], b"PK");
+
+    // Bad values: one-line 400s naming the key, as for a design's export.
+    for (query, needle) in [
+        ("", "missing parameter format"),
+        ("format=svg&design=x", "unknown parameter"),
+        ("format=svg&patch=2x2", "unknown parameter"),
+        ("format=svg&t=2", "[0, 1]"),
+        ("format=svg&hinge_mm=-1", "hinge_mm"),
+        ("format=png", "unknown export format"),
+        ("format=svg&edge_mm=1&width_mm=1", "not both"),
+    ] {
+        let reply = get(&app, &format!("/api/graded/{id}/export?{query}")).await;
+        assert_error(&reply, StatusCode::BAD_REQUEST, query);
+        let message = reply.json()["error"].as_str().unwrap().to_string();
+        assert!(message.contains(needle), "{query}: {message}");
+        assert!(!message.contains('\n'));
+    }
+    let reply = get(&app, "/api/graded/999/export?format=svg").await;
+    assert_eq!(
+        assert_error(&reply, StatusCode::NOT_FOUND, "unknown job"),
+        "not_found"
+    );
+}
+
+#[tokio::test]
+async fn an_svg_outline_is_read_by_the_library_and_graded_towards() {
+    let app = app();
+    // Checked on its own: the library's outline, or its one-line message naming the file.
+    let reply = post(&app, "/api/graded/svg?name=pentagon.svg", PENTAGON_SVG).await;
+    let v = reply.ok();
+    assert_eq!(v["name"], "pentagon.svg");
+    assert_eq!(v["outline"], "@pentagon.svg");
+    let Outline::Polygon(points) = isogami::graded::outline_from_svg(PENTAGON_SVG).unwrap() else {
+        panic!("a polygon")
+    };
+    assert_eq!(v["points"].as_array().unwrap().len(), points.len());
+    let bad = "<svg xmlns=\"http://www.w3.org/2000/svg\"><rect width=\"1\" height=\"1\"/><rect x=\"3\" width=\"1\" height=\"1\"/></svg>";
+    let library = isogami::graded::outline_from_svg(bad)
+        .unwrap_err()
+        .to_string();
+    for (body, needle) in [
+        (bad.to_string(), library.as_str()),
+        ("not xml <".to_string(), "not an SVG document"),
+    ] {
+        let reply = post(&app, "/api/graded/svg?name=two.svg", body.clone()).await;
+        assert_eq!(
+            assert_error(&reply, StatusCode::BAD_REQUEST, "bad svg"),
+            "bad_target"
+        );
+        let message = reply.json()["error"].as_str().unwrap().to_string();
+        assert!(message.starts_with("two.svg: "), "{message}");
+        assert!(message.contains(needle), "{message}");
+        assert!(!message.contains('\n'), "{message}");
+    }
+    // Posted with a job: its outline is the file's, echoed as the CLI's `@FILE`.
+    let body = serde_json::json!({
+        "rows": 2, "cols": 2, "iterations": 30, "svg": PENTAGON_SVG, "svg_name": "dir/pentagon.svg"
+    });
+    let id = start(&app, &body.to_string()).await;
+    let end = until_ended(&app, id).await.pop().unwrap();
+    assert_eq!(end["state"], "done", "{}", end["error"]);
+    assert_eq!(end["request"]["outline"], "@pentagon.svg");
+    assert_eq!(
+        end["request"]["outline_points"].as_array().unwrap().len(),
+        points.len()
+    );
+    assert!(
+        end["result"].get("field").is_none(),
+        "no field for an outline"
+    );
+    // A bad file, or a file and a target, start nothing.
+    for body in [
+        serde_json::json!({ "svg": bad, "svg_name": "two.svg" }),
+        serde_json::json!({ "svg": PENTAGON_SVG, "target": "disc" }),
+        serde_json::json!({ "target": "field:0.5,1.5" }),
+    ] {
+        let reply = post(&app, "/api/graded", body.to_string()).await;
+        assert_error(&reply, StatusCode::BAD_REQUEST, "bad target");
+    }
+    assert_eq!(
+        get(&app, "/api/graded").await.ok()["running"],
+        serde_json::json!([])
+    );
+}

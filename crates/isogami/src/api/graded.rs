@@ -2,9 +2,11 @@
 //! outline, then check the result the other way (its own motion from closed to opened).
 
 use crate::error::Result;
+use crate::graded::field::{cell_ratios, FieldCell};
 use crate::graded::{
     check_path, grade, GradedProgress, GradedReport, GradedRequest, GradedSheet, PathCheck,
 };
+use crate::math::Real;
 use crate::stop::KeepGoing;
 use serde::Serialize;
 
@@ -17,6 +19,45 @@ pub struct GradedRun {
     pub report: GradedReport,
     /// The path from the opened state back to the closed tiling.
     pub path: PathCheck,
+    /// A field target: every measured cell's target and achieved area ratio (empty, and left
+    /// out of the JSON, for an outline target). Their largest difference is the report's
+    /// `max_field_error`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub field: Vec<FieldResult>,
+}
+
+/// One cell a field target is measured on, in the graded sheet: the quadrilateral of four
+/// neighbouring cells' reference corners, its area ratio asked and achieved.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FieldResult {
+    /// The area ratio the field asks of the cell.
+    pub target: Real,
+    /// Its opened area over its closed area in the graded sheet.
+    pub ratio: Real,
+    /// The quadrilateral's corners closed (counter-clockwise, the sheet's units).
+    pub closed: [[Real; 2]; 4],
+    /// The same corners opened.
+    pub opened: [[Real; 2]; 4],
+}
+
+/// Each of `cells` measured on `sheet` (see [`FieldResult`]).
+pub fn field_results(sheet: &GradedSheet, cells: &[FieldCell]) -> Vec<FieldResult> {
+    cell_ratios(sheet, cells)
+        .into_iter()
+        .zip(cells)
+        .map(|(ratio, c)| FieldResult {
+            target: c.target,
+            ratio,
+            closed: c.corners.map(|(_, n)| {
+                let p = sheet.node(n);
+                [p.x, p.y]
+            }),
+            opened: c.corners.map(|(i, n)| {
+                let p = sheet.opened_corner(i, n);
+                [p.x, p.y]
+            }),
+        })
+        .collect()
 }
 
 /// States of the path check.
@@ -32,9 +73,11 @@ pub fn graded_sheet(
 ) -> Result<GradedRun> {
     let (sheet, problem, report) = grade(request, progress, keep_going)?;
     let path = check_path(&sheet, &problem, PATH_STEPS, keep_going)?;
+    let field = field_results(&sheet, &problem.field);
     Ok(GradedRun {
         sheet,
         report,
         path,
+        field,
     })
 }

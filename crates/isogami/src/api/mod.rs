@@ -47,7 +47,7 @@ mod sheet_deploy;
 mod sheet_pull;
 pub use finite::{finite_sheet, SheetAnalysis, SheetRequest};
 pub(crate) use finite::{opened_step, requested_sheet, sheet_of_trajectory};
-pub use graded::{graded_sheet, GradedRun, PATH_STEPS};
+pub use graded::{field_results, graded_sheet, FieldResult, GradedRun, PATH_STEPS};
 pub use sheet::{sheet_geometry, tile_linkages, EdgeGeometry, SheetGeometry};
 pub use sheet_deploy::{
     deploy_sheet, PeriodicEnd, SheetDeployRequest, SheetDeployment, SheetFrame,
