@@ -5,12 +5,22 @@
 // run's poses, the download is the job's result; the region is checked against the caps as
 // typed; a non-star polygon drawn on the pad shows the library's one-line error and starts
 // nothing; Stop ends a run; a design page's "grade this design" pre-fills the design; on the
-// static site the page shows the command instead of running.
+// static site the page shows the command instead of running. A field target (3×3 cells, few
+// iterations) reports each cell's asked and achieved area ratio and its largest error, and the
+// graded sheet downloads as laser and print files (the SVG in mm and what the shown
+// `isogami export --sheet` writes, the DXF with its header, the STL with triangles); an
+// uploaded SVG file is read by the library — a bad one shows its one-line error and starts
+// nothing, a good one is drawn and graded towards.
 
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
+import { execFile } from 'node:child_process';
+import { mkdtemp, readFile, rm, writeFile } from 'node:fs/promises';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { promisify } from 'node:util';
 import {
-  buildSite, byTestId, downloadText, getJson, launchBrowser, newPage, problems, screenshot, serveFolder, startServer,
+  buildSite, byTestId, downloadText, env, getJson, launchBrowser, newPage, problems, screenshot, serveFolder, startServer,
 } from './harness.mjs';
 import { posedPolygons } from '../src/graded-model.js';
 import { shellSplit } from '../test/shell.mjs';
@@ -261,4 +271,131 @@ test('on the static site the page says the optimiser needs the server', async ()
     await files.stop();
     await site.remove();
   }
+});
+
+/** Clicks an export button; the downloaded file's name and bytes. */
+async function downloadExport(page, format) {
+  const [dl] = await Promise.all([page.waitForEvent('download'), byTestId(page, `export-${format}`).click()]);
+  return { name: dl.suggestedFilename(), bytes: await readFile(await dl.path()) };
+}
+
+test('a field target reports each cell’s area ratio, and the graded sheet downloads as laser and print files', async () => {
+  await stopAll();
+  const page = await newPage(browser);
+  await page.goto(`${server.base}/graded.html`);
+  await page.waitForFunction(() => document.body.dataset.ready === 'true');
+  await byTestId(page, 'rows').fill('3');
+  await byTestId(page, 'cols').fill('3');
+  await byTestId(page, 'iterations').fill('40');
+  await byTestId(page, 'outline-field').check();
+  await byTestId(page, 'field-from').fill('0.9');
+  assert.match(await byTestId(page, 'outline-error').textContent(), /above 1/);
+  await byTestId(page, 'field-from').fill('1.3');
+  await byTestId(page, 'field-to').fill('1.7');
+  await byTestId(page, 'field-degrees').fill('90');
+  assert.equal(await byTestId(page, 'outline-error').textContent(), '');
+  const words = shellSplit(await byTestId(page, 'graded-command').textContent());
+  assert.equal(words[words.indexOf('--target') + 1], 'field:1.3,1.7,90');
+  await byTestId(page, 'run').click();
+  await page.waitForFunction(() => ['done', 'failed', 'stopped'].includes(document.body.dataset.gradedState), null, { timeout: 60000 });
+  assert.equal(await state(page), 'done', await page.locator('#notice').textContent());
+  const id = await page.evaluate(() => document.body.dataset.jobId);
+  const result = (await getJson(`${server.base}/api/graded/${id}`)).result;
+  assert.ok(result.field.length >= 4, `${result.field.length} field cells`);
+  assert.ok(new Set(result.field.map((c) => c.target.toFixed(6))).size >= 2, 'a ramp: cells asked for different ratios');
+  // The report's fit is the field's error; the table has every cell, asked and achieved.
+  const fit = await byTestId(page, 'report-fit').textContent();
+  assert.ok(fit.includes(`within ${result.report.max_field_error.toFixed(4)} of the field in each of ${result.field.length} cells`), fit);
+  const rows = await page.$$eval('[data-testid="field-table"] tbody tr', (trs) => trs.map((tr) => [...tr.cells].map((td) => td.textContent)));
+  assert.equal(rows.length, result.field.length);
+  rows.forEach((row, k) => {
+    const c = result.field[k];
+    assert.deepEqual(row.slice(0, 3), [String(k + 1), c.target.toFixed(4), c.ratio.toFixed(4)]);
+  });
+  assert.ok(await byTestId(page, 'field-result').isVisible());
+  // The cells coloured at the opened end, none at the closed end; no target outline.
+  assert.equal(await page.locator('[data-testid="player-sheet"] polygon.field-cell').count(), result.field.length);
+  assert.equal(await page.locator('[data-testid="player-sheet"] polygon.target').count(), 0);
+  const errors = await page.$$eval('[data-testid="player-sheet"] polygon.field-cell', (els) => els.map((e) => Number(e.dataset.error)));
+  errors.forEach((e, k) => assert.ok(Math.abs(e - (result.field[k].ratio - result.field[k].target)) < 1e-6));
+  assert.ok((await screenshot(browser, page, 'graded-field')) > 20);
+
+  // Laser SVG: millimetres, and what the shown command writes from the downloaded sheet.
+  const svg = await downloadExport(page, 'svg');
+  assert.equal(svg.name, 'graded-3x3.svg');
+  const text = svg.bytes.toString('utf8');
+  assert.match(text, /<svg[^>]* width="[\d.]+mm" height="[\d.]+mm"/);
+  assert.match(await byTestId(page, 'export-status').textContent(), /^saved graded-3x3\.svg/);
+  const command = shellSplit(await byTestId(page, 'export-command').textContent());
+  assert.deepEqual(command.slice(0, 6), ['isogami', 'export', '--sheet', 'graded-3x3.json', '--format', 'svg']);
+  const dir = await mkdtemp(join(tmpdir(), 'isogami-graded-'));
+  try {
+    const sheet = await fetch(`${server.base}/api/graded/${id}/sheet`);
+    await writeFile(join(dir, 'graded-3x3.json'), Buffer.from(await sheet.arrayBuffer()));
+    await promisify(execFile)(env().bin, command.slice(1), { cwd: dir });
+    assert.ok((await readFile(join(dir, 'graded-3x3.svg'))).equals(svg.bytes), 'the CLI writes the same SVG');
+  } finally {
+    await rm(dir, { recursive: true, force: true });
+  }
+  // Laser DXF with its header; print STL with triangles (binary: 80-byte header, a count, 50 bytes each).
+  await byTestId(page, 'export-edge').fill('15');
+  const dxf = await downloadExport(page, 'dxf');
+  assert.equal(dxf.name, 'graded-3x3.dxf');
+  assert.match(dxf.bytes.toString('utf8'), /\n\s*0\r?\nSECTION\r?\n\s*2\r?\nHEADER\r?\n[\s\S]*\$INSUNITS/);
+  const stl = await downloadExport(page, 'stl');
+  assert.equal(stl.name, 'graded-3x3.stl');
+  const triangles = stl.bytes.readUInt32LE(80);
+  assert.ok(triangles > 0, `${triangles} triangles`);
+  assert.equal(stl.bytes.length, 84 + 50 * triangles);
+  // A bad edge length disables the buttons and says why.
+  await byTestId(page, 'export-edge').fill('-1');
+  assert.equal(await byTestId(page, 'export-svg').isDisabled(), true);
+  assert.match(await byTestId(page, 'export-status').textContent(), /positive number of mm/);
+  assert.deepEqual(problems(page), []);
+});
+
+test('an uploaded SVG outline: a bad file shows the library’s one-line error, a good one is graded towards', async () => {
+  await stopAll();
+  const page = await newPage(browser);
+  await page.goto(`${server.base}/graded.html`);
+  await page.waitForFunction(() => document.body.dataset.ready === 'true');
+  await byTestId(page, 'rows').fill('2');
+  await byTestId(page, 'cols').fill('2');
+  await byTestId(page, 'iterations').fill('30');
+  const two = '<svg xmlns="http://www.w3.org/2000/svg"><rect width="1" height="1"/><rect x="3" width="1" height="1"/></svg>';
+  await byTestId(page, 'svg-file').setInputFiles({ name: 'two.svg', mimeType: 'image/svg+xml', buffer: Buffer.from(two) });
+  await page.waitForFunction(() => Number(document.body.dataset.svgChecks || 0) >= 1);
+  assert.equal(await byTestId(page, 'outline-svg').isChecked(), true);
+  const shown = await byTestId(page, 'outline-error').textContent();
+  const res = await fetch(`${server.base}/api/graded/svg?name=two.svg`, { method: 'POST', body: two });
+  assert.equal(res.status, 400);
+  assert.equal(shown, (await res.json()).error);
+  assert.match(shown, /^two\.svg: /);
+  assert.ok(!shown.includes('\n'));
+  let posted = false;
+  page.on('request', (r) => {
+    if (r.url().endsWith('/api/graded') && r.method() === 'POST') posted = true;
+  });
+  await byTestId(page, 'run').click();
+  await page.waitForTimeout(300);
+  assert.equal(posted, false, 'a bad file starts nothing');
+
+  const pentagon = '<svg xmlns="http://www.w3.org/2000/svg" viewBox="-3 -3 6 6"><path d="M 0 -2 L 2 -0.5 L 1.2 2 L -1.2 2 L -2 -0.5 Z"/></svg>';
+  await byTestId(page, 'svg-file').setInputFiles({ name: 'pentagon.svg', mimeType: 'image/svg+xml', buffer: Buffer.from(pentagon) });
+  await page.waitForFunction(() => Number(document.body.dataset.svgChecks || 0) >= 2);
+  assert.equal(await byTestId(page, 'outline-error').textContent(), '');
+  assert.match(await byTestId(page, 'outline-status').textContent(), /^pentagon\.svg: an outline of 5 corners/);
+  assert.equal(await page.locator('[data-testid="draw-pad"] polygon[data-outline="svg"]').count(), 1);
+  const words = shellSplit(await byTestId(page, 'graded-command').textContent());
+  assert.equal(words[words.indexOf('--target') + 1], '@pentagon.svg');
+  await byTestId(page, 'run').click();
+  await page.waitForFunction(() => ['done', 'failed', 'stopped'].includes(document.body.dataset.gradedState), null, { timeout: 60000 });
+  assert.equal(await state(page), 'done', await page.locator('#notice').textContent());
+  const id = await page.evaluate(() => document.body.dataset.jobId);
+  const job = await getJson(`${server.base}/api/graded/${id}`);
+  assert.equal(job.request.outline, '@pentagon.svg');
+  assert.equal(job.request.outline_points.length, 5);
+  assert.ok(await byTestId(page, 'field-result').isHidden(), 'no field table for an outline');
+  assert.equal(await page.locator('[data-testid="player-sheet"] polygon.target').count(), 1);
+  assert.deepEqual(problems(page, [/^400 POST .*\/api\/graded\/svg/]), []);
 });

@@ -6,9 +6,10 @@
 // poses of a state, the bounds that frame them, and the report's lines. Pure functions over
 // plain data; graded.js draws the page.
 //
-// Form state: { design, rows, cols, outline: 'disc' | 'ellipse' | 'polygon', aspect,
-// points: [[x, y], …] (the drawn polygon, y up), iterations } where numbers are the text of
-// their fields.
+// Form state: { design, rows, cols, outline: 'disc' | 'ellipse' | 'polygon' | 'field' | 'svg',
+// aspect, points: [[x, y], …] (the drawn polygon, y up), from, to, degrees (a field target: the
+// area ratio at the two ends of a ramp and its direction), svg: { name, text } | null (an
+// uploaded SVG file), iterations } where numbers are the text of their fields.
 
 import { shellWord } from './export-request.js';
 
@@ -33,6 +34,10 @@ export function emptyForm(settings, search = '') {
     outline: 'disc',
     aspect: '1.4',
     points: [],
+    from: '1.3',
+    to: '1.7',
+    degrees: '0',
+    svg: null,
     iterations: String(d.iterations),
   };
 }
@@ -72,9 +77,14 @@ function num(v) {
   return String(Object.is(r, -0) ? 0 : r);
 }
 
-/** The outline's text as `isogami graded --target` reads it. */
+/** The target's text as `isogami graded --target` reads it (`@NAME` for an SVG file). */
 export function outlineText(form) {
   if (form.outline === 'ellipse') return `ellipse:${String(form.aspect).trim()},1`;
+  if (form.outline === 'field') {
+    const [from, to, degrees] = [form.from, form.to, form.degrees].map((v) => String(v ?? '').trim());
+    return `field:${from},${to}${degrees === '' || Number(degrees) === 0 ? '' : `,${degrees}`}`;
+  }
+  if (form.outline === 'svg') return `@${form.svg?.name || 'outline.svg'}`;
   if (form.outline === 'polygon') return `polygon:${form.points.map(([x, y]) => `${num(x)},${num(y)}`).join(';')}`;
   return 'disc';
 }
@@ -85,6 +95,26 @@ export function aspectProblem(form) {
   const v = Number(String(form.aspect).trim());
   if (String(form.aspect).trim() === '' || !Number.isFinite(v) || v <= 0) return 'the aspect ratio must be a positive number';
   return '';
+}
+
+/** A field target's problem (the library's rule: finite ratios above 1, a finite direction),
+ * or ''. */
+export function fieldProblem(form) {
+  if (form.outline !== 'field') return '';
+  const number = (v) => (String(v ?? '').trim() === '' ? NaN : Number(String(v).trim()));
+  const [from, to] = [number(form.from), number(form.to)];
+  if (!(Number.isFinite(from) && from > 1 && Number.isFinite(to) && to > 1)) {
+    return 'the area ratios at the two ends must be numbers above 1 (the sheet opens)';
+  }
+  const degrees = String(form.degrees ?? '').trim();
+  if (degrees !== '' && !Number.isFinite(Number(degrees))) return 'the direction must be an angle in degrees';
+  return '';
+}
+
+/** An SVG target's problem before the server reads it, or ''. */
+export function svgProblem(form) {
+  if (form.outline !== 'svg') return '';
+  return form.svg ? '' : 'choose an SVG file with one closed shape';
 }
 
 /** The signed area of a polygon ([[x, y], …], counter-clockwise positive). */
@@ -143,22 +173,82 @@ export function starProblem(points) {
   return '';
 }
 
-/** The body of POST /api/graded. */
+/** The body of POST /api/graded: the target's text, or an SVG file's text and name. */
 export function gradedBody(form) {
-  return {
+  const body = {
     design: String(form.design).trim(),
     rows: Number(form.rows),
     cols: Number(form.cols),
-    outline: outlineText(form),
-    iterations: Number(form.iterations),
   };
+  if (form.outline === 'svg') {
+    body.svg = form.svg?.text ?? '';
+    body.svg_name = form.svg?.name ?? 'outline.svg';
+  } else {
+    body.target = outlineText(form);
+  }
+  body.iterations = Number(form.iterations);
+  return body;
 }
 
 /** The `isogami graded …` command that grades the same sheet and writes the same file. */
 export function cliCommand(form) {
   const b = gradedBody(form);
   return ['isogami', 'graded', '--design', shellWord(b.design), '--region', `${b.rows}x${b.cols}`,
-    '--target', shellWord(b.outline), '--iterations', String(b.iterations), '--out', 'graded.json'].join(' ');
+    '--target', shellWord(outlineText(form)), '--iterations', String(b.iterations), '--out', 'graded.json'].join(' ');
+}
+
+/** The export formats the page offers: laser (closed sheet) and print files. */
+export const EXPORTS = Object.freeze([
+  { format: 'svg', label: 'Laser SVG' },
+  { format: 'dxf', label: 'Laser DXF' },
+  { format: 'stl', label: 'Print STL' },
+  { format: '3mf', label: 'Print 3MF' },
+]);
+
+/** The mean edge length's problem (mm, a positive number), or ''. */
+export function edgeProblem(text) {
+  const t = String(text ?? '').trim();
+  const v = Number(t);
+  if (t === '' || !Number.isFinite(v) || v <= 0) return 'the mean edge length must be a positive number of mm';
+  return '';
+}
+
+/** The query of GET /api/graded/{id}/export (keys named as `isogami export --sheet`'s flags). */
+export function exportParams(format, edgeMm) {
+  const p = new URLSearchParams({ format });
+  const e = String(edgeMm ?? '').trim();
+  if (e !== '') p.set('edge_mm', e);
+  return p.toString();
+}
+
+/** The `isogami export` command that writes the same file from the downloaded sheet. */
+export function exportCommand(format, edgeMm, rows, cols) {
+  const sheet = `graded-${rows}x${cols}.json`;
+  const ext = format === '3mf' ? '3mf' : format;
+  const words = ['isogami', 'export', '--sheet', sheet, '--format', format];
+  const e = String(edgeMm ?? '').trim();
+  if (e !== '') words.push('--edge-mm', shellWord(e));
+  words.push('--out', `graded-${rows}x${cols}.${ext}`);
+  return words.join(' ');
+}
+
+/** A field result's cells as table rows (1-based cell numbers, in the library's order). */
+export function fieldRows(result) {
+  return (result?.field ?? []).map((c, k) => ({
+    cell: k + 1,
+    target: c.target,
+    ratio: c.ratio,
+    error: c.ratio - c.target,
+    opened: c.opened,
+    closed: c.closed,
+  }));
+}
+
+/** A colour for a cell's error: white at 0 to red (too open) or blue (too closed) at `scale`. */
+export function errorColour(error, scale = 0.05) {
+  const f = Math.max(-1, Math.min(1, scale > 0 ? error / scale : 0));
+  const k = Math.round(255 * (1 - Math.abs(f)));
+  return f >= 0 ? `rgb(255,${k},${k})` : `rgb(${k},${k},255)`;
 }
 
 /** Convex hull (monotone chain) of points, counter-clockwise. */
@@ -243,7 +333,9 @@ export function reportLines(result) {
   const lines = [];
   lines.push({
     key: 'fit',
-    text: `Fit: the opened outline is within ${pct(r.max_outline_error)} of the target (median ${pct(r.median_outline_error)}), ${pct(r.max_outside)} outside it at most.`,
+    text: r.max_field_error === null || r.max_field_error === undefined
+      ? `Fit: the opened outline is within ${pct(r.max_outline_error)} of the target (median ${pct(r.median_outline_error)}), ${pct(r.max_outside)} outside it at most.`
+      : `Fit: the area ratio is within ${r.max_field_error.toFixed(4)} of the field in each of ${r.field_cells} cells (max field error ${r.max_field_error.toFixed(4)}).`,
   });
   lines.push({
     key: 'sheet',

@@ -1,18 +1,22 @@
 // The graded-sheet page (graded.html): a design (pre-filled from ?design=), a region checked
-// against the server's caps as typed, a target outline (disc, ellipse, or a polygon clicked
-// point by point on a pad, checked by the library through GET /api/graded/outline and its
-// one-line error shown beside the pad); Grade starts a job (POST /api/graded) that the page
+// against the server's caps as typed, a target (disc, ellipse, a polygon clicked point by point
+// on a pad, checked by the library through GET /api/graded/outline and its one-line error shown
+// beside the pad; an uploaded SVG file, read by the library through POST /api/graded/svg, its
+// error shown the same way; or an area-ratio field: from, to, direction); Grade starts a job (POST /api/graded) that the page
 // polls: iteration, cost, stage, a progress bar and the opened sheet as it stands drawn over
 // the target; at the end the report, a player through the path check's states (closed ↔
 // opened, the tiles placed from each state's poses, the fitted target at the opened end) and
-// the sheet's JSON as `isogami graded --out` writes it. On a static site nothing runs: the
+// the sheet's JSON as `isogami graded --out` writes it; a field's cells in a table (asked and
+// achieved area ratio) and coloured by their error at the opened end; laser and print files of
+// the graded sheet (GET /api/graded/{id}/export, as `isogami export --sheet`). On a static site nothing runs: the
 // page shows the command. Pure logic is in graded-model.js.
 
 import { ApiError, openData } from './data.js';
 import { showNotice, clearNotice, debounce } from './dom.js';
 import {
-  DEFAULTS, aspectProblem, bounds, cliCommand, emptyForm, gradedBody, hullArea, iterationsProblem, outlineAtArea,
-  outlineText, playerStates, posedPolygons, progressLine, regionProblem, reportLines, starProblem,
+  DEFAULTS, EXPORTS, aspectProblem, bounds, cliCommand, edgeProblem, emptyForm, errorColour, exportCommand, exportParams,
+  fieldProblem, fieldRows, gradedBody, hullArea, iterationsProblem, outlineAtArea, outlineText, playerStates,
+  posedPolygons, progressLine, regionProblem, reportLines, starProblem, svgProblem,
 } from './graded-model.js';
 
 const $ = (id) => document.getElementById(id);
@@ -28,6 +32,9 @@ let jobId = null;
 let timer = null;
 let outlineAsked = 0;
 let serverOutlineError = '';
+let svgFile = null; // { name, text, points } of the chosen SVG file, read by the library
+let svgError = '';
+let svgAsked = 0;
 let live = null; // { frame, target, count }
 let player = null; // { result, states, all, frame, playing, timer }
 
@@ -66,6 +73,10 @@ function form() {
     outline: document.querySelector('input[name="outline"]:checked')?.value ?? 'disc',
     aspect: $('aspect').value,
     points,
+    from: $('field-from').value,
+    to: $('field-to').value,
+    degrees: $('field-degrees').value,
+    svg: svgFile,
     iterations: $('iterations').value,
   };
 }
@@ -92,6 +103,8 @@ function check() {
  * when it answered for these points, else the same rule checked here). */
 function outlineProblem(f) {
   if (f.outline === 'ellipse') return aspectProblem(f);
+  if (f.outline === 'field') return fieldProblem(f);
+  if (f.outline === 'svg') return svgError || svgProblem(f);
   if (f.outline !== 'polygon') return '';
   if (points.length < 3) return '';
   return serverOutlineError || starProblem(points);
@@ -139,6 +152,18 @@ function drawPad() {
     const ok = Number.isFinite(a) && a > 0;
     const k = ok ? Math.max(a, 1) : 1;
     g.append(s('ellipse', { class: `outline${ok ? '' : ' bad'}`, cx: 0, cy: 0, rx: ok ? a / k : 1, ry: 1 / k, 'data-outline': 'ellipse' }));
+  } else if (f.outline === 'svg') {
+    const p = svgFile?.points;
+    if (p?.length) {
+      const r = Math.max(...p.map(([x, y]) => Math.hypot(x, y))) || 1;
+      g.append(s('polygon', { class: 'outline', points: pointsAttr(p.map(([x, y]) => [x / r, y / r])), 'data-outline': 'svg' }));
+    }
+  } else if (f.outline === 'field') {
+    // The ramp: an arrow along its direction, from the "from" end to the "to" end.
+    const a = (Number(f.degrees) || 0) * Math.PI / 180;
+    const [c, sn] = [Math.cos(a), Math.sin(a)];
+    g.append(s('line', { class: 'outline', x1: -c, y1: -sn, x2: c, y2: sn, 'data-outline': 'field' }));
+    g.append(s('polygon', { class: 'outline', points: pointsAttr([[c, sn], [0.8 * c - 0.1 * sn, 0.8 * sn + 0.1 * c], [0.8 * c + 0.1 * sn, 0.8 * sn - 0.1 * c]]) }));
   } else {
     if (points.length >= 2) {
       g.append(s(points.length >= 3 ? 'polygon' : 'polyline', {
@@ -151,6 +176,43 @@ function drawPad() {
   pad.dataset.outline = f.outline;
   pad.dataset.points = String(points.length);
   pad.dataset.bad = String(bad);
+}
+
+/** Reads the chosen SVG file and asks the library for its outline (POST /api/graded/svg): the
+ * outline drawn on the pad, or the library's one-line error beside it. */
+async function svgChosen() {
+  const file = $('svg-file').files?.[0];
+  const asked = ++svgAsked;
+  document.querySelector('input[name="outline"][value="svg"]').checked = true;
+  svgFile = null;
+  svgError = '';
+  if (!file) {
+    check();
+    drawPad();
+    return;
+  }
+  const text = await file.text();
+  if (asked !== svgAsked) return;
+  if (!data.live) {
+    // A static site cannot read it; the command shown names the file.
+    svgFile = { name: file.name, text, points: null };
+  } else {
+    try {
+      const v = await getJson(`./api/graded/svg?name=${encodeURIComponent(file.name)}`, {
+        method: 'POST', headers: { 'content-type': 'image/svg+xml' }, body: text,
+      });
+      if (asked !== svgAsked) return;
+      svgFile = { name: file.name, text, points: v.points };
+      $('outline-status').textContent = `${file.name}: an outline of ${v.points.length} corners`;
+    } catch (e) {
+      if (asked !== svgAsked) return;
+      svgError = e.message;
+      $('outline-status').textContent = '';
+    }
+  }
+  document.body.dataset.svgChecks = String(Number(document.body.dataset.svgChecks || 0) + 1);
+  check();
+  drawPad();
 }
 
 /** Adds a corner where the pad was clicked (choosing the polygon outline). */
@@ -171,7 +233,7 @@ function padClick(event) {
 
 /** Draws `polygons` (and the target) into `svg` framed by `frame` [minX, minY, maxX, maxY],
  * y up; `overlap` marks two tiles. */
-function drawSheet(svg, polygons, { frame, target = null, overlap = null }) {
+function drawSheet(svg, polygons, { frame, target = null, overlap = null, cells = null }) {
   const [x0, y0, x1, y1] = frame;
   const size = Math.max(x1 - x0, y1 - y0) || 1;
   const m = 0.05 * size;
@@ -184,7 +246,12 @@ function drawSheet(svg, polygons, { frame, target = null, overlap = null }) {
     const hit = overlap && (overlap[0] === i || overlap[1] === i);
     g.append(s('polygon', { class: `tile${hit ? ' overlap' : ''}`, points: pointsAttr(poly), 'data-tile': i }));
   });
-  if (target) g.append(s('polygon', { class: 'target', points: pointsAttr(target), 'data-target': '' }));
+  for (const c of cells ?? []) {
+    g.append(s('polygon', {
+      class: 'field-cell', points: pointsAttr(c.opened), fill: errorColour(c.error), 'data-cell': c.cell, 'data-error': c.error.toFixed(6),
+    }));
+  }
+  if (target?.length) g.append(s('polygon', { class: 'target', points: pointsAttr(target), 'data-target': '' }));
   svg.replaceChildren(g);
 }
 
@@ -213,7 +280,18 @@ async function main() {
   });
   $('graded-form').addEventListener('change', (e) => {
     if (e.target.name === 'outline') pointsChanged();
+    if (e.target.id === 'svg-file') svgChosen();
   });
+  for (const { format, label } of EXPORTS) {
+    const b = document.createElement('button');
+    b.type = 'button';
+    b.textContent = label;
+    b.dataset.testid = `export-${format}`;
+    b.dataset.format = format;
+    b.addEventListener('click', () => exportFile(format));
+    $('export-buttons').append(b);
+  }
+  $('export-edge').addEventListener('input', exportChanged);
   $('graded-form').addEventListener('submit', (event) => {
     event.preventDefault();
     run();
@@ -258,6 +336,10 @@ async function run() {
   const f = form();
   if (f.outline === 'polygon' && points.length < 3) {
     $('outline-error').textContent = 'bad target: an outline needs at least three finite points';
+    return;
+  }
+  if (f.outline === 'svg' && (!svgFile || svgError)) {
+    $('outline-error').textContent = svgError || svgProblem(f);
     return;
   }
   clearNotice($('notice'));
@@ -336,10 +418,10 @@ function drawSnapshot(job) {
     // start's); the report's fitted outline replaces it at the end.
     const target = outlineAtArea(job.request.outline_points, hullArea(snap.polygons));
     live = { target, frame: bounds(snap.polygons, [target]), count: 0 };
-    $('live-target-note').textContent = '(sized to the sheet’s area at the start)';
+    $('live-target-note').textContent = job.request.field ? '(none: a field target)' : '(sized to the sheet’s area at the start)';
   }
   let target = live.target;
-  if (job.state === 'done' && job.result) {
+  if (job.state === 'done' && job.result && !job.request.field) {
     target = job.result.report.target;
     $('live-target-note').textContent = '(at the fitted scale)';
   }
@@ -375,14 +457,88 @@ function showResult(job) {
   }));
   const states = playerStates(result);
   const all = states.map((st) => posedPolygons(result.sheet, st.poses));
-  player = { result, states, all, frame: bounds(...all, [result.report.target]), playing: false, timer: 0 };
+  const cells = fieldRows(result);
+  player = {
+    job, result, states, all, cells, frame: bounds(...all, [result.report.target], cells.map((c) => c.opened)), playing: false, timer: 0,
+  };
   const slider = $('state-slider');
   slider.max = String(states.length - 1);
   slider.value = String(states.length - 1);
   showState(states.length - 1);
   $('download').href = `./api/graded/${encodeURIComponent(job.id)}/sheet`;
   $('download').setAttribute('download', `graded-${job.request.rows}x${job.request.cols}.json`);
+  showField(player.cells);
+  exportChanged();
+  $('export-status').textContent = '';
   $('results-section').hidden = false;
+}
+
+/** The field's cells in the table (a field target only). */
+function showField(cells) {
+  $('field-result').hidden = cells.length === 0;
+  $('field-table').tBodies[0].replaceChildren(...cells.map((c) => {
+    const tr = document.createElement('tr');
+    tr.dataset.cell = String(c.cell);
+    for (const v of [String(c.cell), c.target.toFixed(4), c.ratio.toFixed(4), `${c.error >= 0 ? '+' : '−'}${Math.abs(c.error).toFixed(4)}`]) {
+      const td = document.createElement('td');
+      td.textContent = v;
+      tr.append(td);
+    }
+    tr.lastChild.style.background = errorColour(c.error);
+    return tr;
+  }));
+}
+
+/** The export command for the current edge length; the edge's problem shown. */
+function exportChanged() {
+  const edge = $('export-edge').value;
+  const problem = edgeProblem(edge);
+  for (const b of $('export-buttons').children) b.disabled = Boolean(problem) || !player;
+  $('export-status').textContent = problem;
+  const r = player?.job.request;
+  $('export-command').textContent = r ? exportCommand('svg', edge, r.rows, r.cols) : '';
+}
+
+/** Downloads the graded sheet in `format` (the server's export of the finished job), or shows
+ * the server's one-line reason. */
+async function exportFile(format) {
+  if (!player || edgeProblem($('export-edge').value)) return;
+  const job = player.job;
+  const url = `./api/graded/${encodeURIComponent(job.id)}/export?${exportParams(format, $('export-edge').value)}`;
+  $('export-status').textContent = `exporting ${format.toUpperCase()}…`;
+  $('export-command').textContent = exportCommand(format, $('export-edge').value, job.request.rows, job.request.cols);
+  let res;
+  try {
+    res = await fetch(url);
+  } catch (e) {
+    $('export-status').textContent = `cannot reach the server: ${e.message}`;
+    return;
+  }
+  if (!res.ok) {
+    let message = `${res.status} ${res.statusText}`;
+    try {
+      const body = await res.json();
+      if (typeof body.error === 'string') message = body.error;
+    } catch {
+      // not JSON: the status says it
+    }
+    $('export-status').textContent = message;
+    return;
+  }
+  const blob = await res.blob();
+  const disposition = res.headers.get('content-disposition') || '';
+  const name = /filename="([^"]+)"/.exec(disposition)?.[1] ?? `graded.${format}`;
+  const href = URL.createObjectURL(blob);
+  const a = document.createElement('a');
+  a.href = href;
+  a.download = name;
+  a.hidden = true;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(href), 60000);
+  const warning = res.headers.get('x-isogami-warning');
+  $('export-status').textContent = `saved ${name} (${blob.size} bytes)${warning ? `; warning: ${decodeURIComponent(warning.replace(/\+/g, ' '))}` : ''}`;
 }
 
 /** Shows player state `k` (0 closed … n − 1 the optimised opened state). */
@@ -395,6 +551,7 @@ function showState(k) {
     frame: player.frame,
     target: opened ? player.result.report.target : null,
     overlap: st.overlap ?? null,
+    cells: opened ? player.cells : null,
   });
   $('player-sheet').dataset.state = String(k);
   $('state-value').textContent = `${(100 * st.opening).toFixed(0)} % open${st.dof === null || st.dof === undefined ? '' : ` · DOF ${st.dof}`}${st.overlap ? ` · tiles ${st.overlap[0]} and ${st.overlap[1]} overlap` : ''}`;

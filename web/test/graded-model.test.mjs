@@ -7,9 +7,9 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  DEFAULTS, bounds, centroid, cliCommand, closedPolygons, convexHull, emptyForm, gradedBody, hullArea,
-  iterationsProblem, outlineAtArea, outlineText, playerStates, posedPolygons, regionProblem, reportLines,
-  signedArea, starProblem,
+  DEFAULTS, EXPORTS, bounds, centroid, cliCommand, closedPolygons, convexHull, edgeProblem, emptyForm, errorColour,
+  exportCommand, exportParams, fieldProblem, fieldRows, gradedBody, hullArea, iterationsProblem, outlineAtArea,
+  outlineText, playerStates, posedPolygons, regionProblem, reportLines, signedArea, starProblem, svgProblem,
 } from '../src/graded-model.js';
 import { shellSplit } from './shell.mjs';
 
@@ -58,9 +58,9 @@ test('a drawn polygon is refused when its centroid does not see it whole, in the
 test('the body and the command say the same thing', () => {
   const form = { design: ' rotating-squares ', rows: '2', cols: '3', outline: 'polygon', points: [[0, -1], [1, 0], [0, 1], [-1, 0]], iterations: '60' };
   const body = gradedBody(form);
-  assert.deepEqual(body, { design: 'rotating-squares', rows: 2, cols: 3, outline: 'polygon:0,-1;1,0;0,1;-1,0', iterations: 60 });
+  assert.deepEqual(body, { design: 'rotating-squares', rows: 2, cols: 3, target: 'polygon:0,-1;1,0;0,1;-1,0', iterations: 60 });
   const words = shellSplit(cliCommand(form));
-  assert.deepEqual(words, ['isogami', 'graded', '--design', 'rotating-squares', '--region', '2x3', '--target', body.outline,
+  assert.deepEqual(words, ['isogami', 'graded', '--design', 'rotating-squares', '--region', '2x3', '--target', body.target,
     '--iterations', '60', '--out', 'graded.json']);
   const spec = cliCommand({ ...form, design: 'IH6:0.5:1x1:b b' });
   assert.equal(shellSplit(spec)[3], 'IH6:0.5:1x1:b b');
@@ -120,4 +120,64 @@ test('the report names the fit, the path’s verdict and the overlapping tiles',
   const ok = Object.fromEntries(reportLines(result).map((l) => [l.key, l.text]));
   assert.match(ok.path, /^Opens along one motion: the path check reached the closed tiling .* in 3 states/);
   assert.equal(ok.overlaps, 'No two tiles overlap at any state of the path.');
+});
+
+test('a field target is written as --target field:FROM,TO[,DEGREES] and checked as the library does', () => {
+  const form = { ...emptyForm(null), outline: 'field', from: '1.3', to: ' 1.7', degrees: '0', rows: '2', cols: '2', iterations: '40' };
+  assert.equal(outlineText(form), 'field:1.3,1.7');
+  assert.equal(outlineText({ ...form, degrees: '90' }), 'field:1.3,1.7,90');
+  assert.equal(fieldProblem(form), '');
+  assert.equal(fieldProblem({ ...form, from: '0.8' }), 'the area ratios at the two ends must be numbers above 1 (the sheet opens)');
+  assert.equal(fieldProblem({ ...form, to: '' }), 'the area ratios at the two ends must be numbers above 1 (the sheet opens)');
+  assert.equal(fieldProblem({ ...form, degrees: 'east' }), 'the direction must be an angle in degrees');
+  assert.equal(fieldProblem({ ...form, outline: 'disc', from: 'x' }), '', 'only a field is checked');
+  assert.deepEqual(gradedBody({ ...form, degrees: '45' }), { design: 'rotating-squares', rows: 2, cols: 2, target: 'field:1.3,1.7,45', iterations: 40 });
+  const words = shellSplit(cliCommand({ ...form, degrees: '45' }));
+  assert.equal(words[words.indexOf('--target') + 1], 'field:1.3,1.7,45');
+});
+
+test('an SVG file is posted as its text and named as the CLI’s @FILE', () => {
+  const form = { ...emptyForm(null), outline: 'svg', svg: null };
+  assert.equal(svgProblem(form), 'choose an SVG file with one closed shape');
+  const svg = { name: 'my outline.svg', text: '<svg/>' };
+  assert.equal(svgProblem({ ...form, svg }), '');
+  assert.equal(svgProblem({ ...form, outline: 'disc' }), '');
+  const body = gradedBody({ ...form, svg });
+  assert.deepEqual([body.svg, body.svg_name, body.target], ['<svg/>', 'my outline.svg', undefined]);
+  const words = shellSplit(cliCommand({ ...form, svg }));
+  assert.equal(words[words.indexOf('--target') + 1], '@my outline.svg');
+});
+
+test('exports: laser and print formats, the query and the command naming the same flags', () => {
+  assert.deepEqual(EXPORTS.map((e) => e.format), ['svg', 'dxf', 'stl', '3mf']);
+  assert.equal(exportParams('dxf', ' 15 '), 'format=dxf&edge_mm=15');
+  assert.equal(exportParams('svg', ''), 'format=svg');
+  assert.deepEqual(shellSplit(exportCommand('3mf', '15', 2, 3)),
+    ['isogami', 'export', '--sheet', 'graded-2x3.json', '--format', '3mf', '--edge-mm', '15', '--out', 'graded-2x3.3mf']);
+  assert.equal(edgeProblem('20'), '');
+  assert.equal(edgeProblem('-1'), 'the mean edge length must be a positive number of mm');
+  assert.equal(edgeProblem(''), 'the mean edge length must be a positive number of mm');
+});
+
+test('a field result: a row per cell, coloured by its error, and the fit line names the field error', () => {
+  const quad = [[0, 0], [1, 0], [1, 1], [0, 1]];
+  const result = { field: [{ target: 1.3, ratio: 1.31, opened: quad, closed: quad }, { target: 1.7, ratio: 1.65, opened: quad, closed: quad }] };
+  const rows = fieldRows(result);
+  assert.deepEqual(rows.map((r) => r.cell), [1, 2]);
+  assert.ok(Math.abs(rows[1].error + 0.05) < 1e-12);
+  assert.deepEqual(fieldRows({}), []);
+  assert.equal(errorColour(0), 'rgb(255,255,255)');
+  assert.equal(errorColour(0.05), 'rgb(255,0,0)');
+  assert.equal(errorColour(-1), 'rgb(0,0,255)');
+  const state = { opening: 1, dof: 1, joint_gap: 1e-7, overlap: null, poses: [] };
+  const lines = reportLines({
+    sheet: { joints: [], nodes: [] },
+    report: {
+      tiles: 16, iterations: 60, cost: [1, 0.1], seconds: 0.5, joint_gap: 1e-7, max_outline_error: 0, median_outline_error: 0,
+      max_outside: 0, min_corner_fraction: 0.5, min_angle_degrees: 40, min_edge_fraction: 0.5, min_area_fraction: 0.5, target: [],
+      max_field_error: 0.0512, field_cells: 2,
+    },
+    path: { states: [state], closed_spread: 0, reached: true },
+  });
+  assert.equal(lines[0].text, 'Fit: the area ratio is within 0.0512 of the field in each of 2 cells (max field error 0.0512).');
 });
