@@ -17,7 +17,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 
 /// The Python exception of an export error.
-fn export_error(e: ExportError, watch: Watch) -> PyErr {
+pub(crate) fn export_error(e: ExportError, watch: Watch) -> PyErr {
     match e {
         ExportError::Library(inner) => watch.error(inner),
         e if e.is_cancelled() => watch.cancelled(|| errors::ExportError::new_err(e.to_string())),
@@ -73,7 +73,7 @@ fn patch_size(obj: &Bound<'_, PyAny>) -> PyResult<(usize, usize)> {
 }
 
 /// The state: a number t in [0, 1] or "open".
-fn state_of(obj: &Bound<'_, PyAny>) -> PyResult<State> {
+pub(crate) fn state_of(obj: &Bound<'_, PyAny>) -> PyResult<State> {
     if let Ok(text) = obj.extract::<String>() {
         return match text.trim() {
             "open" => Ok(State::Open),
@@ -93,18 +93,18 @@ fn state_of(obj: &Bound<'_, PyAny>) -> PyResult<State> {
 
 /// The export settings a caller gave, by name; None where not given.
 #[derive(Default)]
-struct Given {
-    material: Option<String>,
-    hinge_mm: Option<f64>,
-    kerf_mm: Option<f64>,
-    thickness_mm: Option<f64>,
-    margin_mm: Option<f64>,
-    stroke_mm: Option<f64>,
-    colours: [Option<String>; 3],
-    labels: bool,
-    gap_mm: Option<f64>,
-    lamella_mm: Option<f64>,
-    nozzle_mm: Option<f64>,
+pub(crate) struct Given {
+    pub(crate) material: Option<String>,
+    pub(crate) hinge_mm: Option<f64>,
+    pub(crate) kerf_mm: Option<f64>,
+    pub(crate) thickness_mm: Option<f64>,
+    pub(crate) margin_mm: Option<f64>,
+    pub(crate) stroke_mm: Option<f64>,
+    pub(crate) colours: [Option<String>; 3],
+    pub(crate) labels: bool,
+    pub(crate) gap_mm: Option<f64>,
+    pub(crate) lamella_mm: Option<f64>,
+    pub(crate) nozzle_mm: Option<f64>,
 }
 
 impl Given {
@@ -151,7 +151,7 @@ impl Given {
 
     /// The options of `format`: the defaults, then its own group's settings as the CLI
     /// reads them. A setting of another group is refused rather than ignored.
-    fn options(self, format: Format) -> PyResult<ExportOptions> {
+    pub(crate) fn options(self, format: Format) -> PyResult<ExportOptions> {
         let group = format.settings_group();
         let foreign: Vec<&str> = match group {
             SettingsGroup::Laser => self.print_only(),
@@ -240,6 +240,36 @@ fn set_all<const N: usize>(pairs: [(&mut f64, Option<f64>); N]) {
     }
 }
 
+/// The scale of `edge_mm` or `width_mm` (`default` when neither).
+pub(crate) fn scale_of(
+    edge_mm: Option<f64>,
+    width_mm: Option<f64>,
+    default: Scale,
+) -> PyResult<Scale> {
+    Ok(match (edge_mm, width_mm) {
+        (Some(_), Some(_)) => {
+            return Err(PyTypeError::new_err("give edge_mm or width_mm, not both"))
+        }
+        (_, Some(w)) => Scale::WidthMm(w),
+        (Some(e), None) => Scale::EdgeMm(e),
+        (None, None) => default,
+    })
+}
+
+/// Export files as Python values: ``bytes`` for one file, ``{name: bytes}`` for a folder.
+pub(crate) fn files_to_python(py: Python<'_>, files: ExportFiles) -> PyResult<Bound<'_, PyAny>> {
+    Ok(match files {
+        ExportFiles::One(bytes) => PyBytes::new(py, &bytes).into_any(),
+        ExportFiles::Folder(named) => {
+            let d = PyDict::new(py);
+            for (name, bytes) in named {
+                d.set_item(name, PyBytes::new(py, &bytes))?;
+            }
+            d.into_any()
+        }
+    })
+}
+
 /// Writes an R×C patch of ``design`` in millimetres in ``format`` and returns the file
 /// contents: ``bytes`` for a single-file format, a dict ``{file name: bytes}`` for a folder of
 /// files (``"kirigami-sim"``). ``export_formats()`` lists the formats.
@@ -306,14 +336,7 @@ pub fn export<'py>(
         Some(p) if !p.is_none() => patch_size(p)?,
         _ => (defaults.rows, defaults.cols),
     };
-    let scale = match (edge_mm, width_mm) {
-        (Some(_), Some(_)) => {
-            return Err(PyTypeError::new_err("give edge_mm or width_mm, not both"))
-        }
-        (_, Some(w)) => Scale::WidthMm(w),
-        (Some(e), None) => Scale::EdgeMm(e),
-        (None, None) => defaults.scale,
-    };
+    let scale = scale_of(edge_mm, width_mm, defaults.scale)?;
     let state = match t {
         Some(t) if !t.is_none() => state_of(t)?,
         _ => defaults.state,
@@ -358,16 +381,7 @@ pub fn export<'py>(
         Ok((_, files)) => files,
         Err(e) => return Err(export_error(e, watch)),
     };
-    Ok(match files {
-        ExportFiles::One(bytes) => PyBytes::new(py, &bytes).into_any(),
-        ExportFiles::Folder(named) => {
-            let d = PyDict::new(py);
-            for (name, bytes) in named {
-                d.set_item(name, PyBytes::new(py, &bytes))?;
-            }
-            d.into_any()
-        }
-    })
+    files_to_python(py, files)
 }
 
 /// The export formats: a list of dicts with ``name`` (what ``export`` takes),

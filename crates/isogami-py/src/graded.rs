@@ -1,13 +1,19 @@
 //! `isogami.graded` / `isogami.GradedRun` and `isogami.load_graded`: a design's finite sheet
-//! graded so that it opens into a target outline, and the check that it does (the library's
-//! `api::graded_sheet`), as numpy arrays, with the JSON `isogami graded --json` prints.
+//! graded so that it opens into a target outline (typed, or an SVG file's) or by a field of
+//! area ratio, and the check that it does (the library's `api::graded_sheet`), as numpy
+//! arrays, with the JSON `isogami graded --json` prints; `GradedRun.export` writes the sheet in
+//! every export format (`export::export_graded`, as `isogami export --sheet`).
 
 use crate::convert::{array, count_or, design_of, int_array, to_python, type_name};
 use crate::errors;
+use crate::export::{export_error, files_to_python, scale_of, state_of, Given};
 use crate::progress::Watch;
 use isogami::api::{graded_sheet, GradedRun};
-use isogami::graded::{outline_from_svg, parse_outline, GradedRequest, GradedSheet, Outline};
-use numpy::{PyArray2, PyArray3};
+use isogami::export::{export_graded, read_graded, ExportError, Format, GradedPatchRequest};
+use isogami::graded::{
+    outline_from_svg, parse_target, AreaField, GradedRequest, GradedSheet, Target,
+};
+use numpy::{PyArray1, PyArray2, PyArray3};
 use pyo3::exceptions::{PyOSError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
@@ -25,12 +31,16 @@ use std::sync::Mutex;
 /// each tile's first corner and its turn from closed; ``closed`` and ``opened``, one (c, 2)
 /// polygon per tile; ``states`` (s, n, 3), the poses part of the way open the pins close in
 /// too. Lengths are in units of the design's mean edge length (``length_scale`` in the
-/// design's tiling units), the opened sheet centred on the origin.
+/// design's tiling units), the opened sheet centred on the origin. A field target's cells:
+/// ``field_targets`` and ``field_ratios`` (c,), the area ratio asked and achieved, and
+/// ``field_cells`` (c, 4, 2), each cell's quadrilateral opened; ``max_field_error``.
 #[pyclass(name = "GradedRun", module = "isogami", frozen)]
 pub struct PyGradedRun {
     sheet: GradedSheet,
     report: Value,
     path: Value,
+    /// A field target's cells (the JSON's `field`; empty for an outline).
+    field: Vec<Value>,
     /// The JSON, as the CLI prints it (without the final newline).
     text: String,
 }
@@ -43,6 +53,12 @@ impl PyGradedRun {
             sheet: run.sheet.clone(),
             report: serde_json::to_value(&run.report).map_err(json)?,
             path: serde_json::to_value(&run.path).map_err(json)?,
+            field: run
+                .field
+                .iter()
+                .map(serde_json::to_value)
+                .collect::<Result<_, _>>()
+                .map_err(json)?,
             text: serde_json::to_string_pretty(run).map_err(json)?,
         })
     }
@@ -64,6 +80,11 @@ impl PyGradedRun {
             }
         };
         let (sheet, report, path) = (part("sheet")?, part("report")?, part("path")?);
+        let field = match whole.get_mut("field").map(Value::take) {
+            None => Vec::new(),
+            Some(Value::Array(cells)) => cells,
+            Some(_) => return Err(bad("its \"field\" is not a list of cells".into())),
+        };
         let sheet: GradedSheet =
             serde_json::from_value(sheet).map_err(|e| bad(format!("its sheet ({e})")))?;
         sheet.validate().map_err(|e| errors::library(e.into()))?;
@@ -71,6 +92,7 @@ impl PyGradedRun {
             sheet,
             report,
             path,
+            field,
             text: text.trim_end().to_string(),
         })
     }
@@ -89,6 +111,14 @@ impl PyGradedRun {
                     p.iter().flat_map(|v| [v.x, v.y]).collect(),
                 )
             })
+            .collect()
+    }
+
+    /// One number of every field cell (`key`), NaN where missing.
+    fn field_numbers(&self, key: &str) -> Vec<f64> {
+        self.field
+            .iter()
+            .map(|c| c.get(key).and_then(Value::as_f64).unwrap_or(f64::NAN))
             .collect()
     }
 
@@ -201,6 +231,39 @@ impl PyGradedRun {
             .unwrap_or_default();
         array(py, (points.len() / 2, 2), points)
     }
+    /// A field target: the area ratio each measured cell is asked for, shape (c,) (empty for
+    /// an outline target).
+    #[getter]
+    fn field_targets<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_vec(py, self.field_numbers("target"))
+    }
+    /// A field target: each measured cell's opened area over its closed area, shape (c,), in
+    /// the order of ``field_targets``.
+    #[getter]
+    fn field_ratios<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_vec(py, self.field_numbers("ratio"))
+    }
+    /// A field target: each measured cell's quadrilateral (four neighbouring cells' reference
+    /// corners) in the opened state, shape (c, 4, 2).
+    #[getter]
+    fn field_cells<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f64>>> {
+        let v: Vec<f64> = self
+            .field
+            .iter()
+            .flat_map(|c| {
+                (0..4).flat_map(move |k| {
+                    (0..2).map(move |d| c["opened"][k][d].as_f64().unwrap_or(f64::NAN))
+                })
+            })
+            .collect();
+        array(py, (self.field.len(), 4, 2), v)
+    }
+    /// A field target: the largest difference between a cell's achieved and asked area ratio
+    /// (the report's ``max_field_error``); None for an outline target.
+    #[getter]
+    fn max_field_error(&self) -> Option<f64> {
+        self.report.get("max_field_error").and_then(Value::as_f64)
+    }
     /// Whether the graded sheet opens along one motion from closed to the opened state
     /// (closed pins, one DOF, no overlap at every state of the path check).
     #[getter]
@@ -241,6 +304,101 @@ impl PyGradedRun {
         py.detach(|| write_whole(&path, contents.as_bytes()))
             .map_err(|e| PyOSError::new_err(format!("cannot write {}: {e}", path.display())))
     }
+    /// Writes the graded sheet in millimetres in ``format`` (``export_formats()`` lists them)
+    /// and returns the file contents: ``bytes`` for one file, a dict ``{file name: bytes}`` for
+    /// a folder (``"kirigami-sim"``) — what ``isogami export --sheet FILE`` writes from this
+    /// run's file, byte for byte (the sheet is read back from ``to_json()`` as the CLI reads
+    /// the file).
+    ///
+    /// The scale is ``edge_mm`` (the closed sheet's mean tile edge, default 20 mm) or
+    /// ``width_mm`` (its width at the state); ``t`` the opening (a number in [0, 1], the path
+    /// check's state of nearest opening; 0 closed, the default, what a laser cuts) or
+    /// ``"open"`` (the optimised state); ``frames`` the states animated formats keep (2..100,
+    /// default 11). The laser and 3D-print settings, ``creator`` and the errors are
+    /// ``isogami.export``'s; ``timeout`` seconds and Ctrl-C stop a print's solid. The GIL is
+    /// released while it runs.
+    #[pyo3(signature = (
+        format, *, edge_mm=None, width_mm=None, t=None, frames=None, material=None,
+        hinge_mm=None, kerf_mm=None, thickness_mm=None, margin_mm=None, stroke_mm=None,
+        cut_colour=None, score_colour=None, engrave_colour=None, labels=false, gap_mm=None,
+        lamella_mm=None, nozzle_mm=None, creator=None, timeout=None
+    ))]
+    #[allow(clippy::too_many_arguments)]
+    fn export<'py>(
+        &self,
+        py: Python<'py>,
+        format: &str,
+        edge_mm: Option<f64>,
+        width_mm: Option<f64>,
+        t: Option<&Bound<'py, PyAny>>,
+        frames: Option<&Bound<'py, PyAny>>,
+        material: Option<&str>,
+        hinge_mm: Option<f64>,
+        kerf_mm: Option<f64>,
+        thickness_mm: Option<f64>,
+        margin_mm: Option<f64>,
+        stroke_mm: Option<f64>,
+        cut_colour: Option<String>,
+        score_colour: Option<String>,
+        engrave_colour: Option<String>,
+        labels: bool,
+        gap_mm: Option<f64>,
+        lamella_mm: Option<f64>,
+        nozzle_mm: Option<f64>,
+        creator: Option<String>,
+        timeout: Option<f64>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let format: Format = format
+            .parse()
+            .map_err(|e: ExportError| errors::ExportError::new_err(e.to_string()))?;
+        let defaults = GradedPatchRequest::default();
+        let request = GradedPatchRequest {
+            scale: scale_of(edge_mm, width_mm, defaults.scale)?,
+            state: match t {
+                Some(t) if !t.is_none() => state_of(t)?,
+                _ => defaults.state,
+            },
+            frames: count_or("frames", frames, 0, defaults.frames)?,
+        };
+        let given = Given {
+            material: material.map(str::to_string),
+            hinge_mm,
+            kerf_mm,
+            thickness_mm,
+            margin_mm,
+            stroke_mm,
+            colours: [cut_colour, score_colour, engrave_colour],
+            labels,
+            gap_mm,
+            lamella_mm,
+            nozzle_mm,
+        };
+        let mut options = given.options(format)?;
+        if let Some(c) = creator {
+            options.creator = c;
+        }
+        let text = self.text.clone();
+        let watch = Mutex::new(Watch::new(None, timeout)?);
+        let result = py.detach(|| {
+            let lock = || watch.lock().unwrap_or_else(|e| e.into_inner());
+            let input = read_graded(&text)?;
+            isogami::stop::watched(&mut |_| lock().poll(), 0, |keep_going| {
+                export_graded(
+                    &input.sheet,
+                    input.path.as_ref(),
+                    &request,
+                    format,
+                    &options,
+                    keep_going,
+                )
+            })
+        });
+        let watch = watch.into_inner().unwrap_or_else(|e| e.into_inner());
+        match result {
+            Ok((_, files)) => files_to_python(py, files),
+            Err(e) => Err(export_error(e, watch)),
+        }
+    }
     /// A run from ``to_json()``'s text (for unpickling).
     #[staticmethod]
     fn _from_json(text: &str) -> PyResult<PyGradedRun> {
@@ -267,11 +425,17 @@ impl PyGradedRun {
     }
 
     fn __repr__(&self) -> String {
+        let fit = match self.max_field_error() {
+            Some(e) => format!("field within {e:.4}"),
+            None => format!(
+                "outline within {:.2} %",
+                100.0 * self.number("max_outline_error")
+            ),
+        };
         format!(
-            "GradedRun({}: {} tiles, outline within {:.2} %, {})",
+            "GradedRun({}: {} tiles, {fit}, {})",
             self.sheet.design,
             self.sheet.tiles.len(),
-            100.0 * self.number("max_outline_error"),
             if self.reached() {
                 "opens along one motion"
             } else {
@@ -297,10 +461,10 @@ fn write_whole(path: &Path, contents: &[u8]) -> std::io::Result<()> {
 }
 
 /// A target's text as ``isogami graded --target`` reads it: ``disc``, ``ellipse:A,B``,
-/// ``polygon:x,y;...`` or ``@PATH`` of an SVG file.
-fn outline_of(target: &str) -> PyResult<Outline> {
-    let outline = match target.strip_prefix('@') {
-        None => parse_outline(target),
+/// ``polygon:x,y;...``, ``field:FROM,TO[,DEGREES]`` or ``@PATH`` of an SVG file.
+fn target_of(target: &str) -> PyResult<Target> {
+    let read = match target.strip_prefix('@') {
+        None => parse_target(target),
         Some(path) => {
             let text = std::fs::read_to_string(path).map_err(|e| {
                 errors::library(
@@ -308,10 +472,38 @@ fn outline_of(target: &str) -> PyResult<Outline> {
                         .into(),
                 )
             })?;
-            outline_from_svg(&text)
+            outline_from_svg(&text).map(Target::Outline)
         }
     };
-    outline.map_err(|e| errors::library(e.into()))
+    read.map_err(|e| errors::library(e.into()))
+}
+
+/// The ``field`` keyword: ``(from, to)`` or ``(from, to, degrees)``, checked by the library.
+fn field_of(field: &Bound<'_, PyAny>) -> PyResult<Target> {
+    let numbers: Vec<f64> = field.extract().map_err(|_| {
+        PyTypeError::new_err(format!(
+            "field must be (from, to) or (from, to, degrees), got {}",
+            type_name(field)
+        ))
+    })?;
+    let (from, to, direction_degrees) = match numbers[..] {
+        [from, to] => (from, to, 0.0),
+        [from, to, degrees] => (from, to, degrees),
+        _ => {
+            return Err(PyTypeError::new_err(format!(
+                "field must be (from, to) or (from, to, degrees), got {} numbers",
+                numbers.len()
+            )))
+        }
+    };
+    AreaField {
+        from,
+        to,
+        direction_degrees,
+    }
+    .validated()
+    .map(Target::Field)
+    .map_err(|e| errors::library(e.into()))
 }
 
 /// The region: (rows, cols) or ``"RxC"``.
@@ -341,6 +533,11 @@ fn region_of(region: &Bound<'_, PyAny>) -> PyResult<(usize, usize)> {
 /// it opens into ``target``: ``"disc"``, ``"ellipse:A,B"``, ``"polygon:x,y;x,y;..."`` (star-
 /// shaped about its centroid) or ``"@outline.svg"``, the one closed shape of an SVG file
 /// (as ``isogami graded --target``); scaled to the area the design's own sheet covers open.
+/// Or by a field of area ratio instead of an outline: ``target="field:FROM,TO[,DEGREES]"``
+/// or ``field=(from, to)`` / ``(from, to, degrees)`` — a linear ramp from ``from`` at one end of
+/// the sheet to ``to`` at the other along ``degrees`` (counter-clockwise from +x, default 0),
+/// met cell by cell (``field_targets``, ``field_ratios``, ``max_field_error``; at least 2×2
+/// cells).
 /// ``t``: the opened state as the periodic deployment's t in (0, 1] (None: the state of
 /// largest area); ``states``: opened states the pins must close in (1 to 16); ``iterations``
 /// of the optimisation (the defaults are the library's, as the CLI's). Then checks that the
@@ -351,15 +548,16 @@ fn region_of(region: &Bound<'_, PyAny>) -> PyResult<(usize, usize)> {
 /// (``CancelledError``, or the callback's own exception, or KeyboardInterrupt). The GIL is
 /// released while it runs.
 ///
-/// Returns a ``GradedRun``. Raises ``FiniteError`` for a bad target, region or sheet (the
-/// library's one-line message), ``SettingsError`` for a setting out of range.
+/// Returns a ``GradedRun``. Raises ``FiniteError`` for a bad target, field, SVG file, region or
+/// sheet (the library's one-line message), ``SettingsError`` for a setting out of range,
+/// ``TypeError`` for ``field`` with a target other than the default.
 ///
 /// >>> run = isogami.graded("rotating-squares", (2, 2), "ellipse:1.3,1", iterations=60)
 /// >>> run.poses.shape, len(run.opened)
 /// ((16, 3), 16)
 #[pyfunction]
-#[pyo3(signature = (design, region=None, target="disc", t=None, states=None, iterations=None, *, progress=None, timeout=None),
-  text_signature = "(design, region=(3, 3), target='disc', t=None, states=8, iterations=400, *, progress=None, timeout=None)")]
+#[pyo3(signature = (design, region=None, target="disc", t=None, states=None, iterations=None, *, field=None, progress=None, timeout=None),
+  text_signature = "(design, region=(3, 3), target='disc', t=None, states=8, iterations=400, *, field=None, progress=None, timeout=None)")]
 #[allow(clippy::too_many_arguments)]
 pub fn graded(
     py: Python<'_>,
@@ -369,9 +567,19 @@ pub fn graded(
     t: Option<f64>,
     states: Option<&Bound<'_, PyAny>>,
     iterations: Option<&Bound<'_, PyAny>>,
+    field: Option<&Bound<'_, PyAny>>,
     progress: Option<Bound<'_, PyAny>>,
     timeout: Option<f64>,
 ) -> PyResult<PyGradedRun> {
+    let target = match field.filter(|f| !f.is_none()) {
+        Some(_) if target.trim() != "disc" => {
+            return Err(PyTypeError::new_err(format!(
+                "give target or field, not both (target {target:?})"
+            )))
+        }
+        Some(f) => field_of(f)?,
+        None => target_of(target)?,
+    };
     let (rows, cols) = match region {
         Some(r) if !r.is_none() => region_of(r)?,
         _ => (3, 3),
@@ -381,11 +589,11 @@ pub fn graded(
         design: design_of(design)?.to_string(),
         rows,
         cols,
-        outline: outline_of(target)?,
         t,
         states: count_or("states", states, 0, defaults.states)?,
         ..defaults
-    };
+    }
+    .with_target(target);
     request.solve.max_iterations =
         count_or("iterations", iterations, 1, request.solve.max_iterations)?;
     let progress = progress.filter(|p| !p.is_none());

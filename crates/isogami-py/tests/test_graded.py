@@ -1,6 +1,8 @@
 """Graded sheets from Python: the same JSON as `isogami graded --json` (to the byte but for
-the run's seconds), numpy arrays that agree with it, SVG targets, progress that can stop the
-run, errors in the package's classes, save/load and pickle round trips."""
+the run's seconds), numpy arrays that agree with it, SVG targets, area-ratio field targets
+(each cell's asked and achieved ratio as the CLI's JSON gives them), exports equal to
+`isogami export --sheet`'s files byte for byte, progress that can stop the run, errors in the
+package's classes, save/load and pickle round trips."""
 
 import json
 import os
@@ -230,3 +232,96 @@ def test_save_and_load_round_trip(run, tmp_path, cli_raw):
             isogami.load_graded(bad)
     with pytest.raises(isogami.FiniteError, match="cannot read"):
         isogami.load_graded(tmp_path / "missing.json")
+
+
+FIELD = "field:1.3,1.7,90"
+
+
+@pytest.fixture(scope="module")
+def field_run():
+    return isogami.graded("rotating-squares", (3, 3), FIELD, iterations=40)
+
+
+def test_a_field_target_gives_each_cells_ratio_as_the_clis_json(field_run, cli_raw):
+    done = cli_raw(
+        "graded", "--design", "rotating-squares", "--region", "3x3",
+        "--target", FIELD, "--iterations", "40", "--json",
+    )
+    assert done.returncode == 0, done.stderr
+    assert without_seconds(field_run.to_json() + "\n") == without_seconds(done.stdout.decode())
+    cli = json.loads(done.stdout)
+    cells = cli["field"]
+    assert len(cells) == cli["report"]["field_cells"] >= 4
+    assert len({round(c["target"], 9) for c in cells}) >= 2, "a ramp asks the cells for different ratios"
+    assert field_run.field_targets.tolist() == [c["target"] for c in cells]
+    assert field_run.field_ratios.tolist() == [c["ratio"] for c in cells]
+    assert field_run.field_cells.shape == (len(cells), 4, 2)
+    assert field_run.field_cells.tolist() == [c["opened"] for c in cells]
+    assert field_run.max_field_error == cli["report"]["max_field_error"]
+    worst = np.abs(field_run.field_ratios - field_run.field_targets).max()
+    assert worst == pytest.approx(field_run.max_field_error, abs=1e-12)
+    assert all(1.3 - 1e-9 <= t <= 1.7 + 1e-9 for t in field_run.field_targets)
+    assert "field within" in repr(field_run)
+    # The keyword says the same; an outline run has no field.
+    keyword = isogami.graded("rotating-squares", (3, 3), field=(1.3, 1.7, 90), iterations=40)
+    assert without_seconds(keyword.to_json()) == without_seconds(field_run.to_json())
+    # Saved and loaded, the cells stay.
+    loaded = pickle.loads(pickle.dumps(field_run))
+    assert loaded.field_ratios.tolist() == field_run.field_ratios.tolist()
+
+
+def test_an_outline_run_has_no_field(run):
+    assert run.max_field_error is None
+    assert run.field_targets.shape == (0,) and run.field_cells.shape == (0, 4, 2)
+    assert "field" not in json.loads(run.to_json())
+
+
+def test_export_is_the_clis_file_byte_for_byte(run, field_run, tmp_path, cli_raw):
+    for name, graded in [("rhombus", run), ("field", field_run)]:
+        sheet = tmp_path / f"{name}.json"
+        graded.save(sheet)
+        for fmt, kwargs, flags in [
+            ("svg", dict(hinge_mm=1.2), ["--hinge-mm", "1.2"]),
+            ("dxf", dict(edge_mm=15), ["--edge-mm", "15"]),
+            ("stl", {}, []),
+            ("fold", dict(t="open", frames=4), ["--t", "open", "--frames", "4"]),
+        ]:
+            mine = graded.export(fmt, **kwargs)
+            assert isinstance(mine, bytes) and mine
+            out = tmp_path / f"{name}.{fmt}"
+            done = cli_raw("export", "--sheet", str(sheet), "--format", fmt, *flags, "--out", str(out))
+            assert done.returncode == 0, done.stderr
+            assert mine == out.read_bytes(), (name, fmt)
+    stl = run.export("stl")
+    triangles = int.from_bytes(stl[80:84], "little")
+    assert triangles > 0 and len(stl) == 84 + 50 * triangles
+    assert re.search(rb"\n\s*0\r?\nSECTION\r?\n\s*2\r?\nHEADER\r?\n", run.export("dxf"))
+    # A folder format: every file the CLI writes into its folder.
+    folder = tmp_path / "sim"
+    done = cli_raw("export", "--sheet", str(tmp_path / "rhombus.json"), "--format", "kirigami-sim", "--out", str(folder))
+    assert done.returncode == 0, done.stderr
+    files = run.export("kirigami-sim")
+    assert files == {p.name: p.read_bytes() for p in folder.iterdir()}
+    # A loaded run exports the same bytes.
+    assert isogami.load_graded(tmp_path / "rhombus.json").export("svg") == run.export("svg")
+
+
+def test_bad_fields_and_exports_raise_one_line_errors(run):
+    for call, error, message in [
+        (lambda: isogami.graded("rotating-squares", (2, 2), field=(0.5, 1.5)), isogami.FiniteError, "above 1"),
+        (lambda: isogami.graded("rotating-squares", (2, 2), "field:1.2"), isogami.FiniteError, "field:FROM,TO"),
+        (lambda: isogami.graded("rotating-squares", (2, 2), field=(1.2,)), TypeError, r"\(from, to\)"),
+        (lambda: isogami.graded("rotating-squares", (2, 2), field="1.2,1.8"), TypeError, "field must be"),
+        (lambda: isogami.graded("rotating-squares", (2, 2), "ellipse:1.2,1", field=(1.2, 1.8)), TypeError, "not both"),
+        (lambda: isogami.graded("rotating-squares", (1, 1), field=(1.2, 1.8), iterations=5), isogami.FiniteError, "2x2"),
+        (lambda: run.export("png"), isogami.ExportError, "unknown export format"),
+        (lambda: run.export("svg", edge_mm=-1), isogami.ExportError, "-1"),
+        (lambda: run.export("svg", edge_mm=10, width_mm=10), TypeError, "not both"),
+        (lambda: run.export("svg", gap_mm=0.3), TypeError, "gap_mm does not apply"),
+        (lambda: run.export("svg", t=1.5), isogami.ExportError, r"\[0, 1\]"),
+        (lambda: run.export("svg", t="later"), isogami.ExportError, "'open'"),
+        (lambda: run.export("fold", frames=1), isogami.ExportError, "frames"),
+    ]:
+        with pytest.raises(error, match=message) as caught:
+            call()
+        assert "\n" not in str(caught.value), str(caught.value)

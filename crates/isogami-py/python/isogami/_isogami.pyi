@@ -1015,10 +1015,93 @@ class GradedRun:
     def max_outline_error(self) -> float: ...
     @property
     def joint_gap(self) -> float: ...
+    @property
+    def field_targets(self) -> FloatArray: ...
+    @property
+    def field_ratios(self) -> FloatArray: ...
+    @property
+    def field_cells(self) -> FloatArray: ...
+    @property
+    def max_field_error(self) -> Optional[float]: ...
     def report(self) -> Dict[str, Any]: ...
     def path_check(self) -> Dict[str, Any]: ...
     def to_json(self) -> str: ...
     def save(self, path: Union[str, PathLike[str]]) -> None: ...
+    @overload
+    def export(
+        self,
+        format: Literal["svg", "dxf", "fold", "obj", "tiles-csv", "tiles-json", "stl", "3mf"],
+        *,
+        edge_mm: Optional[float] = None,
+        width_mm: Optional[float] = None,
+        t: Union[float, Literal["open"], None] = None,
+        frames: Optional[int] = None,
+        material: Optional[Literal["card", "felt", "pla"]] = None,
+        hinge_mm: Optional[float] = None,
+        kerf_mm: Optional[float] = None,
+        thickness_mm: Optional[float] = None,
+        margin_mm: Optional[float] = None,
+        stroke_mm: Optional[float] = None,
+        cut_colour: Optional[str] = None,
+        score_colour: Optional[str] = None,
+        engrave_colour: Optional[str] = None,
+        labels: bool = False,
+        gap_mm: Optional[float] = None,
+        lamella_mm: Optional[float] = None,
+        nozzle_mm: Optional[float] = None,
+        creator: Optional[str] = None,
+        timeout: Optional[float] = None,
+    ) -> bytes: ...
+    @overload
+    def export(
+        self,
+        format: Literal["kirigami-sim"],
+        *,
+        edge_mm: Optional[float] = None,
+        width_mm: Optional[float] = None,
+        t: Union[float, Literal["open"], None] = None,
+        frames: Optional[int] = None,
+        material: Optional[Literal["card", "felt", "pla"]] = None,
+        hinge_mm: Optional[float] = None,
+        kerf_mm: Optional[float] = None,
+        thickness_mm: Optional[float] = None,
+        margin_mm: Optional[float] = None,
+        stroke_mm: Optional[float] = None,
+        cut_colour: Optional[str] = None,
+        score_colour: Optional[str] = None,
+        engrave_colour: Optional[str] = None,
+        labels: bool = False,
+        gap_mm: Optional[float] = None,
+        lamella_mm: Optional[float] = None,
+        nozzle_mm: Optional[float] = None,
+        creator: Optional[str] = None,
+        timeout: Optional[float] = None,
+    ) -> Dict[str, bytes]: ...
+    @overload
+    def export(
+        self,
+        format: str,
+        *,
+        edge_mm: Optional[float] = None,
+        width_mm: Optional[float] = None,
+        t: Union[float, Literal["open"], None] = None,
+        frames: Optional[int] = None,
+        material: Optional[Literal["card", "felt", "pla"]] = None,
+        hinge_mm: Optional[float] = None,
+        kerf_mm: Optional[float] = None,
+        thickness_mm: Optional[float] = None,
+        margin_mm: Optional[float] = None,
+        stroke_mm: Optional[float] = None,
+        cut_colour: Optional[str] = None,
+        score_colour: Optional[str] = None,
+        engrave_colour: Optional[str] = None,
+        labels: bool = False,
+        gap_mm: Optional[float] = None,
+        lamella_mm: Optional[float] = None,
+        nozzle_mm: Optional[float] = None,
+        creator: Optional[str] = None,
+        timeout: Optional[float] = None,
+    ) -> Union[bytes, Dict[str, bytes]]: ...
 
 def graded(
     design: DesignLike,
@@ -1028,11 +1111,13 @@ def graded(
     states: int = 8,
     iterations: int = 400,
     *,
+    field: Union[Tuple[float, float], Tuple[float, float, float], Sequence[float], None] = None,
     progress: Optional[GradedProgress] = None,
     timeout: Optional[float] = None,
 ) -> GradedRun:
     """A design's finite sheet graded so that it opens into ``target`` (disc, ellipse:A,B,
-    polygon:x,y;..., or @file.svg), and the check that it opens along one motion."""
+    polygon:x,y;..., or @file.svg) or meets a field of area ratio (``target="field:FROM,TO[,DEGREES]"``
+    or ``field=(from, to[, degrees])``), and the check that it opens along one motion."""
 
 def load_graded(path: Union[str, PathLike[str]]) -> GradedRun:
     """The graded run ``GradedRun.save`` or ``isogami graded --out`` wrote."""
