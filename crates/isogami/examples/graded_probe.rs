@@ -1,7 +1,7 @@
 //! Probe for graded sheets (not part of the tests): grades a design towards a disc and
 //! prints the report and every state of the path check, one line each.
 //!
-//! `cargo run --release -p isogami --example graded_probe -- [CELLS [STATES [DESIGN [T]]]]`
+//! `cargo run --release -p isogami --example graded_probe -- [CELLS|ROWSxCOLS [STATES [DESIGN [T]]]]`
 
 use isogami::api::graded_sheet;
 use isogami::graded::GradedRequest;
@@ -10,14 +10,22 @@ use isogami::stop::NEVER;
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let arg = |k: usize| args.get(k).cloned();
-    let cells: usize = arg(1).map_or(3, |a| a.parse().expect("CELLS is a number"));
+    // CELLS: a number (square region) or ROWSxCOLS.
+    let cells = arg(1).unwrap_or_else(|| "3".into());
+    let (rows, cols) = match cells.split_once('x') {
+        Some((r, c)) => (r.parse().expect("ROWS"), c.parse().expect("COLS")),
+        None => {
+            let n: usize = cells.parse().expect("CELLS is a number or ROWSxCOLS");
+            (n, n)
+        }
+    };
     let states: usize = arg(2).map_or(8, |a| a.parse().expect("STATES is a number"));
     let design = arg(3).unwrap_or_else(|| "rotating-squares".into());
     let t: Option<f64> = arg(4).map(|a| a.parse().expect("T is a number"));
     let mut request = GradedRequest {
         design,
-        rows: cells,
-        cols: cells,
+        rows,
+        cols,
         states,
         t,
         ..GradedRequest::default()

@@ -55,15 +55,24 @@ pub fn contacts(tiles: &[Vec<usize>], joints: &[(usize, usize, usize)]) -> Vec<C
         .collect()
 }
 
-/// The depth of `p` inside the counter-clockwise polygon `poly` (distance to its nearest
-/// boundary point) and its gradients with respect to `p` and to each polygon corner, or None
-/// when `p` is not strictly inside.
-fn depth(p: Vec2, poly: &[Vec2]) -> Option<(Real, Vec2, Vec<(usize, Vec2)>)> {
+/// How deep a point lies inside a polygon, and the gradients of that depth.
+struct Depth {
+    /// Distance to the polygon's nearest boundary point.
+    depth: Real,
+    /// Gradient with respect to the point.
+    point: Vec2,
+    /// Gradients with respect to the polygon corners it depends on: (corner, gradient).
+    corners: Vec<(usize, Vec2)>,
+}
+
+/// The depth of `p` inside the counter-clockwise polygon `poly`, or None when `p` is not
+/// strictly inside.
+fn depth(p: Vec2, poly: &[Vec2]) -> Option<Depth> {
     if !point_in_polygon_strict(&p, poly, 0.0) {
         return None;
     }
     let m = poly.len();
-    let mut best: Option<(Real, Vec2, Vec<(usize, Vec2)>)> = None;
+    let mut best: Option<Depth> = None;
     for k in 0..m {
         let (q0, q1) = (poly[k], poly[(k + 1) % m]);
         let e = q1 - q0;
@@ -81,7 +90,11 @@ fn depth(p: Vec2, poly: &[Vec2]) -> Option<(Real, Vec2, Vec<(usize, Vec2)>)> {
                 continue;
             }
             let g = (p - q) / d;
-            (d, g, vec![(j, -g)])
+            Depth {
+                depth: d,
+                point: g,
+                corners: vec![(j, -g)],
+            }
         } else {
             // Nearest on the edge: the signed distance cross(e, w)/|e| (positive inside).
             let len = len2.sqrt();
@@ -91,9 +104,13 @@ fn depth(p: Vec2, poly: &[Vec2]) -> Option<(Real, Vec2, Vec<(usize, Vec2)>)> {
             let dce = Vec2::new(w.y, -w.x);
             let dq1 = dce / len - e * (c / (len * len2));
             let dq0 = -dq1 - dp;
-            (d, dp, vec![(k, dq0), ((k + 1) % m, dq1)])
+            Depth {
+                depth: d,
+                point: dp,
+                corners: vec![(k, dq0), ((k + 1) % m, dq1)],
+            }
         };
-        if best.as_ref().is_none_or(|b| candidate.0 < b.0) {
+        if best.as_ref().is_none_or(|b| candidate.depth < b.depth) {
             best = Some(candidate);
         }
     }
@@ -133,7 +150,12 @@ impl Problem {
                     if Some(self.tiles[tile][v]) == contact.pin {
                         continue;
                     }
-                    let Some((d, dp, dq)) = depth(*p, &poly) else {
+                    let Some(Depth {
+                        depth: d,
+                        point: dp,
+                        corners: dq,
+                    }) = depth(*p, &poly)
+                    else {
                         continue;
                     };
                     let mut e = Vec::with_capacity(24);
@@ -173,18 +195,23 @@ mod tests {
             Vec2::new(0.8, 0.9),
             Vec2::new(0.3, 1.6),
         ] {
-            let (d, dp, dq) = depth(p, &l).expect("inside");
+            let Depth {
+                depth: d,
+                point: dp,
+                corners: dq,
+            } = depth(p, &l).expect("inside");
             assert!(d > 0.0);
             for r in 0..2 {
                 let mut e = Vec2::zeros();
                 e[r] = h;
-                let fd = (depth(p + e, &l).unwrap().0 - depth(p - e, &l).unwrap().0) / (2.0 * h);
+                let at = |p: Vec2, l: &[Vec2]| depth(p, l).unwrap().depth;
+                let fd = (at(p + e, &l) - at(p - e, &l)) / (2.0 * h);
                 assert!((fd - dp[r]).abs() < 1e-6, "p {p:?}: {fd} vs {}", dp[r]);
                 for (k, g) in &dq {
                     let (mut lp, mut lm) = (l, l);
                     lp[*k] += e;
                     lm[*k] -= e;
-                    let fd = (depth(p, &lp).unwrap().0 - depth(p, &lm).unwrap().0) / (2.0 * h);
+                    let fd = (at(p, &lp) - at(p, &lm)) / (2.0 * h);
                     assert!((fd - g[r]).abs() < 1e-6, "corner {k}: {fd} vs {}", g[r]);
                 }
             }

@@ -260,12 +260,23 @@ mod tests {
         problem.weights.corner_fraction = 0.99;
         problem.weights.angle_fraction = 0.99;
         problem.weights.edge_fraction = 0.99;
-        let z = Problem::pack(&sheet);
+        let mut z = Problem::pack(&sheet);
         let structure = problem.structure(&z);
         assert!(structure.values.len() > problem.rows(&z).values.len());
         let mut system = NormalSystem::new(&structure, z.len(), 0).unwrap();
         // `position` panics on an entry outside the pattern.
         system.assemble(&problem.rows(&z));
         system.assemble(&structure);
+        // Contact rows: every tile of the last state moved onto its neighbour's place.
+        let last = 2 * sheet.nodes.len() + 3 * sheet.tiles.len() * sheet.path.len();
+        let before = problem.rows(&z).values.len();
+        for contact in &problem.contacts {
+            let (a, b) = (last + 3 * contact.a, last + 3 * contact.b);
+            z[b] = 0.5 * (z[a] + z[b]);
+            z[b + 1] = 0.5 * (z[a + 1] + z[b + 1]);
+        }
+        let pushed = problem.rows(&z);
+        assert!(pushed.values.len() > before, "no contact row is active");
+        system.assemble(&pushed);
     }
 }

@@ -115,9 +115,9 @@ impl GradedProgress<'_> {
 fn levenberg_marquardt(
     problem: &Problem,
     z: &mut DVec,
+    system: &mut NormalSystem,
     max_iterations: usize,
     rel_decrease: Real,
-    skip_below: usize,
     progress: &mut dyn FnMut(usize, Real, &DVec) -> bool,
     keep_going: KeepGoing<'_>,
 ) -> Result<(usize, Real), GradedError> {
@@ -128,7 +128,6 @@ fn levenberg_marquardt(
     }
     let mut lambda = 1e-4;
     let mut taken = 0;
-    let mut system = NormalSystem::new(&problem.structure(z), z.len(), skip_below)?;
     for it in 0..max_iterations {
         if !keep_going() {
             return Err(GradedError::Cancelled);
@@ -174,12 +173,13 @@ pub fn project(
     max_iterations: usize,
     keep_going: KeepGoing<'_>,
 ) -> Result<Real, GradedError> {
+    let mut system = NormalSystem::new(&problem.structure(z), z.len(), first)?;
     levenberg_marquardt(
         problem,
         z,
+        &mut system,
         max_iterations,
         0.0,
-        first,
         &mut |_, _, _| true,
         keep_going,
     )
@@ -205,6 +205,9 @@ pub fn optimise(
     let base = problem.weights;
     let mut iterations = 0;
     let mut cost = start_cost;
+    // One pattern and symbolic factorisation serve every stage (the weights change, the rows
+    // that can occur do not).
+    let mut system = NormalSystem::new(&problem.structure(&z), z.len(), 0)?;
     for stage in 0..STAGES {
         let k = STIFFENING.powi(stage as i32);
         problem.weights.joints = base.joints * k;
@@ -213,9 +216,9 @@ pub fn optimise(
         let (taken, c) = levenberg_marquardt(
             problem,
             &mut z,
+            &mut system,
             settings.max_iterations.div_ceil(STAGES),
             settings.rel_decrease,
-            0,
             &mut |i, c, z| {
                 progress(&GradedProgress {
                     iteration: done + i,
