@@ -377,6 +377,51 @@ mod tests {
         assert_eq!(path.states.len(), 11);
     }
 
+    /// A family with concave tiles (issue 25 asks for some among the families): IH27 at a
+    /// shape whose tiles have a reflex corner, 3×3 cells, opened to t = 0.6 of its periodic
+    /// motion and graded to a disc: every outline point within 5 % of the radius, the tiles
+    /// still concave (each keeps its reflex corner: the sine bound keeps a reflex corner
+    /// reflex), and the graded closed tiling follows one motion back to closed — pins closed,
+    /// one DOF, no two tiles overlapping (concave ones included) at every state.
+    #[test]
+    fn a_concave_family_opens_into_a_disc_along_one_motion() {
+        let request = GradedRequest {
+            design: "IH27:0.141304,0.6046404,0.6953583:1x1:-aaaaaaaa-".into(),
+            rows: 3,
+            cols: 3,
+            t: Some(0.6),
+            ..GradedRequest::default()
+        };
+        let (sheet, problem, report) = grade(&request, &mut |_| true, NEVER).unwrap();
+        let reflex = |p: &[Vec2]| {
+            let m = p.len();
+            (0..m)
+                .filter(|&v| {
+                    let (a, b) = (p[(v + 1) % m] - p[v], p[(v + m - 1) % m] - p[v]);
+                    crate::math::cross(&a, &b) < 0.0
+                })
+                .count()
+        };
+        let start = crate::api::resolve_design(&request.design)
+            .unwrap()
+            .cell()
+            .unwrap();
+        assert!(
+            start.tiles.iter().all(|t| reflex(&t.polygon) > 0),
+            "a concave design"
+        );
+        for i in 0..sheet.tiles.len() {
+            assert!(
+                reflex(&sheet.closed_polygon(i)) > 0,
+                "tile {i} is convex now"
+            );
+        }
+        assert!(report.joint_gap < 1e-6, "{report:?}");
+        assert!(report.max_outline_error < 0.05, "{report:?}");
+        let path = super::super::check_path(&sheet, &problem, 20, NEVER).unwrap();
+        assert!(path.reached, "{path:#?}");
+    }
+
     /// The ungraded start does not meet a disc: what the optimisation does is needed.
     #[test]
     fn the_ungraded_start_misses_the_disc() {
