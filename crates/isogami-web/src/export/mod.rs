@@ -172,12 +172,7 @@ pub async fn export_bounded(
         .tiles
         .len();
     check_work(cell_tiles, &query)?;
-    let started = Instant::now();
-    let permit = tokio::time::timeout(timeout, heavy.acquire_owned())
-        .await
-        .map_err(|_| busy())?
-        .map_err(|_| ApiError::internal("the export permits were closed"))?;
-    let left = timeout.saturating_sub(started.elapsed());
+    let (permit, left) = heavy_permit(heavy, timeout).await?;
     let spec = design.to_string();
     let name = file_name(&spec, &query);
     let format = query.format;
@@ -205,6 +200,19 @@ pub async fn export_bounded(
             warning,
         },
     })
+}
+
+/// One `heavy` permit, waited for at most `timeout` (busy after that), and the time left.
+async fn heavy_permit(
+    heavy: Arc<Semaphore>,
+    timeout: Duration,
+) -> ApiResult<(tokio::sync::OwnedSemaphorePermit, Duration)> {
+    let started = Instant::now();
+    let permit = tokio::time::timeout(timeout, heavy.acquire_owned())
+        .await
+        .map_err(|_| busy())?
+        .map_err(|_| ApiError::internal("the export permits were closed"))?;
+    Ok((permit, timeout.saturating_sub(started.elapsed())))
 }
 
 /// The download's file name of a graded sheet's export: `<stem>.<ext>`, or
@@ -239,12 +247,7 @@ pub async fn export_graded_bounded(
             "run `isogami export --sheet` from the command line (no limit)",
         ));
     }
-    let started = Instant::now();
-    let permit = tokio::time::timeout(timeout, heavy.acquire_owned())
-        .await
-        .map_err(|_| busy())?
-        .map_err(|_| ApiError::internal("the export permits were closed"))?;
-    let left = timeout.saturating_sub(started.elapsed());
+    let (permit, left) = heavy_permit(heavy, timeout).await?;
     let format = query.format;
     let (patch, files) = run_answered(left, move |deadline| {
         let _permit = permit;
