@@ -621,7 +621,10 @@ mod tests {
         if push_in {
             push_into_neighbour(&mut sheet, &problem);
             let z = Problem::pack(&sheet);
-            assert!(active_contacts(&problem, &z) > 0, "no contact row is active");
+            assert!(
+                active_contacts(&problem, &z) > 0,
+                "no contact row is active"
+            );
         }
         // Strong shape bounds so that some are active after the perturbation.
         problem.weights.corner_fraction = 0.99;
