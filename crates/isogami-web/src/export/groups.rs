@@ -276,10 +276,26 @@ fn apply_print(options: &mut ExportOptions, values: &Values<'_>) -> ApiResult<()
 /// The query values of one request, each key at most once.
 pub struct Values<'a>(pub &'a [(String, String)]);
 
+/// Longest design text (a spec, a name or design JSON) a query may carry, as for
+/// `POST /api/deploy`.
+pub const MAX_DESIGN: usize = 16 * 1024;
+
 impl Values<'_> {
     /// The value of `key`, if given.
     pub fn get(&self, key: &str) -> Option<&str> {
         self.0.iter().find(|(k, _)| k == key).map(|(_, v)| v.trim())
+    }
+
+    /// The `design` parameter: required, not empty, at most [`MAX_DESIGN`] bytes.
+    pub fn design(&self) -> ApiResult<&str> {
+        let design = self
+            .get("design")
+            .filter(|d| !d.is_empty())
+            .ok_or_else(|| ApiError::bad_parameter("missing parameter design"))?;
+        if design.len() > MAX_DESIGN {
+            return Err(ApiError::bad_parameter("design text longer than 16 KiB"));
+        }
+        Ok(design)
     }
 
     /// A number (any finite or non-finite value the library then judges), if given.

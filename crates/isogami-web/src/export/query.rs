@@ -15,9 +15,6 @@ use isogami::export::{
     ExportOptions, Format, GradedPatchRequest, PatchRequest, Scale, State, MAX_PATCH,
 };
 
-/// Longest design text (a spec, a name or design JSON), as for `POST /api/deploy`.
-pub const MAX_DESIGN: usize = 16 * 1024;
-
 /// Most cells × frames one export may hold on the server: every frame places every tile of
 /// the patch, and a FOLD file writes them all (a 40×40 patch of a 12-tile cell with 100
 /// frames would be about half a gigabyte). The limit lets the largest patch through at the
@@ -129,13 +126,7 @@ fn options_of(values: &Values<'_>, format: Format) -> ApiResult<ExportOptions> {
 pub fn parse_export(pairs: &[(String, String)]) -> ApiResult<ExportQuery> {
     check_keys(pairs, &REQUEST_KEYS)?;
     let values = Values(pairs);
-    let design = values
-        .get("design")
-        .filter(|d| !d.is_empty())
-        .ok_or_else(|| ApiError::bad_parameter("missing parameter design"))?;
-    if design.len() > MAX_DESIGN {
-        return Err(ApiError::bad_parameter("design text longer than 16 KiB"));
-    }
+    let design = values.design()?;
     let format = format_of(&values)?;
 
     let defaults = PatchRequest::default();

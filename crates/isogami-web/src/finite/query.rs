@@ -11,8 +11,6 @@ use isogami::api::SheetRequest;
 use isogami::contact::ContactSettings;
 use isogami::finite::Region;
 
-/// Longest design text (a spec, a name or design JSON), as for `POST /api/deploy`.
-pub const MAX_DESIGN: usize = 16 * 1024;
 /// Most cells along either direction of an R×C region on the server (the library takes up
 /// to 40; the CLI has no time limit).
 pub const MAX_SHEET_CELLS: usize = 12;
@@ -65,13 +63,7 @@ pub fn parse_sheet(pairs: &[(String, String)]) -> ApiResult<SheetQuery> {
         }
     }
     let values = Values(pairs);
-    let design = values
-        .get("design")
-        .filter(|d| !d.is_empty())
-        .ok_or_else(|| ApiError::bad_parameter("missing parameter design"))?;
-    if design.len() > MAX_DESIGN {
-        return Err(ApiError::bad_parameter("design text longer than 16 KiB"));
-    }
+    let design = values.design()?;
     let defaults = SheetRequest::default();
     let region = match values.get("region") {
         None => defaults.region.clone(),
