@@ -66,8 +66,32 @@ fn main() {
     if let Some(v) = env("DECREASE") {
         request.solve.rel_decrease = v;
     }
-    let run = graded_sheet(&request, &mut |_| true, NEVER).expect("graded");
+    // GRADED_TRACE=K: the cost every K iterations.
+    let trace = env("TRACE").map(|k| k as usize);
+    let clock = std::time::Instant::now();
+    let run = graded_sheet(
+        &request,
+        &mut |p| {
+            if let Some(k) = trace {
+                if p.iteration % k == 0 {
+                    eprintln!(
+                        "it {} stage {} cost {:.4e} {:.2} s",
+                        p.iteration,
+                        p.stage,
+                        p.cost,
+                        clock.elapsed().as_secs_f64()
+                    );
+                }
+            }
+            true
+        },
+        NEVER,
+    )
+    .expect("graded");
     let r = &run.report;
+    for f in &run.field {
+        println!("cell asked {:.3} got {:.3}", f.target, f.ratio);
+    }
     // Reflex corners of the closed tiles (a concave family).
     let reflex = (0..run.sheet.tiles.len())
         .map(|i| {
