@@ -3,6 +3,7 @@
 //! [`run_bounded`] is that bound for any job (exports use it too).
 
 use crate::error::{ApiError, ApiResult};
+use crate::export::groups::check_design_text;
 use axum::http::StatusCode;
 use isogami::api::{deploy, resolve_design, DeployRequest, Deployment, Design, FrameSelection};
 use isogami::cell::CellError;
@@ -36,10 +37,7 @@ pub struct LiveRequest {
 impl LiveRequest {
     /// The design and deploy request, checked.
     pub fn resolve(&self) -> ApiResult<(Design, DeployRequest)> {
-        if self.design.len() > 16 * 1024 {
-            return Err(ApiError::bad_parameter("design text longer than 16 KiB"));
-        }
-        let design = resolve_design(&self.design).map_err(|e| explain(&e))?;
+        let design = resolve_design(check_design_text(&self.design)?).map_err(|e| explain(&e))?;
         let mut settings = DeploySettings::default();
         if let Some(kerf) = self.kerf {
             if !kerf.is_finite() {

@@ -276,9 +276,19 @@ fn apply_print(options: &mut ExportOptions, values: &Values<'_>) -> ApiResult<()
 /// The query values of one request, each key at most once.
 pub struct Values<'a>(pub &'a [(String, String)]);
 
-/// Longest design text (a spec, a name or design JSON) a query may carry, as for
-/// `POST /api/deploy`.
+/// Longest design text (a spec, a name or design JSON) a request may carry: a query's
+/// `design` ([`Values::design`]), a live deployment's or saved design's posted one and the
+/// shape endpoints' (each through [`check_design_text`]).
 pub const MAX_DESIGN: usize = 16 * 1024;
+
+/// `text` if it is at most [`MAX_DESIGN`] bytes, else 400 `bad_parameter`: the one length
+/// check of a design's text, wherever the text comes from.
+pub fn check_design_text(text: &str) -> ApiResult<&str> {
+    if text.len() > MAX_DESIGN {
+        return Err(ApiError::bad_parameter("design text longer than 16 KiB"));
+    }
+    Ok(text)
+}
 
 impl Values<'_> {
     /// The value of `key`, if given.
@@ -292,10 +302,7 @@ impl Values<'_> {
             .get("design")
             .filter(|d| !d.is_empty())
             .ok_or_else(|| ApiError::bad_parameter("missing parameter design"))?;
-        if design.len() > MAX_DESIGN {
-            return Err(ApiError::bad_parameter("design text longer than 16 KiB"));
-        }
-        Ok(design)
+        check_design_text(design)
     }
 
     /// A number (any finite or non-finite value the library then judges), if given.

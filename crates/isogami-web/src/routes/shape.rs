@@ -7,6 +7,7 @@
 //! and nothing else, on the blocking pool.
 
 use crate::error::{ApiError, ApiResult};
+use crate::export::groups::check_design_text;
 use crate::filters::{get as param, pairs, truncate};
 use crate::live::{explain, run_bounded};
 use crate::state::AppState;
@@ -21,15 +22,9 @@ use isogami::shape_space::{
 };
 use serde::{Deserialize, Serialize};
 
-/// Longest design text accepted.
-const MAX_DESIGN_TEXT: usize = 16 * 1024;
-
 /// The design of a request's text, or a 400/422 in the live deployment's terms.
 fn design_of(text: &str) -> ApiResult<Design> {
-    if text.len() > MAX_DESIGN_TEXT {
-        return Err(ApiError::bad_parameter("design text longer than 16 KiB"));
-    }
-    resolve_design(text).map_err(|e| explain(&e))
+    resolve_design(check_design_text(text)?).map_err(|e| explain(&e))
 }
 
 /// A query's pairs, refusing keys outside `allowed`, and the design its `design` key names.
