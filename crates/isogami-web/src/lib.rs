@@ -14,6 +14,7 @@
 //! | [`finite`] | finite sheets: a region's DOF, its completion and finite deployment |
 //! | [`graded`] | graded-sheet jobs: start, progress with snapshots, stop, download |
 //! | [`inverse`] | inverse-design jobs: start, progress, stop, save |
+//! | [`jobs`] | what both kinds of job share: the registry, caps, stopping, a job's life |
 //! | [`live`] | deployments of posted designs, bounded in time and cancelled with the client |
 //! | [`view`] | the design view: report, geometry, linkages, notices |
 //! | [`thumbnail`] | closed/open thumbnails as SVG |
@@ -28,6 +29,7 @@ pub mod filters;
 pub mod finite;
 pub mod graded;
 pub mod inverse;
+pub mod jobs;
 pub mod live;
 pub mod routes;
 pub mod site;

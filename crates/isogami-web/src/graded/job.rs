@@ -1,19 +1,19 @@
 //! One graded-sheet job: the run of `api::graded_sheet` on the blocking pool, where it is
 //! (iteration, cost, stage), a throttled snapshot of the sheet as it stands (its opened
 //! polygons), why it stopped, and its result: the serialised `GradedRun`, the JSON
-//! `isogami graded --out` writes.
+//! `isogami graded --out` writes. The registry, stopping and the job's life are
+//! [`crate::jobs`]'.
 
 use super::body::outline_view;
 use super::limits::GradedLimits;
 use crate::error::ApiError;
-use crate::inverse::view::{JobError, JobState};
+use crate::jobs::{Caps, Job, JobError, JobKind, JobRegistry, JobState};
 use axum::http::StatusCode;
 use isogami::api::{graded_sheet, GradedRun};
 use isogami::graded::{AreaField, GradedProgress, GradedRequest, GradedSheet};
 use serde::Serialize;
 use serde_json::Value;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::Arc;
 use std::time::Instant;
 
 /// The request as run, for the view.
@@ -39,6 +39,26 @@ pub struct Echo {
     pub states: usize,
     /// Most iterations of the fit.
     pub iterations: usize,
+}
+
+impl Echo {
+    /// `request` as it runs, its target given as `outline`.
+    pub fn of(request: &GradedRequest, outline: &str) -> Echo {
+        Echo {
+            design: request.design.clone(),
+            rows: request.rows,
+            cols: request.cols,
+            outline: outline.to_string(),
+            outline_points: match request.field {
+                Some(_) => Value::Array(Vec::new()),
+                None => outline_view(outline, &request.outline)["points"].clone(),
+            },
+            field: request.field,
+            t: request.t,
+            states: request.states,
+            iterations: request.solve.max_iterations,
+        }
+    }
 }
 
 /// The library's last progress report.
@@ -107,273 +127,140 @@ pub struct GradedView {
     pub error: Option<JobError>,
 }
 
-struct Inner {
-    state: JobState,
+/// What a graded-sheet run has done so far.
+#[derive(Default)]
+pub struct Data {
     progress: Option<ProgressView>,
     snapshot: Option<Snapshot>,
     last_snapshot: Option<Instant>,
     run: Option<Arc<GradedRun>>,
     result_json: Option<Value>,
-    error: Option<JobError>,
-    ended: Option<Instant>,
-    last_seen: Instant,
-    stop_reason: Option<JobError>,
+}
+
+/// Graded sheets as a kind of job: at most [`GradedLimits::max_running`] at once.
+#[derive(Debug)]
+pub enum Graded {}
+
+impl JobKind for Graded {
+    type Limits = GradedLimits;
+    type Echo = Echo;
+    type Data = Data;
+    const NOUN: &'static str = "graded-sheet";
+    const ENDPOINT: &'static str = "/api/graded";
+    const RUN: &'static str = "grading";
+    const TIME_LIMIT_HINT: &'static str = "ask for fewer iterations or a smaller region, or run \
+        `isogami graded` from the command line";
+
+    fn caps(limits: &GradedLimits) -> Caps {
+        Caps {
+            max_running: limits.max_running,
+            max_run: limits.max_run,
+            abandon: limits.abandon,
+            keep: limits.keep,
+            max_kept: limits.max_kept,
+        }
+    }
+
+    fn busy(running: &[u64]) -> ApiError {
+        let ids: Vec<String> = running.iter().map(u64::to_string).collect();
+        ApiError::new(
+            StatusCode::CONFLICT,
+            "busy",
+            format!(
+                "{} graded sheet{} already being optimised on this server (job {}), its limit",
+                running.len(),
+                if running.len() == 1 { " is" } else { "s are" },
+                ids.join(", ")
+            ),
+            format!(
+                "wait for one to end, or stop it (DELETE /api/graded/{})",
+                running[0]
+            ),
+        )
+    }
+
+    fn explain(e: &isogami::Error) -> JobError {
+        ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "graded_failed",
+            e.to_string(),
+            "try another design, a smaller region or another outline",
+        )
+        .into()
+    }
 }
 
 /// One graded-sheet run and what it has done.
-pub struct GradedJob {
-    id: u64,
-    echo: Echo,
-    started: Instant,
-    limits: GradedLimits,
-    stop: AtomicBool,
-    inner: Mutex<Inner>,
-}
+pub type GradedJob = Job<Graded>;
 
-impl std::fmt::Debug for GradedJob {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("GradedJob").field("id", &self.id).finish()
-    }
-}
+/// Every graded-sheet job this server remembers.
+pub type GradedJobs = JobRegistry<Graded>;
 
-fn stopped(message: String, hint: &str) -> JobError {
-    JobError {
-        error: message,
-        kind: "stopped",
-        hint: hint.to_string(),
-    }
-}
-
-/// A library error that ended a run, in the API's terms.
-fn explain(e: &isogami::Error) -> JobError {
-    ApiError::new(
-        StatusCode::UNPROCESSABLE_ENTITY,
-        "graded_failed",
-        e.to_string(),
-        "try another design, a smaller region or another outline",
-    )
-    .into()
-}
-
-impl GradedJob {
-    /// A running job `id` for `request`, whose outline was given as `outline`.
-    pub fn new(id: u64, request: &GradedRequest, outline: &str, limits: GradedLimits) -> Self {
-        let now = Instant::now();
-        GradedJob {
-            id,
-            echo: Echo {
-                design: request.design.clone(),
-                rows: request.rows,
-                cols: request.cols,
-                outline: outline.to_string(),
-                outline_points: match request.field {
-                    Some(_) => Value::Array(Vec::new()),
-                    None => outline_view(outline, &request.outline)["points"].clone(),
-                },
-                field: request.field,
-                t: request.t,
-                states: request.states,
-                iterations: request.solve.max_iterations,
-            },
-            started: now,
-            limits,
-            stop: AtomicBool::new(false),
-            inner: Mutex::new(Inner {
-                state: JobState::Running,
-                progress: None,
-                snapshot: None,
-                last_snapshot: None,
-                run: None,
-                result_json: None,
-                error: None,
-                ended: None,
-                last_seen: now,
-                stop_reason: None,
-            }),
-        }
-    }
-
-    /// Its id.
-    pub fn id(&self) -> u64 {
-        self.id
-    }
-
-    fn lock(&self) -> MutexGuard<'_, Inner> {
-        // A panic while holding the lock leaves plain data behind: keep using it.
-        self.inner.lock().unwrap_or_else(|p| p.into_inner())
-    }
-
-    /// Its state.
-    pub fn state(&self) -> JobState {
-        self.lock().state
-    }
-
-    /// When it ended, if it has.
-    pub fn ended(&self) -> Option<Instant> {
-        self.lock().ended
-    }
-
+impl Job<Graded> {
     /// The graded run, when done.
     pub fn run_result(&self) -> Option<Arc<GradedRun>> {
-        self.lock().run.clone()
-    }
-
-    /// The request as it runs.
-    pub fn echo(&self) -> &Echo {
-        &self.echo
-    }
-
-    /// Asks the run to stop (it ends as `stopped` at the optimiser's next step or check).
-    pub fn request_stop(&self) {
-        let mut s = self.lock();
-        if s.state == JobState::Running && s.stop_reason.is_none() {
-            s.stop_reason = Some(stopped(
-                "grading stopped by request".into(),
-                "run it again to start over",
-            ));
-        }
-        self.stop.store(true, Ordering::Relaxed);
+        self.with_data(|d| d.run.clone())
     }
 
     /// The view a poll answers; polling keeps a running job alive.
     pub fn view(&self) -> GradedView {
-        let mut s = self.lock();
-        s.last_seen = Instant::now();
-        let end = s.ended.unwrap_or_else(Instant::now);
-        GradedView {
-            id: self.id,
+        self.poll(|s, d| GradedView {
+            id: s.id,
             state: s.state,
-            stopping: s.state == JobState::Running && self.stop.load(Ordering::Relaxed),
-            elapsed: end.duration_since(self.started).as_secs_f64(),
-            request: self.echo.clone(),
-            progress: s.progress,
-            snapshot: s.snapshot.clone(),
-            result: s.result_json.clone(),
-            error: s.error.clone(),
-        }
-    }
-
-    /// False once the run must stop: asked to, out of time, or nobody polled for too long
-    /// (the reason is recorded the first time).
-    fn keep_going(&self) -> bool {
-        if self.stop.load(Ordering::Relaxed) {
-            return false;
-        }
-        let limits = &self.limits;
-        let mut s = self.lock();
-        let reason = if self.started.elapsed() > limits.max_run {
-            Some(stopped(
-                format!(
-                    "grading stopped at this server's time limit of {} s",
-                    limits.max_run.as_secs_f64()
-                ),
-                "ask for fewer iterations or a smaller region, or run `isogami graded` from \
-                 the command line",
-            ))
-        } else if s.last_seen.elapsed() > limits.abandon {
-            Some(stopped(
-                format!(
-                    "grading stopped: nobody asked for its progress for {} s",
-                    limits.abandon.as_secs_f64()
-                ),
-                "keep the page open while it runs",
-            ))
-        } else {
-            None
-        };
-        match reason {
-            Some(r) => {
-                s.stop_reason = Some(r);
-                self.stop.store(true, Ordering::Relaxed);
-                false
-            }
-            None => true,
-        }
+            stopping: s.stopping,
+            elapsed: s.elapsed,
+            request: self.echo().clone(),
+            progress: d.progress,
+            snapshot: d.snapshot.clone(),
+            result: d.result_json.clone(),
+            error: s.error,
+        })
     }
 
     /// Takes a progress report (a snapshot when the last is old enough); false when the run
     /// must stop.
     fn report(&self, p: &GradedProgress) -> bool {
-        let due = {
-            let mut s = self.lock();
-            s.progress = Some(ProgressView {
+        let every = self.limits().snapshot_every;
+        let due = self.with_data(|d| {
+            d.progress = Some(ProgressView {
                 iteration: p.iteration,
                 max_iterations: p.max_iterations,
                 cost: p.cost,
                 stage: p.stage,
                 stages: p.stages,
             });
-            s.last_snapshot
-                .is_none_or(|t| t.elapsed() >= self.limits.snapshot_every)
-        };
+            d.last_snapshot.is_none_or(|t| t.elapsed() >= every)
+        });
         if due {
             // Cloning the sheet happens outside the lock: polls are not held up by it.
             let sheet = p.sheet();
-            let count = self.lock().snapshot.as_ref().map_or(0, |s| s.count) + 1;
+            let count = self.with_data(|d| d.snapshot.as_ref().map_or(0, |s| s.count)) + 1;
             let snapshot = Snapshot::of(&sheet, count, p.iteration, p.cost);
-            let mut s = self.lock();
-            s.snapshot = Some(snapshot);
-            s.last_snapshot = Some(Instant::now());
+            self.with_data(|d| {
+                d.snapshot = Some(snapshot);
+                d.last_snapshot = Some(Instant::now());
+            });
         }
         self.keep_going()
     }
 
-    fn end(&self, state: JobState, error: Option<JobError>) {
-        let mut s = self.lock();
-        if s.state == JobState::Running {
-            s.state = state;
-            s.error = error;
-            s.ended = Some(Instant::now());
-        }
-    }
-
-    fn finish(&self, run: GradedRun) {
-        match serde_json::to_value(&run) {
-            Ok(v) => {
-                let mut s = self.lock();
-                let count = s.snapshot.as_ref().map_or(0, |s| s.count) + 1;
+    /// Runs the job on this thread. Ends the job however the run ends (a panic too).
+    pub fn run(self: &Arc<Self>, request: &GradedRequest) {
+        let keep_going = || self.keep_going();
+        self.run_with(
+            || Ok(graded_sheet(request, &mut |p| self.report(p), &keep_going)?),
+            |d, run: GradedRun, json| {
+                let count = d.snapshot.as_ref().map_or(0, |s| s.count) + 1;
                 let iteration = run.report.iterations;
-                s.snapshot = Some(Snapshot::of(
+                d.snapshot = Some(Snapshot::of(
                     &run.sheet,
                     count,
                     iteration,
                     run.report.cost[1],
                 ));
-                s.result_json = Some(v);
-                s.run = Some(Arc::new(run));
-                drop(s);
-                self.end(JobState::Done, None);
-            }
-            Err(e) => self.end(
-                JobState::Failed,
-                Some(ApiError::internal(format!("result JSON: {e}")).into()),
-            ),
-        }
-    }
-
-    /// Runs the job on this thread. Ends the job however the run ends (a panic too).
-    pub fn run(self: &Arc<Self>, request: &GradedRequest) {
-        struct EndGuard<'a>(&'a GradedJob);
-        impl Drop for EndGuard<'_> {
-            fn drop(&mut self) {
-                self.0.end(
-                    JobState::Failed,
-                    Some(ApiError::internal("the graded-sheet task failed").into()),
-                );
-            }
-        }
-        let _guard = EndGuard(self);
-        let keep_going = || self.keep_going();
-        match graded_sheet(request, &mut |p| self.report(p), &keep_going) {
-            Ok(run) => self.finish(run),
-            Err(e) if e.is_cancelled() => {
-                let reason = self.lock().stop_reason.clone();
-                let reason = reason.unwrap_or_else(|| {
-                    stopped("grading stopped".into(), "run it again to start over")
-                });
-                self.end(JobState::Stopped, Some(reason));
-            }
-            Err(e) => self.end(JobState::Failed, Some(explain(&e))),
-        }
+                d.result_json = Some(json);
+                d.run = Some(Arc::new(run));
+            },
+        );
     }
 }

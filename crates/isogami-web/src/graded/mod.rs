@@ -14,15 +14,12 @@
 //! |---|---|
 //! | [`limits`] | the caps and what `GET /api/graded` tells the page |
 //! | [`body`] | the posted JSON → the library's `GradedRequest`, checked against the caps |
-//! | [`job`] | one run: progress, snapshots, stop reasons, the result as the CLI writes it |
-//! | [`jobs`] | the registry: a few running at a time, ended ones forgotten |
+//! | [`job`] | one run: progress, snapshots, stop reasons, the result as the CLI writes it; the kind of job ([`crate::jobs`]: the registry, a few running at a time, ended ones forgotten) |
 
 pub mod body;
 pub mod job;
-pub mod jobs;
 pub mod limits;
 
 pub use body::{outline_view, GradedBody};
-pub use job::{GradedJob, GradedView};
-pub use jobs::GradedJobs;
+pub use job::{GradedJob, GradedJobs, GradedView};
 pub use limits::GradedLimits;

@@ -17,18 +17,15 @@
 //! |---|---|
 //! | [`limits`] | the caps and what `GET /api/inverse` tells the page |
 //! | [`body`] | the posted JSON → the library's `InverseRequest`, checked against the caps |
-//! | [`job`] | one run: progress snapshot, stop reasons, the result as the CLI prints it |
+//! | [`job`] | one run: progress snapshot, stop reasons, the result as the CLI prints it; the kind of job ([`crate::jobs`]: the registry, one running at a time, ended ones forgotten) |
 //! | [`view`] | what a poll answers |
-//! | [`jobs`] | the registry: one running at a time, ended ones forgotten |
 
 pub mod body;
 pub mod job;
-pub mod jobs;
 pub mod limits;
 pub mod view;
 
 pub use body::InverseBody;
-pub use job::Job;
-pub use jobs::Jobs;
+pub use job::{Job, Jobs};
 pub use limits::InverseLimits;
-pub use view::{JobState, JobView};
+pub use view::JobView;

@@ -1,45 +1,11 @@
 //! What a poll of an inverse-design job answers: its state, the request as run, the progress,
-//! the result in the CLI's `--json` form, and why it failed or stopped.
+//! the result in the CLI's `--json` form, and why it failed or stopped (the states and errors
+//! every kind of job shares are [`crate::jobs`]').
 
-use crate::error::ApiError;
+use crate::jobs::{JobError, JobState};
 use isogami::inverse::{InverseProgress, InverseRequest};
 use serde::Serialize;
 use serde_json::Value;
-
-/// Where a job is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum JobState {
-    /// Running (also while a requested stop takes effect).
-    Running,
-    /// Ended with a result.
-    Done,
-    /// Ended with an error.
-    Failed,
-    /// Stopped before the end (asked to, at the time limit, or abandoned).
-    Stopped,
-}
-
-/// An error as the API's error answers carry it.
-#[derive(Debug, Clone, Serialize)]
-pub struct JobError {
-    /// One line naming the problem.
-    pub error: String,
-    /// Machine-readable kind.
-    pub kind: &'static str,
-    /// What to do.
-    pub hint: String,
-}
-
-impl From<ApiError> for JobError {
-    fn from(e: ApiError) -> JobError {
-        JobError {
-            error: e.message,
-            kind: e.kind,
-            hint: e.hint,
-        }
-    }
-}
 
 /// The request as run, for the view (the target in canonical text).
 #[derive(Debug, Clone, Serialize)]

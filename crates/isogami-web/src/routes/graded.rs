@@ -7,8 +7,9 @@ use crate::export::export_graded_bounded;
 use crate::export::query::parse_graded_export;
 use crate::filters::{get as param, pairs, truncate};
 use crate::graded::body::{outline_of, svg_outline};
+use crate::graded::job::Echo;
 use crate::graded::{outline_view, GradedBody, GradedJob, GradedView};
-use crate::inverse::JobState;
+use crate::jobs::accepted;
 use crate::state::AppState;
 use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
@@ -83,15 +84,11 @@ pub async fn start(
     let body = GradedBody::from_request(body)?;
     let limits = state.settings().graded;
     let request = body.request(&limits)?;
-    let job = state
-        .graded_jobs()
-        .start(&request, &body.outline_text(), &limits)?;
+    let echo = Echo::of(&request, &body.outline_text());
+    let job = state.graded_jobs().start(echo, &limits)?;
     let id = job.id();
     tokio::task::spawn_blocking(move || job.run(&request));
-    Ok((
-        StatusCode::ACCEPTED,
-        Json(json!({ "id": id, "state": JobState::Running })),
-    ))
+    Ok(accepted(id))
 }
 
 fn job(state: &AppState, id: &str) -> ApiResult<Arc<GradedJob>> {

@@ -2,7 +2,9 @@
 //! polling it, stopping it, saving its refined designs.
 
 use crate::error::{ApiError, ApiResult};
-use crate::inverse::{InverseBody, Job, JobState, JobView};
+use crate::inverse::view::Echo;
+use crate::inverse::{InverseBody, Job, JobView};
+use crate::jobs::accepted;
 use crate::state::AppState;
 use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
@@ -25,7 +27,7 @@ pub async fn settings(State(state): State<AppState>) -> Json<Value> {
         .settings()
         .inverse
         .describe(state.settings().allow_save, &name);
-    v["running"] = json!(state.jobs().running());
+    v["running"] = json!(state.jobs().running().first());
     Json(v)
 }
 
@@ -38,14 +40,11 @@ pub async fn start(
     let body = InverseBody::from_request(body)?;
     let limits = state.settings().inverse;
     let request = body.request(&limits)?;
-    let job = state.jobs().start(&request, &limits)?;
+    let job = state.jobs().start(Echo::of(&request), &limits)?;
     let id = job.id();
     let runner = state.clone();
     tokio::task::spawn_blocking(move || job.run(&runner, &request));
-    Ok((
-        StatusCode::ACCEPTED,
-        Json(json!({ "id": id, "state": JobState::Running })),
-    ))
+    Ok(accepted(id))
 }
 
 fn job(state: &AppState, id: &str) -> ApiResult<Arc<Job>> {
