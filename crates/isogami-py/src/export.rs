@@ -105,9 +105,46 @@ pub(crate) struct Given {
     pub(crate) gap_mm: Option<f64>,
     pub(crate) lamella_mm: Option<f64>,
     pub(crate) nozzle_mm: Option<f64>,
+    /// Written into the files' metadata instead of the default.
+    pub(crate) creator: Option<String>,
 }
 
 impl Given {
+    /// The settings of `isogami.export`'s and `GradedRun.export`'s keywords, taken in the
+    /// order of their signatures.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn new(
+        material: Option<&str>,
+        hinge_mm: Option<f64>,
+        kerf_mm: Option<f64>,
+        thickness_mm: Option<f64>,
+        margin_mm: Option<f64>,
+        stroke_mm: Option<f64>,
+        cut_colour: Option<String>,
+        score_colour: Option<String>,
+        engrave_colour: Option<String>,
+        labels: bool,
+        gap_mm: Option<f64>,
+        lamella_mm: Option<f64>,
+        nozzle_mm: Option<f64>,
+        creator: Option<String>,
+    ) -> Given {
+        Given {
+            material: material.map(str::to_string),
+            hinge_mm,
+            kerf_mm,
+            thickness_mm,
+            margin_mm,
+            stroke_mm,
+            colours: [cut_colour, score_colour, engrave_colour],
+            labels,
+            gap_mm,
+            lamella_mm,
+            nozzle_mm,
+            creator,
+        }
+    }
+
     /// Names of the given settings that only the laser group reads.
     fn laser_only(&self) -> Vec<&'static str> {
         let [cut, score, engrave] = &self.colours;
@@ -150,8 +187,9 @@ impl Given {
     }
 
     /// The options of `format`: the defaults, then its own group's settings as the CLI
-    /// reads them. A setting of another group is refused rather than ignored.
-    pub(crate) fn options(self, format: Format) -> PyResult<ExportOptions> {
+    /// reads them, and the creator. A setting of another group is refused rather than
+    /// ignored.
+    pub(crate) fn options(mut self, format: Format) -> PyResult<ExportOptions> {
         let group = format.settings_group();
         let foreign: Vec<&str> = match group {
             SettingsGroup::Laser => self.print_only(),
@@ -171,11 +209,15 @@ impl Given {
                 group.name()
             )));
         }
+        let creator = self.creator.take();
         let mut options = ExportOptions::default();
         match group {
             SettingsGroup::Laser => options.laser = self.laser()?,
             SettingsGroup::Print => options.print = self.print(),
             SettingsGroup::None => {}
+        }
+        if let Some(c) = creator {
+            options.creator = c;
         }
         Ok(options)
     }
@@ -350,23 +392,23 @@ pub fn export<'py>(
         frames: crate::convert::count_or("frames", frames, 0, defaults.frames)?,
         complete,
     };
-    let given = Given {
-        material: material.map(str::to_string),
+    let options = Given::new(
+        material,
         hinge_mm,
         kerf_mm,
         thickness_mm,
         margin_mm,
         stroke_mm,
-        colours: [cut_colour, score_colour, engrave_colour],
+        cut_colour,
+        score_colour,
+        engrave_colour,
         labels,
         gap_mm,
         lamella_mm,
         nozzle_mm,
-    };
-    let mut options = given.options(format)?;
-    if let Some(c) = creator {
-        options.creator = c;
-    }
+        creator,
+    )
+    .options(format)?;
     request
         .validate()
         .map_err(|e| errors::ExportError::new_err(e.to_string()))?;

@@ -360,23 +360,23 @@ impl PyGradedRun {
             },
             frames: count_or("frames", frames, 0, defaults.frames)?,
         };
-        let given = Given {
-            material: material.map(str::to_string),
+        let options = Given::new(
+            material,
             hinge_mm,
             kerf_mm,
             thickness_mm,
             margin_mm,
             stroke_mm,
-            colours: [cut_colour, score_colour, engrave_colour],
+            cut_colour,
+            score_colour,
+            engrave_colour,
             labels,
             gap_mm,
             lamella_mm,
             nozzle_mm,
-        };
-        let mut options = given.options(format)?;
-        if let Some(c) = creator {
-            options.creator = c;
-        }
+            creator,
+        )
+        .options(format)?;
         let text = self.text.clone();
         let watch = Mutex::new(Watch::new(None, timeout)?);
         let result = py.detach(|| {
