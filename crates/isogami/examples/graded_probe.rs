@@ -63,6 +63,9 @@ fn main() {
     if let Some(v) = env("ITERATIONS") {
         request.solve.max_iterations = v as usize;
     }
+    if let Some(v) = env("PROJECTION") {
+        request.solve.max_projection_iterations = v as usize;
+    }
     if let Some(v) = env("DECREASE") {
         request.solve.rel_decrease = v;
     }

@@ -103,13 +103,15 @@ fn bad_requests_are_refused_in_one_line_and_write_nothing() {
     }
 }
 
-/// A field target (issue 25: a linear ramp of area ratio met within 0.05 per cell): rotating
-/// squares, 4×4 cells, 1.3× at the left to 1.7× at the right. The report's error agrees with
-/// the sheet: every measured cell's opened area ratio, recomputed here from the written nodes
-/// and poses (the quadrilateral of four neighbouring cells' tile-0 first corners), is within
-/// 0.05 of the ramp, and the ratios rise from left to right.
+/// A field target (issue 25: a linear ramp of area ratio met within 0.05 per cell; its
+/// example, 1.2× at one end and 1.8× at the other, missed by 0.22 before the fit's damping
+/// floor): rotating squares, 4×4 cells, 1.2× at the left to 1.8× at the right. The report's
+/// error agrees with the sheet: every measured cell's opened area ratio, recomputed here from
+/// the written nodes and poses (the quadrilateral of four neighbouring cells' tile-0 first
+/// corners), is within 0.05 of the ramp; and the graded sheet opens along one motion.
 #[test]
 fn a_field_target_is_met_cell_by_cell() {
+    let (from, to) = (1.2, 1.8);
     let run = isogami(&[
         "graded",
         "--design",
@@ -117,7 +119,7 @@ fn a_field_target_is_met_cell_by_cell() {
         "--region",
         "4x4",
         "--target",
-        "field:1.3,1.7",
+        &format!("field:{from},{to}"),
         "--json",
     ]);
     assert!(
@@ -130,6 +132,7 @@ fn a_field_target_is_met_cell_by_cell() {
     assert_eq!(report["field_cells"], 9);
     let error = report["max_field_error"].as_f64().unwrap();
     assert!(error < 0.05, "{error}");
+    assert_eq!(v["path"]["reached"], true, "{}", v["path"]);
     // Recompute every cell's ratio from the sheet.
     let sheet = &v["sheet"];
     let node = |n: usize| {
@@ -188,7 +191,7 @@ fn a_field_target_is_met_cell_by_cell() {
         .iter()
         .fold((f64::MAX, f64::MIN), |(l, h), r| (l.min(r.0), h.max(r.0)));
     for &(x, ratio) in &ratios {
-        let want = 1.3 + 0.4 * (x - lo) / (hi - lo);
+        let want = from + (to - from) * (x - lo) / (hi - lo);
         assert!(
             (ratio - want).abs() < 0.05,
             "cell at x = {x}: {ratio} vs {want}"

@@ -8,6 +8,13 @@
 //! pattern, where they would fill a dense block: the system is
 //! (S + λ(diag(S + WWᵀ) + ε) + WWᵀ) δ = −g, S the sparse rows' JᵀJ and W's columns the dense
 //! rows, solved with the Woodbury identity over S's factorisation (one solve per dense row).
+//!
+//! The damping is Marquardt's, diag(S + WWᵀ), with a floor: no column is damped less than
+//! [`NormalSystem::damping_floor`] times the mean diagonal. Without it a column that few rows
+//! hold (a node on the sheet's edge, held by the weak prior and one fit row) gets almost no
+//! damping, and a step moves it by several tile lengths where the model is far from the
+//! residuals: the step is refused, λ grows for every column, and the fit crawls (measured:
+//! 400 tiles 9.6 % from the disc after 400 iterations without the floor, 2.7 % with it).
 
 use super::error::GradedError;
 use super::problem::Rows;
@@ -35,6 +42,9 @@ pub struct NormalSystem {
     dense: Vec<DVec>,
     /// Columns below this are held (their step is 0).
     skip_below: usize,
+    /// No free column is damped less than this fraction of the free columns' mean diagonal
+    /// (0: Marquardt's damping alone).
+    pub damping_floor: Real,
 }
 
 impl NormalSystem {
@@ -78,6 +88,7 @@ impl NormalSystem {
             gradient: DVec::zeros(size),
             dense: Vec::new(),
             skip_below,
+            damping_floor: 0.0,
         })
     }
 
@@ -127,14 +138,22 @@ impl NormalSystem {
     /// The step δ of (A + λ(diag A + ε)) δ = −g, A = S + WWᵀ; held columns get 0.
     pub fn step(&self, lambda: Real) -> Result<DVec, GradedError> {
         let mut damped = self.values.clone();
+        let full = |k: usize| -> Real {
+            self.values[self.diag[k]] + self.dense.iter().map(|w| w[k] * w[k]).sum::<Real>()
+        };
+        let free = self.skip_below.min(self.size)..self.size;
+        let floor = if self.damping_floor > 0.0 && !free.is_empty() {
+            self.damping_floor * free.clone().map(full).sum::<Real>() / free.len() as Real
+        } else {
+            0.0
+        };
         for k in 0..self.size {
             let at = self.diag[k];
             if k < self.skip_below {
                 damped[at] = 1.0;
                 continue;
             }
-            let full: Real = self.values[at] + self.dense.iter().map(|w| w[k] * w[k]).sum::<Real>();
-            damped[at] += lambda * (full + DAMPING_FLOOR);
+            damped[at] += lambda * (full(k).max(floor) + DAMPING_FLOOR);
         }
         let pattern = SymbolicSparseColMatRef::new_checked(
             self.size,
@@ -193,8 +212,9 @@ mod tests {
     use super::*;
     use crate::graded::problem::Problem;
 
-    /// The step solves the damped normal equations of every row, dense ones included: the
-    /// residual of the dense system is at rounding, and held columns do not move.
+    /// The step solves the damped normal equations of every row, dense ones included, with
+    /// and without the damping floor: the residual of the dense system is at rounding, and
+    /// held columns do not move.
     #[test]
     fn the_step_solves_the_damped_normal_equations() {
         let request = GradedRequest {
@@ -211,8 +231,14 @@ mod tests {
         }
         let rows = problem.rows(&z);
         let n = z.len();
-        for skip in [0, 2 * sheet.nodes.len()] {
+        for (skip, floor) in [
+            (0, 0.0),
+            (2 * sheet.nodes.len(), 0.0),
+            (0, 0.3),
+            (2 * sheet.nodes.len(), 0.3),
+        ] {
             let mut system = NormalSystem::new(&problem.structure(&z), n, skip).unwrap();
+            system.damping_floor = floor;
             system.assemble(&rows);
             let lambda = 0.3;
             let step = system.step(lambda).unwrap();
@@ -235,8 +261,9 @@ mod tests {
             let free: Vec<usize> = (skip..n).collect();
             let jf = j.select_columns(&free);
             let mut a = jf.transpose() * &jf;
+            let mean = (0..free.len()).map(|k| a[(k, k)]).sum::<Real>() / free.len() as Real;
             for k in 0..free.len() {
-                a[(k, k)] += lambda * (a[(k, k)] + DAMPING_FLOOR);
+                a[(k, k)] += lambda * (a[(k, k)].max(floor * mean) + DAMPING_FLOOR);
             }
             let g = jf.transpose() * &r;
             let sf = DVec::from_iterator(free.len(), free.iter().map(|&c| step[c]));
@@ -244,6 +271,26 @@ mod tests {
             assert!(residual < 1e-9 * g.norm().max(1.0), "residual {residual}");
             assert!(step.rows(0, skip).iter().all(|&v| v == 0.0));
         }
+    }
+
+    /// The floor is what keeps a column that few rows hold from a step far beyond the model:
+    /// two unknowns, one held by a stiff row, one by a weak row that wants it 1,000 away;
+    /// Marquardt's damping alone lets the weak one go most of the way in one step, the floor
+    /// keeps that step to the scale the stiff row sets.
+    #[test]
+    fn the_damping_floor_holds_a_weakly_held_column() {
+        let mut rows = Rows::default();
+        rows.push(100.0 * 0.01, [(0, 100.0)]);
+        rows.push(1e-3 * -1000.0, [(1, 1e-3)]);
+        let mut system = NormalSystem::new(&rows, 2, 0).unwrap();
+        system.assemble(&rows);
+        let plain = system.step(1e-2).unwrap();
+        system.damping_floor = 0.3;
+        let floored = system.step(1e-2).unwrap();
+        assert!(plain[1] > 900.0, "{plain}");
+        assert!(floored[1] > 0.0 && floored[1] < 1.0, "{floored}");
+        // The stiff column's damping is its own either way.
+        assert!((plain[0] - floored[0]).abs() < 1e-12, "{plain} {floored}");
     }
 
     /// Every row the problem can emit lies in the pattern built from its structure.
