@@ -8,7 +8,7 @@
 //! shrinks, otherwise λ grows and the step is retried. Where the floored steps stall (a cost
 //! that no longer falls), the stage goes on with Marquardt's damping alone, which finishes
 //! closing pins that the floor holds back (measured on the concave IH27 sheet: 7.5 % from the
-//! disc and the stage stalled with the floor throughout; 3.8 % and along one motion with the
+//! disc and the stage stalled with the floor throughout; 3.9 % and along one motion with the
 //! switch). The projection runs the
 //! same iteration on the pin and opening rows over the opened poses only, so the result is a
 //! configuration of the graded sheet to rounding, whatever the weights.
