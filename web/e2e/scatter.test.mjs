@@ -194,11 +194,14 @@ test('the tooltip gives a stack its count and list; a click pins it with links, 
   const shown = await drawn(page, biggest.count);
   assert.deepEqual(shown.stacks.flatMap((s) => s.specs).sort(), [...biggest.specs].sort());
 
-  // A single design opens on a click. Wait for every design to be drawn: a draw of part of
-  // the list has other axes, and a stack's place there is not its place once all are in
-  // (CI once clicked where another single design then stood).
+  // A single design opens on a click. Its place is read once the page has settled — every
+  // design drawn and the cards loaded (a scroll bar that comes with them narrows the plot and
+  // moves every stack): CI once clicked where another single design then stood.
   await page.goto(`${server.base}/`);
-  const all = await drawn(page, await catalogueTotal(page));
+  const total = await catalogueTotal(page);
+  await drawn(page, total);
+  await page.waitForLoadState('networkidle');
+  const all = await drawn(page, total);
   const single = all.stacks.find((s) => s.count === 1);
   assert.ok(single, 'some design stands alone');
   const b2 = await canvasBox(page);
