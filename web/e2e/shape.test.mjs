@@ -67,20 +67,26 @@ test('a special design follows its constraint and keeps deploying; moved freely 
   assert.ok(follows.length >= 1, 'the move went through POST /api/shape/follow');
   assert.ok(follows.every((f) => f.index === 2));
   // Six key presses can start more than one follow-and-deploy; the header's spec and the
-  // sliders' exact values are read once the page shows one state (under load the last
-  // answer can land between two reads).
+  // slider's exact value are read together, in one evaluation, once the network is idle (a
+  // later answer landing between two separate reads made CI see one state's spec beside the
+  // next state's value).
+  await page.waitForLoadState('networkidle');
+  const shown = () => page.evaluate(() => ({
+    spec: document.querySelector('[data-testid="spec"]').textContent,
+    v3: Number(document.querySelector('[data-testid="param-v3-value"]').getAttribute('title')),
+  }));
   await page.waitForFunction(() => {
     const spec = document.querySelector('[data-testid="spec"]').textContent;
     const title = document.querySelector('[data-testid="param-v3-value"]').getAttribute('title');
     return Number(spec.split(':')[1].split(',')[3]) === Number(title);
   });
-  const spec = await byTestId(page, 'spec').textContent();
+  const { spec, v3 } = await shown();
   const p = paramsOf(spec);
   assert.ok(p[2] > 0.2254, `v2 moved right: ${spec}`);
   assert.ok(Math.abs(p[2] - p[3]) < 1e-6, `v3 followed v2: ${spec}`);
   assert.notEqual(await byTestId(page, 'param-v3').inputValue(), v3Before, 'the v3 slider moved by itself');
   // The number beside it is exact (a range input snaps to its step).
-  assert.equal(Number(await byTestId(page, 'param-v3-value').getAttribute('title')), p[3]);
+  assert.equal(v3, p[3]);
   const body = await res.json();
   assert.ok(body.report.frames.length >= 2 && body.report.max_expansion > 0.01, 'the sheet opens');
   assert.equal(await page.locator('.notice[data-kind="rigid"]').count(), 0);
