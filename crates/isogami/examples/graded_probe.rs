@@ -49,6 +49,7 @@ fn main() {
         ("EDGE", &mut w.edge_fraction),
         ("PIN", &mut w.pin_fraction),
         ("PRIOR", &mut w.prior),
+        ("STATEEXP", &mut w.state_exponent),
     ] {
         if let Some(v) = env(name) {
             *slot = v;
@@ -129,6 +130,16 @@ fn main() {
         r.median_outline_error, r.max_outside, r.min_corner_fraction, r.min_angle_degrees, r.min_edge_fraction,
         r.min_area_fraction, r.seconds
     );
+    // The fit's own states part of the way (before the closing projection's opened state).
+    for (k, poses) in run.sheet.path.iter().enumerate() {
+        let mut at = run.sheet.clone();
+        at.opened = poses.clone();
+        println!(
+            "fitted state {k} gap {:.2e} overlap {:?}",
+            at.joint_gap(),
+            isogami::graded::deploy::overlap(&at)
+        );
+    }
     for s in &run.path.states {
         println!(
             "opening {:.3} gap {:.2e} dof {:?} smallest {:?} overlap {:?}",

@@ -51,8 +51,8 @@ pub struct PathCheck {
 /// States at least this open (as a fraction of the optimised one) must have one DOF. The
 /// closed tiling is a singular configuration: close to it the sheet's second singular value
 /// falls towards zero with the opening (measured on graded rotating squares, 10×10 tiles:
-/// 3.6e-4 of the largest at 15 % open, 2.3e-4 at 10 %, 9.8e-5 — under the 1e-4 threshold —
-/// at 5 %, while the mode stays near 1e-8), so a count there
+/// 3.6e-4 of the largest at 15 % open, 2.3e-4 at 10 %, 9.8e-5 at 5 %; 20×20 tiles: 1.1e-4
+/// at 20 %, 5.9e-5 at 10 %, 3.5e-5 at 5 %; the mode stays near 1e-8), so a count there
 /// says how near the closed state is, not that another motion exists. Those states are
 /// still counted and reported, and must close their pins without overlap.
 pub const DOF_FROM_OPENING: Real = 0.1;

@@ -17,11 +17,16 @@ use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, Side};
 
-/// Singular values of the pins' Jacobian below this fraction of the largest count as zero.
-/// A graded sheet is a mechanism to the precision its pins close to (~1e-7 L): its mode's
-/// singular value sits near 1e-6 of the largest, the next one near 1e-2 (measured on graded
-/// rotating squares along their whole path), so the threshold sits between the two.
-pub const RANK_TOLERANCE: Real = 1e-4;
+/// Singular values of the pins' Jacobian below this fraction of the largest count as zero:
+/// ten times the pin tolerance ([`super::deploy::PIN_TOLERANCE`]), a motion that opens the
+/// pins by no more than the precision they are closed to. A graded sheet is a mechanism to
+/// that precision: its mode's singular value stays under 4e-7 of the largest (measured on
+/// graded rotating squares, 100 and 400 tiles, along their whole paths). The next one is a
+/// soft motion of the whole sheet, not a mechanism: near 1e-3 when well open, it falls with
+/// the opening and with the sheet's size, about as opening / tiles (the *ungraded* rotating
+/// squares at 10 % open: 4.0e-4 at 10×10 tiles, 8.1e-5 at 20×20), so a threshold fixed
+/// near it (1e-4, before) counted an ungraded 400-tile sheet two DOF at 10 % open.
+pub const RANK_TOLERANCE: Real = 1e-5;
 
 /// Eigenvectors followed at once: degrees of freedom are counted up to this many.
 pub const MAX_COUNTED: usize = 8;
@@ -188,6 +193,31 @@ mod tests {
         let rank = sv.iter().filter(|&&s| s > RANK_TOLERANCE * sv[0]).count();
         let n = sv.len();
         ((3 * t).saturating_sub(rank + 3), sv[n - 5] / sv[0])
+    }
+
+    /// A large sheet barely open is still one mechanism: the ungraded rotating squares,
+    /// 20×20 tiles, 5 % of the way along its motion. Its next singular value is a soft motion of the
+    /// whole sheet (small because the sheet is large and nearly closed), far above the
+    /// mechanism's own; the threshold fixed near it before (1e-4) counted two DOF here.
+    #[test]
+    fn a_large_sheet_barely_open_counts_one_dof() {
+        let request = GradedRequest {
+            design: "rotating-squares".into(),
+            rows: 10,
+            cols: 10,
+            states: 1,
+            t: Some(0.05),
+            ..GradedRequest::default()
+        };
+        let (sheet, _) = setup(&request).unwrap();
+        assert_eq!(sheet.tiles.len(), 400);
+        let (count, small) = dof(&sheet).unwrap();
+        assert_eq!(count, 1, "{small:?}");
+        assert!(small[0] < 1e-8, "{small:?}");
+        assert!(
+            small[1] < 1e-4 && small[1] > 5.0 * RANK_TOLERANCE,
+            "{small:?}"
+        );
     }
 
     /// The periodic start of rotating squares (a one-DOF sheet) and the same sheet with
