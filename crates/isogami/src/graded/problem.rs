@@ -120,7 +120,9 @@ pub struct Problem {
     pub edge_start: Vec<Vec<Real>>,
     /// Weights.
     pub weights: Weights,
-    /// When false, only the joints and the opening count (the closing projection).
+    /// When false, only the pins, the opening and the one-sided rows of the pins' turning (its
+    /// fraction of the mean, the angular gaps) count: the closing projection and the path
+    /// check's.
     pub full: bool,
 }
 
