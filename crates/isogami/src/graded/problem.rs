@@ -707,9 +707,6 @@ mod tests {
         }
     }
 
-    /// Two tiles that meet in the closed sheet, pushed into each other in the opened state:
-    /// contact rows become active and the independent overlap test agrees that the pair
-    /// overlaps; the unpushed start (a periodic state) has none active.
     /// A state part of the way weighs its pins by (opened opening / its own)^0.5: more the
     /// less it has opened, the opened state by 1; the pin rows carry the factor.
     #[test]
@@ -746,6 +743,9 @@ mod tests {
         }
     }
 
+    /// Two tiles that meet in the closed sheet, pushed into each other in the opened state:
+    /// contact rows become active and the independent overlap test agrees that the pair
+    /// overlaps; the unpushed start (a periodic state) has none active.
     #[test]
     fn a_tile_pushed_into_its_neighbour_is_a_contact() {
         let request = GradedRequest {

@@ -196,9 +196,10 @@ mod tests {
     }
 
     /// A large sheet barely open is still one mechanism: the ungraded rotating squares,
-    /// 20×20 tiles, 5 % of the way along its motion. Its next singular value is a soft motion of the
-    /// whole sheet (small because the sheet is large and nearly closed), far above the
-    /// mechanism's own; the threshold fixed near it before (1e-4) counted two DOF here.
+    /// 20×20 tiles, 5 % of the way along its motion. Its next singular value is a soft
+    /// motion of the whole sheet (small because the sheet is large and nearly closed), far
+    /// above the mechanism's own; the threshold fixed near it before (1e-4) counted two DOF
+    /// here.
     #[test]
     fn a_large_sheet_barely_open_counts_one_dof() {
         let request = GradedRequest {
