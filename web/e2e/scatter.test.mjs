@@ -196,15 +196,15 @@ test('the tooltip gives a stack its count and list; a click pins it with links, 
 
   // A single design opens on a click. Its place is read once the page has settled — every
   // design drawn and the cards loaded (a scroll bar that comes with them narrows the plot and
-  // moves every stack): CI once clicked where another single design then stood.
+  // moves every stack).
   await page.goto(`${server.base}/`);
   const total = await catalogueTotal(page);
   await drawn(page, total);
   await page.waitForLoadState('networkidle');
   const all = await drawn(page, total);
-  // The single design farthest from any other stack: the pointer picks the nearest stack, and
+  // The lone design farthest from any other stack: the pointer picks the nearest stack, and
   // the first lone design found can stand close to another (CI twice opened IH27 where the
-  // lone IH6 was expected, the layout settled both times).
+  // lone IH6 was expected).
   const clearance = (s) => Math.min(...all.stacks.filter((o) => o !== s).map((o) => Math.hypot(o.px - s.px, o.py - s.py)));
   const single = all.stacks
     .filter((s) => s.count === 1)

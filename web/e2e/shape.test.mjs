@@ -66,21 +66,17 @@ test('a special design follows its constraint and keeps deploying; moved freely 
   await page.waitForFunction((n) => Number(document.body.dataset.deployments) > n, count);
   assert.ok(follows.length >= 1, 'the move went through POST /api/shape/follow');
   assert.ok(follows.every((f) => f.index === 2));
-  // Six key presses can start more than one follow-and-deploy; the header's spec and the
-  // slider's exact value are read together, in one evaluation, once the network is idle (a
-  // later answer landing between two separate reads made CI see one state's spec beside the
-  // next state's value).
+  // Six key presses can start more than one follow-and-deploy; once the network is idle, the
+  // header's spec and the slider's exact value are read together, in the one evaluation that
+  // finds them agreeing (a later answer landing between two separate reads made CI see one
+  // state's spec beside the next state's value).
   await page.waitForLoadState('networkidle');
-  const shown = () => page.evaluate(() => ({
-    spec: document.querySelector('[data-testid="spec"]').textContent,
-    v3: Number(document.querySelector('[data-testid="param-v3-value"]').getAttribute('title')),
-  }));
-  await page.waitForFunction(() => {
+  const agreed = await page.waitForFunction(() => {
     const spec = document.querySelector('[data-testid="spec"]').textContent;
-    const title = document.querySelector('[data-testid="param-v3-value"]').getAttribute('title');
-    return Number(spec.split(':')[1].split(',')[3]) === Number(title);
+    const v3 = Number(document.querySelector('[data-testid="param-v3-value"]').getAttribute('title'));
+    return Number(spec.split(':')[1].split(',')[3]) === v3 && { spec, v3 };
   });
-  const { spec, v3 } = await shown();
+  const { spec, v3 } = await agreed.jsonValue();
   const p = paramsOf(spec);
   assert.ok(p[2] > 0.2254, `v2 moved right: ${spec}`);
   assert.ok(Math.abs(p[2] - p[3]) < 1e-6, `v3 followed v2: ${spec}`);
