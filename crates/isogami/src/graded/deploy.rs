@@ -10,7 +10,7 @@
 //! angle (the sheet is the closed tiling moved rigidly).
 
 use super::model::{GradedSheet, OpenedPose};
-use super::problem::Problem;
+use super::problem::{Problem, PROJECTION_STIFFNESS};
 pub use super::rank::{dof, RANK_TOLERANCE};
 use crate::geometry::interiors_overlap;
 use crate::math::{DVec, Real};
@@ -72,8 +72,11 @@ pub fn check_path(
     keep_going: KeepGoing<'_>,
 ) -> Result<PathCheck, crate::Error> {
     let steps = steps.max(2);
-    let mut problem = problem.clone();
-    problem.full = false;
+    // Near the closed tiling (a singular configuration: the pins alone admit other branches
+    // there) the turning rows keep the branch, weighed as in the fit's first stage; further
+    // open the pins dominate them as at the fit's end.
+    let mut stiff = problem.projection(PROJECTION_STIFFNESS);
+    let mut near_closed = problem.projection(1.0);
     let target = *problem.openings.last().expect("a problem has a state");
     let mut work = sheet.clone();
     work.path.clear();
@@ -83,6 +86,11 @@ pub fn check_path(
     let mut previous: Option<DVec> = None;
     for k in 0..=steps {
         let fraction = 1.0 - k as Real / steps as Real;
+        let problem = if fraction < DOF_FROM_OPENING {
+            &mut near_closed
+        } else {
+            &mut stiff
+        };
         problem.openings = vec![target * fraction];
         // Secant predictor: the next state is guessed along the last step, so the correction
         // stays on the branch being followed.
@@ -90,7 +98,7 @@ pub fn check_path(
         if let Some(before) = &previous {
             z = &z + (&z - before);
         }
-        super::solve::project(&problem, &mut z, 2 * nodes, 100, keep_going)?;
+        super::solve::project(problem, &mut z, 2 * nodes, 100, keep_going)?;
         previous = Some(here);
         Problem::unpack(&mut work, &z);
         let counted = dof(&work);

@@ -135,9 +135,19 @@ impl NormalSystem {
         }
     }
 
-    /// The step δ of (A + λ(max(diag A, f·mean diag A) + ε)) δ = −g, A = S + WWᵀ, f the
-    /// damping floor (the mean over the free columns); held columns get 0.
+    /// The step δ of (A + λ(max(diag A, f·mean diag A) + ε)) δ = −g, A = S + WWᵀ, f the damping floor (the mean over the free columns); held columns get 0.
     pub fn step(&self, lambda: Real) -> Result<DVec, GradedError> {
+        self.factor(lambda)?.solve(&-&self.gradient)
+    }
+
+    /// The gradient Jᵀr of the rows assembled last.
+    pub fn gradient(&self) -> &DVec {
+        &self.gradient
+    }
+
+    /// The damped matrix of [`Self::step`] at `lambda`, factorised: it solves for any
+    /// right-hand side.
+    pub fn factor(&self, lambda: Real) -> Result<Factor<'_>, GradedError> {
         let mut damped = self.values.clone();
         let full = |k: usize| -> Real {
             self.values[self.diag[k]] + self.dense.iter().map(|w| w[k] * w[k]).sum::<Real>()
@@ -166,44 +176,65 @@ impl NormalSystem {
         let matrix = SparseColMatRef::new(pattern, &damped);
         let llt = Llt::try_new_with_symbolic(self.symbolic.clone(), matrix, Side::Lower)
             .map_err(|_| GradedError::Factorisation)?;
-        // Right-hand sides: −g, then every dense row.
+        // Woodbury: (M + WWᵀ)⁻¹b = M⁻¹b − Y (I + WᵀY)⁻¹ Wᵀ M⁻¹b, Y = M⁻¹W.
         let k = self.dense.len();
-        let mut rhs = Mat::<Real>::from_fn(self.size, 1 + k, |r, c| {
-            if c == 0 {
+        let mut y = Mat::<Real>::from_fn(self.size, k, |r, c| self.dense[c][r]);
+        llt.solve_in_place(y.as_mut());
+        let y = DMat::from_fn(self.size, k, |r, c| y[(r, c)]);
+        let mut small = DMat::identity(k, k);
+        for (a, w) in self.dense.iter().enumerate() {
+            for b in 0..k {
+                small[(a, b)] += w.dot(&y.column(b));
+            }
+        }
+        let small = small.cholesky().ok_or(GradedError::Factorisation)?;
+        Ok(Factor {
+            llt,
+            y,
+            small,
+            dense: &self.dense,
+            skip_below: self.skip_below,
+        })
+    }
+}
+
+/// The damped normal matrix factorised ([`NormalSystem::factor`]).
+pub struct Factor<'a> {
+    llt: Llt<usize, Real>,
+    y: DMat,
+    small: nalgebra::linalg::Cholesky<Real, nalgebra::Dyn>,
+    dense: &'a [DVec],
+    skip_below: usize,
+}
+
+impl Factor<'_> {
+    /// The solution of the damped system for `rhs` (held columns' entries ignored, their
+    /// solution 0).
+    pub fn solve(&self, rhs: &DVec) -> Result<DVec, GradedError> {
+        let size = rhs.len();
+        let mut b = Mat::<Real>::from_fn(
+            size,
+            1,
+            |r, _| {
                 if r < self.skip_below {
                     0.0
                 } else {
-                    -self.gradient[r]
+                    rhs[r]
                 }
-            } else {
-                self.dense[c - 1][r]
-            }
-        });
-        llt.solve_in_place(rhs.as_mut());
-        let u = DVec::from_fn(self.size, |r, _| rhs[(r, 0)]);
-        let step = if k == 0 {
+            },
+        );
+        self.llt.solve_in_place(b.as_mut());
+        let u = DVec::from_fn(size, |r, _| b[(r, 0)]);
+        let x = if self.dense.is_empty() {
             u
         } else {
-            // Woodbury: δ = u − Y (I + WᵀY)⁻¹ Wᵀu, Y = M⁻¹W.
-            let y = DMat::from_fn(self.size, k, |r, c| rhs[(r, c + 1)]);
-            let mut small = DMat::identity(k, k);
-            let mut wu = DVec::zeros(k);
-            for (a, w) in self.dense.iter().enumerate() {
-                wu[a] = w.dot(&u);
-                for b in 0..k {
-                    small[(a, b)] += w.dot(&y.column(b));
-                }
-            }
-            let coefficients = small
-                .cholesky()
-                .ok_or(GradedError::Factorisation)?
-                .solve(&wu);
-            u - y * coefficients
+            let wu = DVec::from_iterator(self.dense.len(), self.dense.iter().map(|w| w.dot(&u)));
+            u - &self.y * self.small.solve(&wu)
         };
-        if step.iter().any(|v| !v.is_finite()) {
+        if x.iter().any(|v| !v.is_finite()) {
             return Err(GradedError::NonFinite);
         }
-        Ok(step)
+        Ok(x)
     }
 }
 

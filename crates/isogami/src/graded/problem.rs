@@ -225,6 +225,13 @@ pub fn wrap_angle(a: Real) -> Real {
     }
 }
 
+/// Factor on the pins' and the opening's weights in a closing projection, against the
+/// turning rows': the balance of the fit's last stage, which ends with them 1,000 times their
+/// base weight. Weighed alike, a turning row the fit left a hair violated held the pins of a
+/// 400-tile sheet 1.7e-5 open in the projection (7.9e-7 with this factor; the next state of
+/// the path, 1.8e-7 either way).
+pub const PROJECTION_STIFFNESS: Real = 1000.0;
+
 /// Corners whose starting sine is below this are straight (a vertex on a straight side):
 /// no bound keeps their angle.
 pub const SINE_FLOOR: Real = 1e-6;
@@ -334,6 +341,20 @@ impl Problem {
         self.rows_of(z, true)
     }
 
+    /// The problem of a closing projection (the optimisation's last step and the path
+    /// check's): the pins, the opening and the one-sided rows of the pins' turning only (its
+    /// fraction of the mean, the angular gaps), the pins and the opening weighed `stiffness`
+    /// times their fit weight against the turning rows (see [`PROJECTION_STIFFNESS`]).
+    pub fn projection(&self, stiffness: Real) -> Problem {
+        let mut p = Problem {
+            full: false,
+            ..self.clone()
+        };
+        p.weights.joints *= stiffness;
+        p.weights.opening *= stiffness;
+        p
+    }
+
     /// Factor on the pin weight of state `state`: (the opened state's opening / this
     /// state's)^[`Weights::state_exponent`], 1 for the opened state. A state near the closed
     /// tiling turns its tiles little, so a pin gap there matters more than the same gap well
@@ -350,6 +371,31 @@ impl Problem {
         }
     }
 
+    /// The pin rows of every state alone, in the order [`Self::rows`] has them.
+    pub fn pin_rows(&self, z: &DVec) -> Rows {
+        let states = self.openings.len();
+        let nodes = (z.len() - 3 * self.tiles.len() * states) / 2;
+        let mut out = Rows::default();
+        for state in 0..states {
+            self.push_pins(z, nodes, state, &mut out);
+        }
+        out
+    }
+
+    /// The two opened positions of every pinned node coincide (2 rows per pin).
+    fn push_pins(&self, z: &DVec, nodes: usize, state: usize, out: &mut Rows) {
+        let wj = self.weights.joints * self.state_weight(state);
+        for &(a, b, n) in &self.joints {
+            let (pa, ja) = self.corner(z, nodes, state, a, n);
+            let (pb, jb) = self.corner(z, nodes, state, b, n);
+            for row in 0..2 {
+                let e = ja.row(row).iter().map(|&(c, v)| (c, wj * v));
+                let e = e.chain(jb.row(row).iter().map(|&(c, v)| (c, -wj * v)));
+                out.push(wj * (pa[row] - pb[row]), e);
+            }
+        }
+    }
+
     fn rows_of(&self, z: &DVec, every: bool) -> Rows {
         let states = self.openings.len();
         let nodes = (z.len() - 3 * self.tiles.len() * states) / 2;
@@ -358,17 +404,7 @@ impl Problem {
         let mut out = Rows::default();
         let x = |k: usize| Vec2::new(z[node_col(k)], z[node_col(k) + 1]);
         for (state, &opening) in self.openings.iter().enumerate() {
-            // Pins.
-            let wj = w.joints * self.state_weight(state);
-            for &(a, b, n) in &self.joints {
-                let (pa, ja) = self.corner(z, nodes, state, a, n);
-                let (pb, jb) = self.corner(z, nodes, state, b, n);
-                for row in 0..2 {
-                    let e = ja.row(row).iter().map(|&(c, v)| (c, wj * v));
-                    let e = e.chain(jb.row(row).iter().map(|&(c, v)| (c, -wj * v)));
-                    out.push(wj * (pa[row] - pb[row]), e);
-                }
-            }
+            self.push_pins(z, nodes, state, &mut out);
             // Mean opening.
             if !self.joints.is_empty() {
                 let m = self.joints.len() as Real;
