@@ -183,9 +183,10 @@ fn rigid(closed_mm: &[Vec<P>], polys: &[Vec<P>], what: &str) {
     }
 }
 
-/// The laser SVG (read by usvg, a hair of kerf) cuts along exactly the closed sheet's shared edges (and relief cuts at outline corners where tiles meet),
-/// short of a bridge at the pins, and its outline encloses exactly the tiles' closed area at
-/// the asked mean edge length.
+/// The laser SVG (read by usvg, a hair of kerf) cuts along exactly the closed sheet's shared
+/// edges, short of a bridge at the pins (and relief cuts at outline corners where tiles
+/// meet), and its outline encloses exactly the tiles' closed area at the asked mean edge
+/// length.
 #[test]
 fn the_laser_svg_cuts_the_graded_closed_sheet() {
     let dir = scratch("graded-svg");
