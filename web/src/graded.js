@@ -370,6 +370,10 @@ function attach(id) {
   // An SVG element has no `hidden` property: the attribute itself.
   $('live-sheet').setAttribute('hidden', '');
   $('stage-line').textContent = 'Starting: the design’s own finite sheet, opened…';
+  // The job's first view is not here yet: the line and bar say so rather than keep the last
+  // job's (or nothing) until the first poll answers.
+  $('progress-line').textContent = progressLine({ state: 'running' });
+  $('progress-bar').value = 0;
   setRunning(true);
   clearTimeout(timer);
   poll();
