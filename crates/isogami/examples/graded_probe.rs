@@ -2,6 +2,9 @@
 //! prints the report and every state of the path check, one line each.
 //!
 //! `cargo run --release -p isogami --example graded_probe -- [CELLS|ROWSxCOLS [STATES [DESIGN [T]]]]`
+//!
+//! `GRADED_SVG=FILE` also draws the closed tiling, the fitted opened state and every state of
+//! the path check side by side, the first overlapping pair filled.
 
 use isogami::api::graded_sheet;
 use isogami::graded::GradedRequest;
@@ -177,4 +180,51 @@ fn main() {
         "closed spread {:.3e}, reached {}",
         run.path.closed_spread, run.path.reached
     );
+    // GRADED_SVG=FILE: the closed tiling, the fitted opened state and each state of the path
+    // check side by side, the two tiles of the first overlap filled.
+    if let Ok(file) = std::env::var("GRADED_SVG") {
+        let hit = run.path.states.iter().find_map(|s| s.overlap);
+        let n = run.sheet.tiles.len();
+        let mut panels: Vec<Vec<Vec<isogami::math::Vec2>>> =
+            vec![(0..n).map(|i| run.sheet.closed_polygon(i)).collect()];
+        for poses in
+            std::iter::once(&run.sheet.opened).chain(run.path.states.iter().map(|s| &s.poses))
+        {
+            let mut at = run.sheet.clone();
+            at.opened = poses.clone();
+            panels.push((0..n).map(|i| at.opened_polygon(i)).collect());
+        }
+        let size = panels
+            .iter()
+            .flatten()
+            .flatten()
+            .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+        let cell = 2.2 * size;
+        let mut out = format!(
+            "<svg xmlns='http://www.w3.org/2000/svg' viewBox='{} {} {} {cell}' width='{}' height='400'>",
+            -1.1 * size,
+            -1.1 * size,
+            cell * panels.len() as f64,
+            400 * panels.len()
+        );
+        for (k, tiles) in panels.iter().enumerate() {
+            let dx = cell * k as f64;
+            for (i, poly) in tiles.iter().enumerate() {
+                let points: String = poly
+                    .iter()
+                    .map(|p| format!("{:.4},{:.4} ", p.x + dx, -p.y))
+                    .collect();
+                let fill = match hit {
+                    Some((a, b)) if i == a || i == b => "red",
+                    _ => "none",
+                };
+                out += &format!(
+                    "<polygon points='{points}' fill='{fill}' fill-opacity='0.5' stroke='black' stroke-width='{}'/>",
+                    size / 400.0
+                );
+            }
+        }
+        out += "</svg>";
+        std::fs::write(file, out).expect("write the SVG");
+    }
 }
