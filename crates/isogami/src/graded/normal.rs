@@ -136,6 +136,7 @@ impl NormalSystem {
     }
 
     /// The step δ of (A + λ(max(diag A, f·mean diag A) + ε)) δ = −g, A = S + WWᵀ, f the damping floor (the mean over the free columns); held columns get 0.
+    #[cfg(test)]
     pub fn step(&self, lambda: Real) -> Result<DVec, GradedError> {
         self.factor(lambda)?.solve(&-&self.gradient)
     }
@@ -275,21 +276,7 @@ mod tests {
             let lambda = 0.3;
             let step = system.step(lambda).unwrap();
             // The dense system, built from scratch.
-            let mut j = DMat::zeros(rows.values.len() + rows.dense_values.len(), n);
-            let mut r = DVec::zeros(j.nrows());
-            for i in 0..rows.values.len() {
-                r[i] = rows.values[i];
-                for &(c, v) in rows.row(i) {
-                    j[(i, c)] += v;
-                }
-            }
-            for (i, e) in rows.dense_entries.iter().enumerate() {
-                let at = rows.values.len() + i;
-                r[at] = rows.dense_values[i];
-                for &(c, v) in e {
-                    j[(at, c)] += v;
-                }
-            }
+            let (j, r) = rows.to_dense(n);
             let free: Vec<usize> = (skip..n).collect();
             let jf = j.select_columns(&free);
             let mut a = jf.transpose() * &jf;
