@@ -8,7 +8,7 @@ import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
   allApiRows, byTestId, canvasColours, canvasPixels, copyDb, downloadText, getJson, launchBrowser,
-  newPage, parseCsv, pixelsChanged, problems, screenshot, startServer,
+  moveSlider, newPage, parseCsv, pixelsChanged, problems, screenshot, startServer,
 } from './harness.mjs';
 
 let db;
@@ -52,7 +52,8 @@ test('scrubbing t changes the canvas, the marker and the polar profile', async (
   assert.ok(changed > closed.length / 4 / 100, `at least 1% of the canvas changes (${changed} pixels)`);
   assert.notEqual(await byTestId(page, 'plot-marker').getAttribute('x1'), marker0);
   assert.notEqual(await byTestId(page, 'polar-profile').getAttribute('d'), polar0);
-  assert.equal(new URL(page.url()).searchParams.get('t') ?? '', '1');
+  // The URL follows the view a moment later (debounced).
+  await page.waitForFunction(() => new URL(location.href).searchParams.get('t') === '1');
   for (const id of ['show-cell', 'show-links']) await byTestId(page, id).check();
   await byTestId(page, 'colour').selectOption('rotation');
   const decorated = await canvasPixels(page, '[data-testid="sheet"]');
@@ -69,25 +70,9 @@ test('moving a shape slider brings a new trajectory and the plot changes', async
     const before = await byTestId(page, 'series-max').getAttribute('d');
     const count = await deployments(page);
     for (const key of ['ArrowRight', 'ArrowLeft']) {
-      const slider = byTestId(page, 'param-v0');
-      await slider.focus();
-      // The key presses may start more than one deployment (each one 100 ms after the last
-      // press, the previous one aborted); the page shows the last to answer, once settled.
-      const responses = [];
-      const listener = (r) => {
-        if (r.url().endsWith('/api/deploy') && r.request().method() === 'POST') responses.push(r);
-      };
-      page.on('response', listener);
-      const response = page.waitForResponse((r) => r.url().endsWith('/api/deploy') && r.request().method() === 'POST');
-      for (let k = 0; k < 6; k += 1) await slider.press(key);
-      await response;
-      let seen = -1;
-      while (seen !== responses.length) {
-        seen = responses.length;
-        await page.waitForTimeout(1000);
-      }
-      page.off('response', listener);
-      const res = responses[responses.length - 1];
+      // The key presses may start more than one deployment (the throttle sends the latest
+      // value, aborting a slower one); once the edit has settled the page shows the last.
+      const res = await moveSlider(page, 'param-v0', key, 6);
       if (res.status() !== 200) continue; // this move gave an invalid tile; the other way may not
       await page.waitForFunction((n) => Number(document.body.dataset.deployments) > n, count);
       const body = await res.json();

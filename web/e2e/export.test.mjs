@@ -22,7 +22,9 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { promisify } from 'node:util';
 import { DOMParser } from '@xmldom/xmldom';
-import { allApiRows, byTestId, env, getJson, launchBrowser, newPage, problems, screenshot, startServer } from './harness.mjs';
+import {
+  allApiRows, byTestId, env, getJson, launchBrowser, moveSlider, newPage, problems, screenshot, startServer,
+} from './harness.mjs';
 import { slug } from '../src/schema.js';
 
 let server;
@@ -250,26 +252,9 @@ test('a 2×3 FOLD download has the patch’s faces, cells and frames', async () 
 /** Moves the first shape slider until the server deploys a new shape; the new spec, or null. */
 async function editShape(page) {
   for (const key of ['ArrowRight', 'ArrowLeft']) {
-    const slider = byTestId(page, 'param-v0');
-    await slider.focus();
-    // Every live deployment the key presses start; the page shows the last one to answer, so
-    // the edited design is the one the last request asked for, once the page has taken it.
-    const responses = [];
-    const listener = (r) => {
-      if (r.url().endsWith('/api/deploy') && r.request().method() === 'POST') responses.push(r);
-    };
-    page.on('response', listener);
-    const first = page.waitForResponse((r) => r.url().endsWith('/api/deploy') && r.request().method() === 'POST');
-    for (let k = 0; k < 6; k += 1) await slider.press(key);
-    await first;
-    // Settled: no new deployment for a second.
-    let seen = -1;
-    while (seen !== responses.length) {
-      seen = responses.length;
-      await page.waitForTimeout(1000);
-    }
-    page.off('response', listener);
-    const last = responses[responses.length - 1];
+    // The key presses may start more than one live deployment; once the edit has settled the
+    // page shows the last one asked for, which is the edited design.
+    const last = await moveSlider(page, 'param-v0', key, 6);
     if (last.status() !== 200) continue;
     const spec = (await last.json()).spec;
     await page.waitForFunction((s) => document.title === `${s} · isogami`, spec);

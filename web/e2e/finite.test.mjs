@@ -9,7 +9,7 @@
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  allApiRows, byTestId, canvasPixels, getJson, launchBrowser, newPage, pixelsChanged, problems, screenshot, startServer,
+  allApiRows, byTestId, canvasPixels, getJson, launchBrowser, newPage, pixelsChanged, pollUntil, problems, screenshot, startServer,
 } from './harness.mjs';
 
 let server;
@@ -145,14 +145,12 @@ test('a one-DOF design: 1 DOF ✓ raw and completed, and the finite sheet moves 
   const changed = pixelsChanged(closed, open);
   assert.ok(changed > closed.length / 4 / 100, `the finite sheet opens on the canvas (${changed} pixels change)`);
   assert.match(await byTestId(page, 'finite-motion').textContent(), /Finite deployment at t = 1\.000/);
-  // Play advances it.
+  // Play advances it: the canvas shows at least four values of t while playing (sampled until
+  // then, so that a slow frame rate only takes longer).
   await byTestId(page, 't-slider').fill('0');
   await byTestId(page, 'play').click();
   const seen = new Set();
-  for (let k = 0; k < 8; k += 1) {
-    await page.waitForTimeout(150);
-    seen.add(await data(page, 't'));
-  }
+  await pollUntil(async () => seen.add(await data(page, 't')), () => seen.size >= 4, { timeout: 15000, every: 100 });
   await byTestId(page, 'play').click();
   assert.ok(seen.size >= 4, `the finite sheet's t advanced while playing: ${[...seen]}`);
   assert.ok((await screenshot(browser, page, 'design-finite')) > 50);

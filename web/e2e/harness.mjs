@@ -291,3 +291,48 @@ export async function openDesign(page, base, spec, extra = '') {
   await page.goto(`${base}/design.html?spec=${encodeURIComponent(spec)}${extra}`);
   await page.waitForFunction(() => Number(document.body.dataset.deployments || 0) >= 1);
 }
+
+/** Waits until a live edit on the design page is over: no shape-follow request in flight or
+ * waiting (the editor's `data-following`) and no deployment in flight or waiting (the body's
+ * `simulating` class), so the page shows — or refuses — the last design asked for. */
+export async function liveSettled(page, timeout = 60000) {
+  await page.waitForFunction(
+    () => !document.body.classList.contains('simulating') && document.getElementById('editor')?.dataset.following !== 'true',
+    null,
+    { timeout },
+  );
+}
+
+/** Presses `key` `times` on the design page's slider `testid`, waits for the first deployment
+ * the presses start and then for the edit to settle (liveSettled); the response to the last
+ * deployment asked for, the one the page now shows (200) or refuses. */
+export async function moveSlider(page, testid, key, times) {
+  const asked = [];
+  const listener = (r) => {
+    if (r.url().endsWith('/api/deploy') && r.method() === 'POST') asked.push(r);
+  };
+  page.on('request', listener);
+  try {
+    const first = page.waitForResponse((r) => r.url().endsWith('/api/deploy') && r.request().method() === 'POST');
+    const slider = byTestId(page, testid);
+    await slider.focus();
+    for (let k = 0; k < times; k += 1) await slider.press(key);
+    await first;
+    await liveSettled(page);
+  } finally {
+    page.off('request', listener);
+  }
+  return asked[asked.length - 1].response();
+}
+
+/** Retries `read()` (every `every` ms) until `ok(value)` or `timeout` ms have passed; the last
+ * value read (the caller asserts on it, so a timeout fails with the caller's message). */
+export async function pollUntil(read, ok, { timeout = 10000, every = 50 } = {}) {
+  const end = Date.now() + timeout;
+  let value = await read();
+  while (!ok(value) && Date.now() < end) {
+    await new Promise((done) => setTimeout(done, every));
+    value = await read();
+  }
+  return value;
+}

@@ -162,6 +162,17 @@ export function createEditor(container, { live, onChange, reason, shape = null }
     },
   });
 
+  /** Marks the editor `data-following` while follow requests are in flight or waiting (`done`:
+   * the queue's promise, settled once it is empty). The last answer's deployment is asked for
+   * before the mark goes, so a live edit is over once neither the mark nor the page's
+   * deployment in flight is there. */
+  function following(done) {
+    container.dataset.following = 'true';
+    done.finally(() => {
+      if (!queue.busy()) delete container.dataset.following;
+    });
+  }
+
   /** Sliders and their numbers from `design.params` (after a follow or a refusal). */
   function showParams() {
     design.params.forEach((value, k) => {
@@ -270,7 +281,7 @@ export function createEditor(container, { live, onChange, reason, shape = null }
             out.textContent = fmt(target);
             out.title = String(target);
             if (shouldFollow(shapeInfo, { free })) {
-              queue.move(k, target);
+              following(queue.move(k, target));
               return;
             }
             design.params[k] = target;

@@ -130,6 +130,12 @@ export function createFinitePanel(container, { data, current, defaultKerf = () =
     if (key === asked) return;
     asked = key;
     clearTimeout(timer);
+    // The answer in flight is for what was asked before: dropped now, not shown (and the panel
+    // said ready) during the wait for this one.
+    if (inflight) {
+      inflight.abort();
+      inflight = null;
+    }
     el.status.textContent = 'analysing…';
     container.dataset.state = 'loading';
     timer = setTimeout(() => fetchSheet(params), 150);

@@ -32,10 +32,11 @@ let jobId = null;
 let timer = null;
 let outlineAsked = 0;
 let serverOutlineError = '';
+let outlineChecked = false; // the library's answer for the drawn points is in (the pad's data-checked)
 let svgFile = null; // { name, text, points } of the chosen SVG file, read by the library
 let svgError = '';
 let svgAsked = 0;
-let live = null; // { frame, target, count }
+let live = null; // { frame, target, count, done }
 let player = null; // { result, states, all, frame, playing, timer }
 
 /** An SVG element. */
@@ -123,6 +124,7 @@ const askOutline = debounce(async () => {
     serverOutlineError = e.kind === 'bad_target' ? e.message : '';
   }
   if (asked === outlineAsked) {
+    outlineChecked = true;
     document.body.dataset.outlineChecks = String(Number(document.body.dataset.outlineChecks || 0) + 1);
     check();
     drawPad();
@@ -131,6 +133,7 @@ const askOutline = debounce(async () => {
 
 function pointsChanged() {
   serverOutlineError = '';
+  outlineChecked = false;
   outlineAsked += 1;
   $('outline-status').textContent = points.length
     ? `${points.length} point${points.length === 1 ? '' : 's'}${points.length < 3 ? ': at least 3 make an outline' : ''}`
@@ -176,6 +179,9 @@ function drawPad() {
   pad.dataset.outline = f.outline;
   pad.dataset.points = String(points.length);
   pad.dataset.bad = String(bad);
+  // Whether what the pad and the error beside it say about the drawn points is the library's
+  // answer for them (until it comes, the same rule checked here).
+  pad.dataset.checked = String(outlineChecked);
 }
 
 /** Reads the chosen SVG file and asks the library for its outline (POST /api/graded/svg): the
@@ -413,25 +419,28 @@ function render(job) {
   drawSnapshot(job);
 }
 
-/** Draws the job's snapshot when it is a new one. */
+/** Draws the job's snapshot when it is a new one, and once more when the job is done (over the
+ * fitted target), whether or not a poll while it ran already had its last snapshot. */
 function drawSnapshot(job) {
   const snap = job.snapshot;
-  if (!snap || (live && live.count === snap.count)) return;
+  const done = job.state === 'done' && Boolean(job.result);
+  if (!snap || (live && live.count === snap.count && (live.done || !done))) return;
   if (!live) {
     // The target sized to the sheet's area at its first snapshot (the library sizes it to the
     // start's); the report's fitted outline replaces it at the end.
     const target = outlineAtArea(job.request.outline_points, hullArea(snap.polygons));
-    live = { target, frame: bounds(snap.polygons, [target]), count: 0 };
+    live = { target, frame: bounds(snap.polygons, [target]), count: 0, done: false };
     $('live-target-note').textContent = job.request.field ? '(none: a field target)' : '(sized to the sheet’s area at the start)';
   }
   let target = live.target;
-  if (job.state === 'done' && job.result && !job.request.field) {
+  if (done && !job.request.field) {
     target = job.result.report.target;
     $('live-target-note').textContent = '(at the fitted scale)';
   }
   const b = bounds(snap.polygons, [target]);
   live.frame = [Math.min(live.frame[0], b[0]), Math.min(live.frame[1], b[1]), Math.max(live.frame[2], b[2]), Math.max(live.frame[3], b[3])];
   live.count = snap.count;
+  live.done = done;
   drawSheet($('live-sheet'), snap.polygons, { frame: live.frame, target });
   $('live-sheet').removeAttribute('hidden');
   $('live-sheet').dataset.iteration = String(snap.iteration);
