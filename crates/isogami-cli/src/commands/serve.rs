@@ -63,7 +63,11 @@ pub fn serve(args: ServeArgs) -> CliResult {
             return Err(e);
         }
         if open {
-            if let Err(e) = webbrowser::open(&url) {
+            if !desktop_present() {
+                eprintln!(
+                    "no desktop here (DISPLAY and WAYLAND_DISPLAY are unset), so no browser: open {url} yourself"
+                );
+            } else if let Err(e) = webbrowser::open(&url) {
                 eprintln!("could not open a browser ({e}); open {url} yourself");
             }
         }
@@ -74,6 +78,16 @@ pub fn serve(args: ServeArgs) -> CliResult {
         (Err(e), None) => Err(format!("cannot serve on {}: {e}", args.addr)),
         (Ok(()), None) => Ok(()),
     }
+}
+
+/// Whether a browser started here can be seen. On Linux and the BSDs a desktop session sets
+/// DISPLAY or WAYLAND_DISPLAY; without either (a server, a container, ssh without X) a browser
+/// that is installed still starts and dies unseen, and `--open` would say nothing.
+fn desktop_present() -> bool {
+    cfg!(any(target_os = "macos", target_os = "windows"))
+        || ["DISPLAY", "WAYLAND_DISPLAY"]
+            .iter()
+            .any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()))
 }
 
 /// Writes the served address to `out`: an error (stdout closed or full) ends `serve`.

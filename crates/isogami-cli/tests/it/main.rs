@@ -19,6 +19,7 @@ mod graded_export;
 mod graded_svg_cli;
 mod inverse_checks;
 mod inverse_cli;
+mod serve_cli;
 mod shape_cli;
 mod sheet_cli;
 mod unit_parts;
