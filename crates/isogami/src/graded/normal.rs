@@ -135,7 +135,8 @@ impl NormalSystem {
         }
     }
 
-    /// The step δ of (A + λ(max(diag A, f·mean diag A) + ε)) δ = −g, A = S + WWᵀ, f the damping floor (the mean over the free columns); held columns get 0.
+    /// The step δ of (A + λ(max(diag A, f·mean diag A) + ε)) δ = −g, A = S + WWᵀ, f the
+    /// damping floor (the mean over the free columns); held columns get 0.
     #[cfg(test)]
     pub fn step(&self, lambda: Real) -> Result<DVec, GradedError> {
         self.factor(lambda)?.solve(&-&self.gradient)
