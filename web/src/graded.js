@@ -125,7 +125,6 @@ const askOutline = debounce(async () => {
   }
   if (asked === outlineAsked) {
     outlineChecked = true;
-    document.body.dataset.outlineChecks = String(Number(document.body.dataset.outlineChecks || 0) + 1);
     check();
     drawPad();
   }
@@ -370,7 +369,6 @@ function attach(id) {
   player = null;
   document.body.dataset.jobId = String(id);
   document.body.dataset.gradedState = 'running';
-  document.body.dataset.snapshotsDrawn = '0';
   $('results-section').hidden = true;
   $('live-sheet').replaceChildren();
   // An SVG element has no `hidden` property: the attribute itself.
@@ -444,7 +442,6 @@ function drawSnapshot(job) {
   drawSheet($('live-sheet'), snap.polygons, { frame: live.frame, target });
   $('live-sheet').removeAttribute('hidden');
   $('live-sheet').dataset.iteration = String(snap.iteration);
-  document.body.dataset.snapshotsDrawn = String(Number(document.body.dataset.snapshotsDrawn || 0) + 1);
 }
 
 function finish(job) {
