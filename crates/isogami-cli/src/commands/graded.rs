@@ -5,7 +5,8 @@
 use crate::output::{emit, json_text, write_atomic, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami::api::{graded_sheet, GradedRun};
-use isogami::graded::{self, outline_from_svg, GradedRequest, Target};
+use isogami::graded::deploy::PIN_TOLERANCE;
+use isogami::graded::{self, outline_from_svg, GradedRequest, PathCheck, Target};
 use isogami::stop::NEVER;
 use std::path::PathBuf;
 
@@ -153,10 +154,8 @@ fn summary(run: &GradedRun, args: &Args) -> String {
         "solve       {} iterations, cost {:.3e} → {:.3e}, pins closed to {:.1e} L, {:.1} s\n",
         r.iterations, r.cost[0], r.cost[1], r.joint_gap, r.seconds
     );
-    let overlaps = p.states.iter().filter(|s| s.overlap.is_some()).count();
-    let worst_gap = p.states.iter().map(|s| s.joint_gap).fold(0.0, f64::max);
     o += &format!(
-        "motion      {}: {} states from open to closed, DOF {}, pins closed to {:.1e} L, {} with overlapping tiles, closed-state spread {:.1e} rad\n",
+        "motion      {}: {} states from open to closed, DOF {}, {}, {}, closed-state spread {:.1e} rad\n",
         if p.reached {
             "opens along one motion"
         } else {
@@ -164,8 +163,8 @@ fn summary(run: &GradedRun, args: &Args) -> String {
         },
         p.states.len(),
         dof.join(" "),
-        worst_gap,
-        overlaps,
+        pins_line(p),
+        overlaps_line(p),
         p.closed_spread
     );
     if let Some(path) = &args.out {
@@ -174,9 +173,104 @@ fn summary(run: &GradedRun, args: &Args) -> String {
     o
 }
 
+/// The path's widest pin gap and, when it is over the tolerance, where.
+fn pins_line(p: &PathCheck) -> String {
+    let worst = p
+        .states
+        .iter()
+        .max_by(|a, b| a.joint_gap.total_cmp(&b.joint_gap));
+    match worst {
+        Some(s) if s.joint_gap >= PIN_TOLERANCE => format!(
+            "pins closed to {:.1e} L (widest at {:.0} % open)",
+            s.joint_gap,
+            100.0 * s.opening
+        ),
+        Some(s) => format!("pins closed to {:.1e} L", s.joint_gap),
+        None => "no states".into(),
+    }
+}
+
+/// The states with overlapping tiles, each named with its pair (the first three).
+fn overlaps_line(p: &PathCheck) -> String {
+    let hits: Vec<String> = p
+        .states
+        .iter()
+        .filter_map(|s| {
+            s.overlap
+                .map(|(a, b)| format!("{a} and {b} at {:.0} % open", 100.0 * s.opening))
+        })
+        .collect();
+    match hits.len() {
+        0 => "no overlapping tiles".into(),
+        n if n <= 3 => format!("overlapping tiles {}", hits.join(", ")),
+        n => format!(
+            "overlapping tiles {} and in {} more states",
+            hits[..3].join(", "),
+            n - 3
+        ),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn state(
+        opening: f64,
+        joint_gap: f64,
+        overlap: Option<(usize, usize)>,
+    ) -> isogami::graded::PathState {
+        isogami::graded::PathState {
+            opening,
+            joint_gap,
+            dof: Some(1),
+            smallest: None,
+            overlap,
+            poses: Vec::new(),
+        }
+    }
+
+    /// A failed path says where: the widest pin gap's state when it is over the tolerance,
+    /// and every overlapping pair with its state (the 400-tile disc's opened state overlaps:
+    /// "2 with overlapping tiles" hid that the sheet as fitted is one of them).
+    #[test]
+    fn the_motion_line_says_where_the_path_fails() {
+        let failed = PathCheck {
+            states: vec![
+                state(1.0, 8e-7, Some((0, 2))),
+                state(0.5, 2e-7, None),
+                state(0.0, 8.4e-4, Some((0, 1))),
+            ],
+            closed_spread: 1.5,
+            reached: false,
+        };
+        assert_eq!(
+            pins_line(&failed),
+            "pins closed to 8.4e-4 L (widest at 0 % open)"
+        );
+        assert_eq!(
+            overlaps_line(&failed),
+            "overlapping tiles 0 and 2 at 100 % open, 0 and 1 at 0 % open"
+        );
+        let clean = PathCheck {
+            states: vec![state(1.0, 8e-7, None), state(0.0, 1e-15, None)],
+            closed_spread: 0.0,
+            reached: true,
+        };
+        assert_eq!(pins_line(&clean), "pins closed to 8.0e-7 L");
+        assert_eq!(overlaps_line(&clean), "no overlapping tiles");
+        let many = PathCheck {
+            states: (0..5)
+                .map(|k| state(k as f64 / 4.0, 0.0, Some((k, k + 1))))
+                .collect(),
+            closed_spread: 0.0,
+            reached: false,
+        };
+        assert_eq!(
+            overlaps_line(&many),
+            "overlapping tiles 0 and 1 at 0 % open, 1 and 2 at 25 % open, 2 and 3 at 50 % open and in 2 more states"
+        );
+    }
 
     #[test]
     fn regions_and_targets_parse_or_say_why() {
