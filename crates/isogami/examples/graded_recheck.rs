@@ -25,9 +25,13 @@ fn main() {
     let problem = problem_of(&sheet, Outline::Disc, Weights::default());
     let path = check_path(&sheet, &problem, steps, NEVER).expect("the path check");
     for s in &path.states {
+        let dof = s.dof.map_or("?".into(), |d| d.to_string());
+        let overlap = s
+            .overlap
+            .map_or("none".into(), |(a, b)| format!("tiles {a} and {b}"));
         println!(
-            "{:.4} open: pins {:.2e} DOF {:?} overlap {:?}",
-            s.opening, s.joint_gap, s.dof, s.overlap
+            "{:.4} open: pins {:.2e} DOF {dof} overlap {overlap}",
+            s.opening, s.joint_gap
         );
     }
     println!(
