@@ -349,13 +349,16 @@ export function reportLines(result) {
   const dofs = open.map((s) => (s.dof === null || s.dof === undefined ? '?' : String(s.dof)));
   const oneDof = dofs.every((d) => d === '1');
   const gap = Math.max(0, ...p.states.map((s) => s.joint_gap));
+  // Where the pins open widest, when that is more than closed (the library's 1e-6 L).
+  const widest = p.states.find((s) => s.joint_gap === gap);
+  const where = gap >= 1e-6 && widest ? `, widest at ${(100 * widest.opening).toFixed(0)} % open` : '';
   lines.push({
     key: 'path',
     text: p.reached
       ? `Opens along one motion: the path check reached the closed tiling from the opened state in ${p.states.length} states, one DOF at each from 10 % open (the closed tiling is singular), pins closed to ${gap.toExponential(1)} L, no overlap.`
       : `Does NOT open along one motion: ${[
         oneDof ? 'one DOF at every state' : `DOF ${dofs.join(' ')} from open to closed`,
-        `pins closed to ${gap.toExponential(1)} L on the way (closed means below 1e-6 L)`,
+        `pins closed to ${gap.toExponential(1)} L on the way${where} (closed means below 1e-6 L)`,
         `closed-state spread ${p.closed_spread.toExponential(1)} rad`,
       ].join('; ')}.`,
   });

@@ -114,7 +114,13 @@ test('the report names the fit, the path’s verdict and the overlapping tiles',
   assert.match(lines.fit, /within 2\.12 % of the target \(median 0\.27 %\)/);
   assert.match(lines.pins, /^Pins closed to 4\.6e-6 L.*smallest angle 31\.5°, corners keep ≥ 35 % of their sine/);
   assert.match(lines.path, /^Does NOT open along one motion: one DOF at every state/);
+  assert.match(lines.path, /pins closed to 1\.0e-7 L on the way \(closed/, 'closed pins: no place named');
   assert.equal(lines.overlaps, 'Overlaps: tiles 3 and 7 at 50 % open.');
+  // Pins open on the way: the line says at which state they open widest.
+  result.path.states[2].joint_gap = 8.4e-4;
+  const open = Object.fromEntries(reportLines(result).map((l) => [l.key, l.text]));
+  assert.match(open.path, /pins closed to 8\.4e-4 L on the way, widest at 0 % open \(closed means below 1e-6 L\)/);
+  result.path.states[2].joint_gap = 1e-7;
   result.path.reached = true;
   result.path.states[1].overlap = null;
   const ok = Object.fromEntries(reportLines(result).map((l) => [l.key, l.text]));
