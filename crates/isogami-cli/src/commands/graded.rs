@@ -5,7 +5,6 @@
 use crate::output::{emit, json_text, write_atomic, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami::api::{graded_sheet, GradedRun};
-use isogami::graded::deploy::PIN_TOLERANCE;
 use isogami::graded::{self, outline_from_svg, GradedRequest, PathCheck, Target};
 use isogami::stop::NEVER;
 use std::path::PathBuf;
@@ -175,12 +174,8 @@ fn summary(run: &GradedRun, args: &Args) -> String {
 
 /// The path's widest pin gap and, when it is over the tolerance, where.
 fn pins_line(p: &PathCheck) -> String {
-    let worst = p
-        .states
-        .iter()
-        .max_by(|a, b| a.joint_gap.total_cmp(&b.joint_gap));
-    match worst {
-        Some(s) if s.joint_gap >= PIN_TOLERANCE => format!(
+    match p.widest_gap() {
+        Some(s) if !s.pins_closed() => format!(
             "pins closed to {:.1e} L (widest at {:.0} % open)",
             s.joint_gap,
             100.0 * s.opening

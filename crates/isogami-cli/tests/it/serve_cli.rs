@@ -1,6 +1,6 @@
 //! `isogami serve` as the Quick start runs it.
 
-use crate::common::scratch;
+use crate::common::{isogami, scratch};
 use std::io::{BufRead, BufReader};
 use std::process::{Command, Stdio};
 use std::sync::mpsc;
@@ -13,11 +13,14 @@ use std::time::Duration;
 fn open_without_a_desktop_says_so_and_serves() {
     let dir = scratch("serve-open");
     let db = dir.path().join("quick.db");
-    let explored = Command::new(env!("CARGO_BIN_EXE_isogami"))
-        .args(["explore", "--quick", "--families", "IH76", "--db"])
-        .arg(&db)
-        .output()
-        .unwrap();
+    let explored = isogami(&[
+        "explore",
+        "--quick",
+        "--families",
+        "IH76",
+        "--db",
+        db.to_str().unwrap(),
+    ]);
     assert!(
         explored.status.success(),
         "{}",

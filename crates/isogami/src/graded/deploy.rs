@@ -35,6 +35,13 @@ pub struct PathState {
     pub poses: Vec<OpenedPose>,
 }
 
+impl PathState {
+    /// Whether its pins are closed (gap under [`PIN_TOLERANCE`]).
+    pub fn pins_closed(&self) -> bool {
+        self.joint_gap < PIN_TOLERANCE
+    }
+}
+
 /// The path from the optimised state to the closed tiling.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PathCheck {
@@ -46,6 +53,15 @@ pub struct PathCheck {
     /// Every state has closed pins and no overlap, one DOF where counted from
     /// [`DOF_FROM_OPENING`] open, and the path ends in the closed tiling.
     pub reached: bool,
+}
+
+impl PathCheck {
+    /// The state whose pins open widest (the first of equals; None for no states).
+    pub fn widest_gap(&self) -> Option<&PathState> {
+        self.states
+            .iter()
+            .reduce(|a, b| if b.joint_gap > a.joint_gap { b } else { a })
+    }
 }
 
 /// States at least this open (as a fraction of the optimised one) must have one DOF. The
@@ -118,7 +134,7 @@ pub fn check_path(
     let closed_spread = hi - lo;
     let reached = closed_spread < 1e-6
         && states.iter().all(|s| {
-            s.joint_gap < PIN_TOLERANCE
+            s.pins_closed()
                 && s.overlap.is_none()
                 && (s.opening < DOF_FROM_OPENING || s.dof.is_none_or(|d| d == 1))
         });
