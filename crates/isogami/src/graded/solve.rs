@@ -18,7 +18,7 @@
 use super::error::GradedError;
 use super::model::GradedSheet;
 use super::normal::{Factor, NormalSystem};
-use super::problem::Problem;
+use super::problem::{Problem, Rows};
 use crate::math::{DVec, Real, Vec2};
 use crate::stop::KeepGoing;
 use serde::Serialize;
@@ -155,8 +155,53 @@ fn pin_correction(
     factor.solve(&rhs)
 }
 
+/// A step tried at one damping: where it leads and the cost there.
+struct Trial {
+    lambda: Real,
+    z: DVec,
+    rows: Rows,
+    cost: Real,
+}
+
+/// The step from `z` at damping `lambda` (over `system`, assembled at z), corrected for the
+/// pins' curvature, and the rows at its end. `pins` are the pin rows at z.
+fn try_step(
+    problem: &Problem,
+    system: &NormalSystem,
+    pins: &Rows,
+    z: &DVec,
+    lambda: Real,
+) -> Result<Trial, GradedError> {
+    let factor = system.factor(lambda)?;
+    let step = factor.solve(&-system.gradient())?;
+    let mut trial = z + &step;
+    let correction = pin_correction(problem, pins, &step, &trial, &factor)?;
+    if correction.norm() <= ACCELERATION_LIMIT * step.norm() {
+        trial += correction;
+    }
+    let rows = problem.rows(&trial);
+    let cost = rows.cost();
+    Ok(Trial {
+        lambda,
+        z: trial,
+        rows,
+        cost,
+    })
+}
+
+/// Largest damping tried before a step is given up.
+const LAMBDA_LIMIT: Real = 1e12;
+
+/// Factor by which the damping grows after a refused step.
+const LAMBDA_GROWTH: Real = 4.0;
+
 /// Damped Gauss–Newton until the cost stalls; returns the iterations taken and the final
 /// cost. `progress(iteration, cost, z)` is called after each accepted step.
+///
+/// A refused step is retried at [`LAMBDA_GROWTH`] times the damping. The retry is computed
+/// alongside the first try, on a second core (a factorisation is most of an iteration's time
+/// and about half the first tries are refused), and used only when the first try is
+/// refused: the steps taken are the serial iteration's, bit for bit.
 fn levenberg_marquardt(
     problem: &Problem,
     z: &mut DVec,
@@ -179,41 +224,43 @@ fn levenberg_marquardt(
         }
         system.assemble(&rows);
         let pins = problem.pin_rows(z);
-        let mut accepted = false;
-        while lambda < 1e12 {
-            let factor = system.factor(lambda)?;
-            let step = factor.solve(&-system.gradient())?;
-            let mut trial = &*z + &step;
-            let correction = pin_correction(problem, &pins, &step, &trial, &factor)?;
-            if correction.norm() <= ACCELERATION_LIMIT * step.norm() {
-                trial += correction;
-            }
-            let trial_rows = problem.rows(&trial);
-            let trial_cost = trial_rows.cost();
-            if trial_cost.is_finite() && trial_cost < cost {
-                let decrease = (cost - trial_cost) / cost.max(1e-300);
-                *z = trial;
-                rows = trial_rows;
-                cost = trial_cost;
-                lambda = (lambda / 3.0).max(1e-12);
-                accepted = true;
-                taken = it + 1;
-                if !progress(taken, cost, z) {
-                    return Err(GradedError::Cancelled);
-                }
-                if decrease < rel_decrease && system.damping_floor > 0.0 {
-                    // Stalled under the floor: Marquardt's damping alone from here.
-                    system.damping_floor = 0.0;
+        let mut accepted = None;
+        while accepted.is_none() && lambda < LAMBDA_LIMIT {
+            let retry = LAMBDA_GROWTH * lambda;
+            let attempt = |lambda: Real| try_step(problem, system, &pins, z, lambda);
+            let (first, second) = if retry < LAMBDA_LIMIT {
+                let (first, second) = rayon::join(|| attempt(lambda), || attempt(retry));
+                (first, Some(second))
+            } else {
+                (attempt(lambda), None)
+            };
+            // In the serial order: the retry counts only when the first try is refused.
+            for trial in std::iter::once(first).chain(second) {
+                let trial = trial?;
+                if trial.cost.is_finite() && trial.cost < cost {
+                    accepted = Some(trial);
                     break;
                 }
-                if decrease < rel_decrease || cost < 1e-28 {
-                    return Ok((taken, cost));
-                }
-                break;
             }
-            lambda *= 4.0;
+            lambda *= LAMBDA_GROWTH * LAMBDA_GROWTH;
         }
-        if !accepted {
+        if let Some(trial) = accepted {
+            let decrease = (cost - trial.cost) / cost.max(1e-300);
+            *z = trial.z;
+            rows = trial.rows;
+            cost = trial.cost;
+            lambda = (trial.lambda / 3.0).max(1e-12);
+            taken = it + 1;
+            if !progress(taken, cost, z) {
+                return Err(GradedError::Cancelled);
+            }
+            if decrease < rel_decrease && system.damping_floor > 0.0 {
+                // Stalled under the floor: Marquardt's damping alone from here.
+                system.damping_floor = 0.0;
+            } else if decrease < rel_decrease || cost < 1e-28 {
+                return Ok((taken, cost));
+            }
+        } else {
             break;
         }
     }
@@ -444,6 +491,61 @@ mod tests {
         assert!(plain > 1e-4, "the step is too short to bend: {plain}");
         assert!(corrected < 0.2 * plain, "{corrected} vs {plain}");
         assert!(correction.norm() < ACCELERATION_LIMIT * step.norm());
+    }
+
+    /// The retry computed on a second core changes nothing but the time: from a moved start,
+    /// the iteration takes the steps of the plain serial one (each damping tried in turn,
+    /// ×4 after a refusal, ÷3 after an acceptance) bit for bit — at least one step refused on
+    /// the way, so that the retries were used.
+    #[test]
+    fn the_parallel_retry_takes_the_serial_steps() {
+        let (_, problem, start) = moved_start(2);
+        let structure = problem.structure(&start);
+        let iterations = 12;
+        let mut parallel = start.clone();
+        let mut system = NormalSystem::new(&structure, start.len(), 0).unwrap();
+        system.damping_floor = DAMPING_FLOOR_FRACTION;
+        let mut costs = Vec::new();
+        levenberg_marquardt(
+            &problem,
+            &mut parallel,
+            &mut system,
+            iterations,
+            0.0,
+            &mut |_, c, _| {
+                costs.push(c);
+                true
+            },
+            NEVER,
+        )
+        .unwrap();
+        // The serial iteration, written out.
+        let mut serial = start.clone();
+        let mut system = NormalSystem::new(&structure, start.len(), 0).unwrap();
+        system.damping_floor = DAMPING_FLOOR_FRACTION;
+        let mut cost = problem.rows(&serial).cost();
+        let (mut lambda, mut refused) = (1e-4, 0);
+        for _ in 0..iterations {
+            system.assemble(&problem.rows(&serial));
+            let pins = problem.pin_rows(&serial);
+            loop {
+                let trial = try_step(&problem, &system, &pins, &serial, lambda).unwrap();
+                if trial.cost < cost {
+                    (serial, cost) = (trial.z, trial.cost);
+                    lambda /= 3.0;
+                    break;
+                }
+                refused += 1;
+                lambda *= 4.0;
+            }
+        }
+        assert_eq!(costs.len(), iterations);
+        assert!(
+            refused > 0,
+            "every first try was taken: no retry was needed"
+        );
+        assert_eq!(parallel, serial);
+        assert_eq!(costs.last(), Some(&cost));
     }
 
     /// The closing projection weighs the pins over the turning rows: where a turning row
