@@ -345,20 +345,25 @@ export function reportLines(result) {
     key: 'pins',
     text: `Pins closed to ${r.joint_gap.toExponential(1)} L after the optimisation; smallest angle ${r.min_angle_degrees.toFixed(1)}°, corners keep ≥ ${(100 * r.min_corner_fraction).toFixed(0)} % of their sine, edges ≥ ${(100 * r.min_edge_fraction).toFixed(0)} % of their length, tiles ≥ ${(100 * r.min_area_fraction).toFixed(0)} % of their area.`,
   });
-  const open = p.states.filter((s) => s.opening > 0);
-  const dofs = open.map((s) => (s.dof === null || s.dof === undefined ? '?' : String(s.dof)));
+  // The library's own measures travel with its check: the gap under which a pin is closed,
+  // the opening from which a state must have one DOF (the closed tiling is singular).
+  const tolerance = p.pin_tolerance;
+  const counted = p.states.filter((s) => s.opening > 0 && s.opening >= (p.dof_from_opening ?? 0));
+  const dofs = counted.map((s) => (s.dof === null || s.dof === undefined ? '?' : String(s.dof)));
   const oneDof = dofs.every((d) => d === '1');
+  const from = p.dof_from_opening > 0 ? ` from ${(100 * p.dof_from_opening).toFixed(0)} % open (the closed tiling is singular)` : '';
   const gap = Math.max(0, ...p.states.map((s) => s.joint_gap));
-  // Where the pins open widest, when that is more than closed (the library's 1e-6 L).
+  // Where the pins open widest, when that is more than closed.
   const widest = p.states.find((s) => s.joint_gap === gap);
-  const where = gap >= 1e-6 && widest ? `, widest at ${(100 * widest.opening).toFixed(0)} % open` : '';
+  const where = tolerance !== undefined && gap >= tolerance && widest ? `, widest at ${(100 * widest.opening).toFixed(0)} % open` : '';
+  const closedMeans = tolerance !== undefined ? ` (closed means below ${tolerance.toExponential(0)} L)` : '';
   lines.push({
     key: 'path',
     text: p.reached
-      ? `Opens along one motion: the path check reached the closed tiling from the opened state in ${p.states.length} states, one DOF at each from 10 % open (the closed tiling is singular), pins closed to ${gap.toExponential(1)} L, no overlap.`
+      ? `Opens along one motion: the path check reached the closed tiling from the opened state in ${p.states.length} states, one DOF at each${from}, pins closed to ${gap.toExponential(1)} L, no overlap.`
       : `Does NOT open along one motion: ${[
-        oneDof ? 'one DOF at every state' : `DOF ${dofs.join(' ')} from open to closed`,
-        `pins closed to ${gap.toExponential(1)} L on the way${where} (closed means below 1e-6 L)`,
+        oneDof ? `one DOF at every state${from}` : `DOF ${dofs.join(' ')}${from}, opened to closed`,
+        `pins closed to ${gap.toExponential(1)} L on the way${where}${closedMeans}`,
         `closed-state spread ${p.closed_spread.toExponential(1)} rad`,
       ].join('; ')}.`,
   });

@@ -108,7 +108,10 @@ test('the report names the fit, the path’s verdict and the overlapping tiles',
       median_outline_error: 0.0027, max_outside: 0.0212, min_corner_fraction: 0.35, min_angle_degrees: 31.5, min_edge_fraction: 0.44,
       min_area_fraction: 0.52, target: [],
     },
-    path: { states: [state(1), state(0.5, { overlap: [3, 7] }), state(0)], closed_spread: 2e-16, reached: false },
+    path: {
+      states: [state(1), state(0.5, { overlap: [3, 7] }), state(0)], closed_spread: 2e-16, reached: false,
+      pin_tolerance: 1e-6, dof_from_opening: 0.1,
+    },
   };
   const lines = Object.fromEntries(reportLines(result).map((l) => [l.key, l.text]));
   assert.match(lines.fit, /within 2\.12 % of the target \(median 0\.27 %\)/);
@@ -120,6 +123,19 @@ test('the report names the fit, the path’s verdict and the overlapping tiles',
   result.path.states[2].joint_gap = 8.4e-4;
   const open = Object.fromEntries(reportLines(result).map((l) => [l.key, l.text]));
   assert.match(open.path, /pins closed to 8\.4e-4 L on the way, widest at 0 % open \(closed means below 1e-6 L\)/);
+  // The verdict is the library's, read from the check: with its tolerance at 1e-3 the same
+  // gap is closed (no place named); with DOF counted from 60 % open, the two DOF at 50 %
+  // are the closed tiling's singularity, not a second motion.
+  result.path.pin_tolerance = 1e-3;
+  result.path.dof_from_opening = 0.6;
+  result.path.states[1].dof = 2;
+  const theirs = Object.fromEntries(reportLines(result).map((l) => [l.key, l.text]));
+  assert.match(theirs.path, /one DOF at every state from 60 % open .*pins closed to 8\.4e-4 L on the way \(closed means below 1e-3 L\)/);
+  result.path.dof_from_opening = 0.1;
+  const second = Object.fromEntries(reportLines(result).map((l) => [l.key, l.text]));
+  assert.match(second.path, /DOF 1 2 from 10 % open/);
+  result.path.pin_tolerance = 1e-6;
+  result.path.states[1].dof = 1;
   result.path.states[2].joint_gap = 1e-7;
   result.path.reached = true;
   result.path.states[1].overlap = null;

@@ -288,7 +288,8 @@ impl PyGradedRun {
         to_python(py, &self.report)
     }
     /// The check of the path from the opened state back to the closed tiling as a dict (the
-    /// JSON's ``path``: ``states``, ``closed_spread``, ``reached``).
+    /// JSON's ``path``: ``states``, ``closed_spread``, ``reached``, and the measures the
+    /// states were judged by, ``pin_tolerance`` and ``dof_from_opening``).
     fn path_check<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.path)
     }

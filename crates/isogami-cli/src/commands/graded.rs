@@ -238,6 +238,8 @@ mod tests {
             ],
             closed_spread: 1.5,
             reached: false,
+            pin_tolerance: graded::deploy::PIN_TOLERANCE,
+            dof_from_opening: graded::deploy::DOF_FROM_OPENING,
         };
         assert_eq!(
             pins_line(&failed),
@@ -251,6 +253,8 @@ mod tests {
             states: vec![state(1.0, 8e-7, None), state(0.0, 1e-15, None)],
             closed_spread: 0.0,
             reached: true,
+            pin_tolerance: graded::deploy::PIN_TOLERANCE,
+            dof_from_opening: graded::deploy::DOF_FROM_OPENING,
         };
         assert_eq!(pins_line(&clean), "pins closed to 8.0e-7 L");
         assert_eq!(overlaps_line(&clean), "no overlapping tiles");
@@ -260,6 +264,8 @@ mod tests {
                 .collect(),
             closed_spread: 0.0,
             reached: false,
+            pin_tolerance: graded::deploy::PIN_TOLERANCE,
+            dof_from_opening: graded::deploy::DOF_FROM_OPENING,
         };
         assert_eq!(
             overlaps_line(&many),

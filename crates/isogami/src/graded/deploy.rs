@@ -53,6 +53,23 @@ pub struct PathCheck {
     /// Every state has closed pins and no overlap, one DOF where counted from
     /// [`DOF_FROM_OPENING`] open, and the path ends in the closed tiling.
     pub reached: bool,
+    /// The gap under which a pin counts as closed ([`PIN_TOLERANCE`]), and the opening from
+    /// which a state must have one DOF ([`DOF_FROM_OPENING`]): carried with the check, so
+    /// that a reader of its JSON (the browser page) judges its states as the library does.
+    /// Absent from checks written before they were carried: the constants.
+    #[serde(default = "pin_tolerance")]
+    pub pin_tolerance: Real,
+    /// See `pin_tolerance`.
+    #[serde(default = "dof_from_opening")]
+    pub dof_from_opening: Real,
+}
+
+fn pin_tolerance() -> Real {
+    PIN_TOLERANCE
+}
+
+fn dof_from_opening() -> Real {
+    DOF_FROM_OPENING
 }
 
 impl PathCheck {
@@ -142,6 +159,8 @@ pub fn check_path(
         states,
         closed_spread,
         reached,
+        pin_tolerance: PIN_TOLERANCE,
+        dof_from_opening: DOF_FROM_OPENING,
     })
 }
 
@@ -172,4 +191,29 @@ pub fn overlap(sheet: &GradedSheet) -> Option<(usize, usize)> {
         }
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A check's JSON carries the measures its states were judged by, under the names the
+    /// browser page reads; a check written before they were carried reads back with the
+    /// library's.
+    #[test]
+    fn a_checks_json_carries_the_measures_it_was_judged_by() {
+        let check = PathCheck {
+            states: Vec::new(),
+            closed_spread: 0.0,
+            reached: true,
+            pin_tolerance: PIN_TOLERANCE,
+            dof_from_opening: DOF_FROM_OPENING,
+        };
+        let json = serde_json::to_value(&check).unwrap();
+        assert_eq!(json["pin_tolerance"], PIN_TOLERANCE);
+        assert_eq!(json["dof_from_opening"], DOF_FROM_OPENING);
+        let old = serde_json::json!({ "states": [], "closed_spread": 0.0, "reached": true });
+        let read: PathCheck = serde_json::from_value(old).unwrap();
+        assert_eq!(read, check);
+    }
 }

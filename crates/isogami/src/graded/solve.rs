@@ -5,7 +5,8 @@
 //! λ·(diag(JᵀJ) + ε) and solves ([`NormalSystem`]: faer's sparse Cholesky over a pattern
 //! analysed once per solve, the dense rows added by Woodbury; every column damped at least a
 //! fraction of the mean, [`DAMPING_FLOOR_FRACTION`]); a step that lowers the cost is taken and λ
-//! shrinks, otherwise λ grows and the step is retried. Where the floored steps stall (a cost
+//! shrinks, otherwise λ grows and the step is retried (the retry computed alongside the first
+//! try on the second core, used only when the first is refused). Where the floored steps stall (a cost
 //! that no longer falls), the stage goes on with Marquardt's damping alone, which finishes
 //! closing pins that the floor holds back (measured on the concave IH27 sheet: 7.5 % from the
 //! disc and the stage stalled with the floor throughout; 3.9 % and along one motion with the
