@@ -362,7 +362,7 @@ export function reportLines(result) {
     text: p.reached
       ? `Opens along one motion: the path check reached the closed tiling from the opened state in ${p.states.length} states, one DOF at each${from}, pins closed to ${gap.toExponential(1)} L, no overlap.`
       : `Does NOT open along one motion: ${[
-        oneDof ? `one DOF at every state${from}` : `DOF ${dofs.join(' ')}${from}, opened to closed`,
+        oneDof ? `one DOF at every state${from}` : `DOF ${dofs.join(' ')} at the states${from}, the opened one first`,
         `pins closed to ${gap.toExponential(1)} L on the way${where}${closedMeans}`,
         `closed-state spread ${p.closed_spread.toExponential(1)} rad`,
       ].join('; ')}.`,
