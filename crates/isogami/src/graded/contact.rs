@@ -8,8 +8,13 @@
 //! pair out of the other tile, in every state: a corner inside is a one-sided residual, its
 //! depth (distance to the other tile's nearest boundary point), with exact derivatives through
 //! both tiles' opened corners. The pin's own node, on both tiles' boundaries, is left out.
+//!
+//! In the opened state the corners come from both tiles' poses; in a state part of the way,
+//! which keeps only rotations, from chains of tiles ([`super::loops`]): a's corners relative to
+//! its first node, b's through the pins from a to b.
 
-use super::problem::{Problem, Rows};
+use super::loops::Segment;
+use super::problem::{ChainJacobian, Problem, Rows};
 use crate::geometry::point_in_polygon_strict;
 use crate::math::{cross, DVec, Real, Vec2};
 
@@ -117,7 +122,52 @@ fn depth(p: Vec2, poly: &[Vec2]) -> Option<Depth> {
     best
 }
 
+/// A tile's corners placed in some frame, with their derivative entries.
+type Corners = Vec<(Vec2, ChainJacobian)>;
+
 impl Problem {
+    /// The corners of contact `k`'s two tiles in state `state`: in the opened state from their
+    /// poses; in a state part of the way, which has rotations only, both in a's frame, b's
+    /// through the shortest pin path from a (None when there is none: the pair is in two
+    /// pieces of the pin graph).
+    fn pair_corners(
+        &self,
+        z: &DVec,
+        nodes: usize,
+        state: usize,
+        k: usize,
+    ) -> Option<(Corners, Corners)> {
+        let contact = &self.contacts[k];
+        if state == self.openings.len() - 1 {
+            let opened = |i: usize| -> Corners {
+                self.tiles[i]
+                    .iter()
+                    .map(|&n| {
+                        let (p, j) = self.corner(z, nodes, state, i, n);
+                        (p, ChainJacobian::from(j))
+                    })
+                    .collect()
+            };
+            return Some((opened(contact.a), opened(contact.b)));
+        }
+        let (route, entry) = self.contact_routes[k].as_ref()?;
+        let from_first = |tile: usize, from: usize| -> Corners {
+            self.tiles[tile]
+                .iter()
+                .map(|&to| self.chain(z, nodes, state, [Segment { tile, from, to }]))
+                .collect()
+        };
+        let (a, b) = (contact.a, contact.b);
+        let ca = from_first(a, self.tiles[a][0]);
+        // b's corners: the route to its entry node, then across b.
+        let (at, via) = self.chain(z, nodes, state, route.iter().copied());
+        let cb = from_first(b, *entry)
+            .into_iter()
+            .map(|(p, j)| (at + p, via.then(j)))
+            .collect();
+        Some((ca, cb))
+    }
+
     /// The contact rows of state `state`: every pair, each corner of one tile inside the other.
     pub(super) fn contact_rows(
         &self,
@@ -128,20 +178,21 @@ impl Problem {
         out: &mut Rows,
     ) {
         let weight = self.weights.bounds;
-        for contact in &self.contacts {
-            let opened = |i: usize| -> Vec<_> {
-                self.tiles[i]
-                    .iter()
-                    .map(|&n| self.corner(z, nodes, state, i, n))
-                    .collect()
+        let last = self.openings.len() - 1;
+        for (k, contact) in self.contacts.iter().enumerate() {
+            let Some((ca, cb)) = self.pair_corners(z, nodes, state, k) else {
+                continue;
             };
-            let (ca, cb) = (opened(contact.a), opened(contact.b));
             if every {
                 // The pattern: one row over every column of both tiles.
                 let e = ca.iter().chain(&cb).flat_map(|(_, j)| {
                     (0..2).flat_map(move |r| j.row(r).iter().map(|&(c, _)| (c, 1.0)))
                 });
-                out.push(0.0, e);
+                if state == last {
+                    out.push(0.0, e);
+                } else {
+                    out.push(0.0, super::problem::merged(e.collect()));
+                }
                 continue;
             }
             for (corners, other, tile) in [(&ca, &cb, contact.a), (&cb, &ca, contact.b)] {
@@ -166,7 +217,11 @@ impl Problem {
                             e.extend(jq.row(r).iter().map(|&(c, x)| (c, weight * g[r] * x)));
                         }
                     }
-                    out.push(weight * d, e);
+                    if state == last {
+                        out.push(weight * d, e);
+                    } else {
+                        out.push(weight * d, super::problem::merged(e));
+                    }
                 }
             }
         }

@@ -18,6 +18,7 @@ pub mod contact;
 pub mod deploy;
 pub mod error;
 pub mod field;
+pub mod loops;
 pub mod model;
 pub mod normal;
 pub mod problem;
@@ -327,12 +328,19 @@ pub fn problem_of(graded: &GradedSheet, outline: Outline, weights: Weights) -> P
         .collect();
     let pin_gaps = pin_gaps(graded);
     let contacts = contact::contacts(&tiles, &joints);
+    let loops = loops::cycle_basis(tiles.len(), &joints);
+    let contact_routes = contacts
+        .iter()
+        .map(|c| loops::route(&tiles, &joints, c.a, c.b, c.pin))
+        .collect();
     Problem {
         tiles,
         joints,
         joint_signs,
         pin_gaps,
         contacts,
+        contact_routes,
+        loops,
         openings,
         tips,
         inside,

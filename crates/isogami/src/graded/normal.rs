@@ -335,7 +335,7 @@ mod tests {
         system.assemble(&problem.rows(&z));
         system.assemble(&structure);
         // Contact rows: every tile of the last state moved onto its neighbour's place.
-        let last = 2 * sheet.nodes.len() + 3 * sheet.tiles.len() * sheet.path.len();
+        let last = 2 * sheet.nodes.len();
         let before = problem.rows(&z).values.len();
         for contact in &problem.contacts {
             let (a, b) = (last + 3 * contact.a, last + 3 * contact.b);

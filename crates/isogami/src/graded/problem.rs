@@ -1,10 +1,13 @@
 //! The least-squares problem of a graded sheet: residuals and their exact sparse Jacobian.
 //!
 //! Unknowns: the closed positions of the nodes (2 per node), then the opened pose of every
-//! tile (x, y, θ: the opened position of its first node and its rotation). Residual groups,
-//! each with its weight:
+//! tile (x, y, θ: the opened position of its first node and its rotation), then the rotation
+//! of every tile in each state part of the way (their positions follow from the pins:
+//! [`super::loops`]). Residual groups, each with its weight:
 //!
-//! - **joints**: the two opened positions of every pinned node coincide (2 rows per pin);
+//! - **joints**: the two opened positions of every pinned node coincide (2 rows per pin); in
+//!   a state part of the way, the chain of tiles around every cycle of a basis of the pin
+//!   graph's cycles closes (2 rows per cycle), which holds exactly when the pins can close;
 //! - **opening**: the mean relative rotation across the pins (signed like the periodic
 //!   sheet's) equals the periodic sheet's at the chosen state, so the opened state is as far
 //!   along the motion as the design's own (1 row);
@@ -28,6 +31,7 @@
 
 use super::contact::Contact;
 use super::field::FieldCell;
+use super::loops::Segment;
 use super::model::GradedSheet;
 use super::target::Outline;
 use crate::math::{perp, rotation, DVec, Real, Vec2};
@@ -96,6 +100,12 @@ pub struct Problem {
     /// Pairs of tiles sharing a closed node, kept apart in every state (see
     /// [`super::contact`]).
     pub contacts: Vec<Contact>,
+    /// Per contact, the chain of tiles placing b's entry node in a's frame, and that node
+    /// (the states part of the way; None: b is not reachable by pins from a).
+    pub contact_routes: Vec<Option<(Vec<Segment>, usize)>>,
+    /// A basis of short cycles of the pin graph: the loop closures of the states part of
+    /// the way.
+    pub loops: Vec<Vec<Segment>>,
     /// The mean signed relative rotation of each state, the opened state last.
     pub openings: Vec<Real>,
     /// Outline points (tile, node) fitted to the target.
@@ -205,6 +215,51 @@ impl Rows {
     }
 }
 
+/// Entries sorted by column, duplicates summed (chain rows repeat node columns; merged,
+/// the normal equations' assembly, quadratic in a row's length, does less).
+pub(super) fn merged(mut e: Vec<(usize, Real)>) -> Vec<(usize, Real)> {
+    e.sort_unstable_by_key(|x| x.0);
+    let mut out: Vec<(usize, Real)> = Vec::with_capacity(e.len());
+    for (c, v) in e {
+        match out.last_mut() {
+            Some(last) if last.0 == c => last.1 += v,
+            _ => out.push((c, v)),
+        }
+    }
+    out
+}
+
+/// The Jacobian of a point placed by a chain of tiles: 2 rows of any length.
+pub(super) struct ChainJacobian {
+    rows: [Vec<(usize, Real)>; 2],
+}
+
+impl ChainJacobian {
+    pub(super) fn row(&self, r: usize) -> &[(usize, Real)] {
+        &self.rows[r]
+    }
+
+    /// The Jacobian of this chain's point plus `next`'s (a chain continued).
+    pub(super) fn then(&self, next: ChainJacobian) -> ChainJacobian {
+        let [x, y] = next.rows;
+        let join = |mut head: Vec<(usize, Real)>, tail: Vec<(usize, Real)>| {
+            head.extend(tail);
+            head
+        };
+        ChainJacobian {
+            rows: [join(self.rows[0].clone(), x), join(self.rows[1].clone(), y)],
+        }
+    }
+}
+
+impl From<CornerJacobian> for ChainJacobian {
+    fn from(j: CornerJacobian) -> Self {
+        ChainJacobian {
+            rows: [j.row(0).to_vec(), j.row(1).to_vec()],
+        }
+    }
+}
+
 /// The Jacobian of an opened corner: 2 rows of 2 to 6 entries.
 pub(super) struct CornerJacobian {
     entries: [[(usize, Real); 6]; 2],
@@ -267,16 +322,83 @@ fn node_col(n: usize) -> usize {
 impl Problem {
     /// Number of unknowns for `nodes` nodes.
     pub fn unknowns(&self, nodes: usize) -> usize {
-        2 * nodes + 3 * self.tiles.len() * self.openings.len()
+        let t = self.tiles.len();
+        2 * nodes + 3 * t + t * (self.openings.len() - 1)
     }
 
-    /// Column of tile `i`'s x in state `s` (y and θ follow).
-    fn pose_col(&self, nodes: usize, s: usize, i: usize) -> usize {
-        2 * nodes + 3 * (self.tiles.len() * s + i)
+    /// Number of nodes of unknowns `z`.
+    fn nodes_of(&self, z: &DVec) -> usize {
+        let t = self.tiles.len();
+        (z.len() - 3 * t - t * (self.openings.len() - 1)) / 2
     }
 
-    /// The unknowns of a sheet: its nodes, then every state's poses (the sheet's `path`,
-    /// then its opened state).
+    /// Column of tile `i`'s x in the opened state (y and θ follow).
+    fn pose_col(&self, nodes: usize, i: usize) -> usize {
+        2 * nodes + 3 * i
+    }
+
+    /// Column of tile `i`'s rotation in state `s` (the opened state's full poses come first,
+    /// then every state part of the way's rotations).
+    pub(super) fn theta_col(&self, nodes: usize, s: usize, i: usize) -> usize {
+        let t = self.tiles.len();
+        if s == self.openings.len() - 1 {
+            2 * nodes + 3 * i + 2
+        } else {
+            2 * nodes + 3 * t + t * s + i
+        }
+    }
+
+    /// The point reached along `segments` (tile t, entered at node `from` and left at `to`,
+    /// adds R(θ_t)(X_to − X_from)) in state `state`, and its derivative entries.
+    pub(super) fn chain(
+        &self,
+        z: &DVec,
+        nodes: usize,
+        state: usize,
+        segments: impl IntoIterator<Item = Segment>,
+    ) -> (Vec2, ChainJacobian) {
+        let x = |k: usize| Vec2::new(z[node_col(k)], z[node_col(k) + 1]);
+        let mut p = Vec2::zeros();
+        let mut jac = ChainJacobian {
+            rows: [Vec::with_capacity(15), Vec::with_capacity(15)],
+        };
+        for seg in segments {
+            if seg.from == seg.to {
+                continue;
+            }
+            let tc = self.theta_col(nodes, state, seg.tile);
+            let r = rotation(z[tc]);
+            let rd = r * (x(seg.to) - x(seg.from));
+            p += rd;
+            let dth = perp(&rd);
+            for (row, entries) in jac.rows.iter_mut().enumerate() {
+                entries.push((tc, dth[row]));
+                entries.push((node_col(seg.to), r[(row, 0)]));
+                entries.push((node_col(seg.to) + 1, r[(row, 1)]));
+                entries.push((node_col(seg.from), -r[(row, 0)]));
+                entries.push((node_col(seg.from) + 1, -r[(row, 1)]));
+            }
+        }
+        (p, jac)
+    }
+
+    /// Loop closures of state `state` (part of the way): around every cycle of
+    /// [`Self::loops`], the tiles' chain returns to its start (2 rows per cycle).
+    fn push_loops(&self, z: &DVec, nodes: usize, state: usize, out: &mut Rows) {
+        let w = self.weights.joints * self.state_weight(state);
+        for cycle in &self.loops {
+            let (p, jac) = self.chain(z, nodes, state, cycle.iter().copied());
+            for row in 0..2 {
+                out.push(
+                    w * p[row],
+                    merged(jac.row(row).iter().map(|&(c, v)| (c, w * v)).collect()),
+                );
+            }
+        }
+    }
+
+    /// The unknowns of a sheet: its nodes, its opened poses, then the rotations of its
+    /// states part of the way (its `path`).
     pub fn pack(sheet: &GradedSheet) -> DVec {
         let n = sheet.nodes.len();
         let states: Vec<&Vec<super::model::OpenedPose>> = sheet
@@ -284,18 +406,24 @@ impl Problem {
             .iter()
             .chain(std::iter::once(&sheet.opened))
             .collect();
-        let mut z = DVec::zeros(2 * n + 3 * sheet.tiles.len() * states.len());
+        let t = sheet.tiles.len();
+        let mut z = DVec::zeros(2 * n + 3 * t + t * (states.len() - 1));
         for (k, p) in sheet.nodes.iter().enumerate() {
             z[2 * k] = p[0];
             z[2 * k + 1] = p[1];
         }
         let mut at = 2 * n;
-        for poses in states {
+        for pose in &sheet.opened {
+            z[at] = pose.x;
+            z[at + 1] = pose.y;
+            z[at + 2] = pose.theta;
+            at += 3;
+        }
+        // States part of the way: rotations only.
+        for poses in &sheet.path {
             for pose in poses {
-                z[at] = pose.x;
-                z[at + 1] = pose.y;
-                z[at + 2] = pose.theta;
-                at += 3;
+                z[at] = pose.theta;
+                at += 1;
             }
         }
         z
@@ -308,13 +436,32 @@ impl Problem {
             *p = [z[2 * k], z[2 * k + 1]];
         }
         let mut at = 2 * n;
-        let GradedSheet { path, opened, .. } = sheet;
-        for poses in path.iter_mut().chain(std::iter::once(opened)) {
-            for pose in poses.iter_mut() {
-                pose.x = z[at];
-                pose.y = z[at + 1];
-                pose.theta = z[at + 2];
-                at += 3;
+        for pose in sheet.opened.iter_mut() {
+            pose.x = z[at];
+            pose.y = z[at + 1];
+            pose.theta = z[at + 2];
+            at += 3;
+        }
+        if sheet.path.is_empty() {
+            return;
+        }
+        // States part of the way: the rotations, then the positions that close the pins best
+        // (see [`super::loops::place`]).
+        let joints: Vec<(usize, usize, usize)> =
+            sheet.joints.iter().map(|j| (j.a, j.b, j.node)).collect();
+        let nodes: Vec<Vec2> = (0..n).map(|k| sheet.node(k)).collect();
+        let firsts: Vec<usize> = sheet.tiles.iter().map(|t| t.nodes[0]).collect();
+        for poses in sheet.path.iter_mut() {
+            let thetas: Vec<Real> = (0..poses.len()).map(|i| z[at + i]).collect();
+            at += poses.len();
+            let mut positions: Vec<Vec2> = poses.iter().map(|p| Vec2::new(p.x, p.y)).collect();
+            super::loops::place(&firsts, &joints, &nodes, &thetas, &mut positions);
+            for ((pose, theta), p) in poses.iter_mut().zip(thetas).zip(positions) {
+                *pose = super::model::OpenedPose {
+                    x: p.x,
+                    y: p.y,
+                    theta,
+                };
             }
         }
     }
@@ -328,8 +475,13 @@ impl Problem {
         i: usize,
         n: usize,
     ) -> (Vec2, CornerJacobian) {
+        debug_assert_eq!(
+            state,
+            self.openings.len() - 1,
+            "full poses in the opened state only"
+        );
         let f = self.tiles[i][0];
-        let pc = self.pose_col(nodes, state, i);
+        let pc = self.pose_col(nodes, i);
         let th = z[pc + 2];
         let r = rotation(th);
         let x = |k: usize| Vec2::new(z[node_col(k)], z[node_col(k) + 1]);
@@ -397,10 +549,14 @@ impl Problem {
     /// The pin rows of every state alone, in the order [`Self::rows`] has them.
     pub fn pin_rows(&self, z: &DVec) -> Rows {
         let states = self.openings.len();
-        let nodes = (z.len() - 3 * self.tiles.len() * states) / 2;
+        let nodes = self.nodes_of(z);
         let mut out = Rows::default();
         for state in 0..states {
-            self.push_pins(z, nodes, state, &mut out);
+            if state == states - 1 {
+                self.push_pins(z, nodes, state, &mut out);
+            } else {
+                self.push_loops(z, nodes, state, &mut out);
+            }
         }
         out
     }
@@ -421,21 +577,25 @@ impl Problem {
 
     fn rows_of(&self, z: &DVec, every: bool) -> Rows {
         let states = self.openings.len();
-        let nodes = (z.len() - 3 * self.tiles.len() * states) / 2;
+        let nodes = self.nodes_of(z);
         let last = states - 1;
         let w = self.weights;
         let mut out = Rows::default();
         let x = |k: usize| Vec2::new(z[node_col(k)], z[node_col(k) + 1]);
         for (state, &opening) in self.openings.iter().enumerate() {
-            self.push_pins(z, nodes, state, &mut out);
+            if state == last {
+                self.push_pins(z, nodes, state, &mut out);
+            } else {
+                self.push_loops(z, nodes, state, &mut out);
+            }
             // Mean opening.
             if !self.joints.is_empty() {
                 let m = self.joints.len() as Real;
                 let mut value = -opening;
                 let mut e = Vec::with_capacity(2 * self.joints.len());
                 for (&(a, b, _), &s) in self.joints.iter().zip(&self.joint_signs) {
-                    let ca = self.pose_col(nodes, state, a) + 2;
-                    let cb = self.pose_col(nodes, state, b) + 2;
+                    let ca = self.theta_col(nodes, state, a);
+                    let cb = self.theta_col(nodes, state, b);
                     value += s * (z[cb] - z[ca]) / m;
                     e.push((cb, w.opening * s / m));
                     e.push((ca, -w.opening * s / m));
@@ -450,8 +610,8 @@ impl Problem {
                     continue;
                 }
                 let floor = w.pin_fraction * opening;
-                let ca = self.pose_col(nodes, state, a) + 2;
-                let cb = self.pose_col(nodes, state, b) + 2;
+                let ca = self.theta_col(nodes, state, a);
+                let cb = self.theta_col(nodes, state, b);
                 let value = floor - s * (z[cb] - z[ca]);
                 if every || value > 0.0 {
                     out.push(w.bounds * value, [(cb, -w.bounds * s), (ca, w.bounds * s)]);
@@ -468,8 +628,8 @@ impl Problem {
                 }
                 let raw = crate::math::cross(&v, &u).atan2(v.dot(&u));
                 let closed_gap = gap.start + wrap_angle(raw - gap.start_raw);
-                let ca = self.pose_col(nodes, state, a) + 2;
-                let cb = self.pose_col(nodes, state, b) + 2;
+                let ca = self.theta_col(nodes, state, a);
+                let cb = self.theta_col(nodes, state, b);
                 let value = -(closed_gap + gap.sign * (z[cb] - z[ca]));
                 if every || value > 0.0 {
                     // ∂arg(u)/∂u = perp(u)/|u|², ∂arg(v)/∂v likewise, gap = arg u − arg v.
@@ -674,6 +834,76 @@ mod tests {
         }
         // Contact rows active: a tile pushed into its neighbour in the opened state.
         jacobian_matches_finite_differences(&pushed, true);
+        // Contact rows active in a state part of the way (rotations only), along
+        // pin paths of one hop and longer.
+        jacobian_matches_finite_differences_turned(&pushed);
+    }
+
+    /// Every tile of the states part of the way turned so that contact rows (of
+    /// pinned and unpinned pairs) are active there; then the finite-difference comparison.
+    fn jacobian_matches_finite_differences_turned(request: &GradedRequest) {
+        let (sheet, problem) = setup(request).unwrap();
+        assert!(!sheet.path.is_empty());
+        let z0 = Problem::pack(&sheet);
+        assert_eq!(z0.len(), problem.unknowns(sheet.nodes.len()));
+        assert_eq!(active_contacts(&problem, &z0), 0);
+        // Pack and unpack round trip: the poses part of the way come back (pins closed).
+        let mut back = sheet.clone();
+        for pose in back.path.iter_mut().flatten() {
+            pose.x += 0.3;
+            pose.y -= 0.2;
+        }
+        Problem::unpack(&mut back, &z0);
+        for (p, q) in back.path.iter().flatten().zip(sheet.path.iter().flatten()) {
+            let shift = (
+                back.path[0][0].x - sheet.path[0][0].x,
+                back.path[0][0].y - sheet.path[0][0].y,
+            );
+            assert!((p.x - q.x - shift.0).abs() < 1e-9 && (p.y - q.y - shift.1).abs() < 1e-9);
+        }
+        // Turn tiles until contacts are active part of the way, of both kinds.
+        let mut seed = 11u64;
+        let mut z = z0.clone();
+        let first = 2 * sheet.nodes.len() + 3 * sheet.tiles.len();
+        for k in first..z.len() {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            z[k] += 1.2 * ((seed >> 11) as Real / (1u64 << 53) as Real - 0.5);
+        }
+        let count = |pinned: bool| {
+            let mut p = problem.clone();
+            let keep: Vec<bool> = p
+                .contacts
+                .iter()
+                .map(|c| c.pin.is_some() == pinned)
+                .collect();
+            let mut k = 0;
+            p.contacts.retain(|_| {
+                k += 1;
+                keep[k - 1]
+            });
+            let mut k = 0;
+            p.contact_routes.retain(|_| {
+                k += 1;
+                keep[k - 1]
+            });
+            active_contacts(&p, &z)
+        };
+        let (pinned, unpinned) = (count(true), count(false));
+        assert!(
+            pinned > 0 && unpinned > 0,
+            "active: pinned {pinned}, unpinned {unpinned}"
+        );
+        assert!(
+            problem
+                .contact_routes
+                .iter()
+                .flatten()
+                .any(|r| r.0.len() > 1),
+            "a route of more than one hop"
+        );
+        jacobian_at(&problem, &z);
     }
 
     /// Moves the opened pose of the second tile of the first unpinned contact pair halfway
@@ -721,6 +951,11 @@ mod tests {
                 .wrapping_add(1442695040888963407);
             *v += 0.02 * ((seed >> 11) as Real / (1u64 << 53) as Real - 0.5);
         }
+        jacobian_at(&problem, &z);
+    }
+
+    fn jacobian_at(problem: &Problem, z: &DVec) {
+        let z = z.clone();
         let h = 1e-6;
         let (jacobian, values) = problem.rows(&z).to_dense(z.len());
         // Sparse rows, then dense rows, as in `to_dense`.
@@ -782,8 +1017,9 @@ mod tests {
         let first = problem.state_weight(0);
         problem.weights.state_exponent = 0.0;
         let plain = problem.rows(&z);
-        // State 0's block starts with its pin rows.
-        for r in 0..2 * problem.joints.len() {
+        // State 0's block starts with its loop closures.
+        assert!(!problem.loops.is_empty());
+        for r in 0..2 * problem.loops.len() {
             let ratio = weighed.values[r] / plain.values[r];
             assert!((ratio - first).abs() < 1e-9 * ratio, "{ratio} vs {first}");
         }

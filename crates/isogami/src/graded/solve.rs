@@ -411,7 +411,7 @@ pub fn measure(sheet: &GradedSheet, problem: &Problem) -> GradedReport {
         .fold(Real::INFINITY, Real::min);
     GradedReport {
         tiles: sheet.tiles.len(),
-        unknowns: 2 * sheet.nodes.len() + 3 * sheet.tiles.len() * (sheet.path.len() + 1),
+        unknowns: problem.unknowns(sheet.nodes.len()),
         iterations: 0,
         cost: [0.0, 0.0],
         joint_gap: sheet.joint_gap(),
