@@ -382,6 +382,24 @@ impl Problem {
         (p, jac)
     }
 
+    /// The point [`Self::chain`] reaches, without its derivative.
+    pub(super) fn chain_point(
+        &self,
+        z: &DVec,
+        nodes: usize,
+        state: usize,
+        segments: impl IntoIterator<Item = Segment>,
+    ) -> Vec2 {
+        let x = |k: usize| Vec2::new(z[node_col(k)], z[node_col(k) + 1]);
+        segments
+            .into_iter()
+            .filter(|seg| seg.from != seg.to)
+            .map(|seg| {
+                rotation(z[self.theta_col(nodes, state, seg.tile)]) * (x(seg.to) - x(seg.from))
+            })
+            .sum()
+    }
+
     /// Loop closures of state `state` (part of the way): around every cycle of
     /// [`Self::loops`], the tiles' chain returns to its start (2 rows per cycle).
     fn push_loops(&self, z: &DVec, nodes: usize, state: usize, out: &mut Rows) {
