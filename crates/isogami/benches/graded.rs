@@ -3,7 +3,8 @@
 //! machine's cores (goal: 400 tiles in ≤ 10 s).
 //!
 //! `cargo bench -p isogami --bench graded` times 100 and 400 tiles; `-- 1600` (or any list of
-//! tile counts among 100, 400, 1600) chooses, `-- --runs N` repeats (default 3). A solve
+//! tile counts among 100, 400, 1600) chooses, `-- --runs N` repeats (default 3),
+//! `-- --iterations N` caps the fit as `isogami graded --iterations` does (default 400). A solve
 //! takes seconds to minutes, so this is a plain timing harness, not criterion's (which takes
 //! at least ten samples): each size is graded `runs` times through the library's entry point
 //! (`api::graded_sheet`, as every front end) and the median optimisation time (the report's
@@ -19,6 +20,7 @@ use isogami::stop::NEVER;
 fn main() {
     let mut sizes: Vec<usize> = Vec::new();
     let mut runs = 3;
+    let mut iterations = None;
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
         match arg.as_str() {
@@ -28,6 +30,14 @@ fn main() {
                     .and_then(|v| v.parse().ok())
                     .filter(|&n| n > 0)
                     .unwrap_or_else(|| fail("--runs takes a positive count"));
+            }
+            "--iterations" => {
+                iterations = Some(
+                    args.next()
+                        .and_then(|v| v.parse().ok())
+                        .filter(|&n| n > 0)
+                        .unwrap_or_else(|| fail("--iterations takes a positive count")),
+                );
             }
             // cargo bench passes --bench to every harness.
             "--bench" => {}
@@ -43,12 +53,15 @@ fn main() {
     for tiles in sizes {
         // The 2×2 design has 4 tiles a cell.
         let cells = ((tiles / 4) as f64).sqrt() as usize;
-        let request = GradedRequest {
+        let mut request = GradedRequest {
             design: "rotating-squares".into(),
             rows: cells,
             cols: cells,
             ..GradedRequest::default()
         };
+        if let Some(n) = iterations {
+            request.solve.max_iterations = n;
+        }
         let mut seconds = Vec::with_capacity(runs);
         for run in 0..runs {
             let graded = graded_sheet(&request, &mut |_| true, NEVER)
