@@ -20,7 +20,7 @@ export const DEFAULTS = Object.freeze({
   cols: 3,
   outline: 'disc',
   states: 8,
-  iterations: 800,
+  iterations: 200, // the library's default (graded::SolveSettings)
 });
 
 /** A blank form: the design from `?design=` when given, else the server's default. */

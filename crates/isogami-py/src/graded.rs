@@ -558,7 +558,7 @@ fn region_of(region: &Bound<'_, PyAny>) -> PyResult<(usize, usize)> {
 /// ((16, 3), 16)
 #[pyfunction]
 #[pyo3(signature = (design, region=None, target="disc", t=None, states=None, iterations=None, *, field=None, progress=None, timeout=None),
-  text_signature = "(design, region=(3, 3), target='disc', t=None, states=8, iterations=400, *, field=None, progress=None, timeout=None)")]
+  text_signature = "(design, region=(3, 3), target='disc', t=None, states=8, iterations=200, *, field=None, progress=None, timeout=None)")]
 #[allow(clippy::too_many_arguments)]
 pub fn graded(
     py: Python<'_>,

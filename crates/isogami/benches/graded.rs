@@ -4,7 +4,7 @@
 //!
 //! `cargo bench -p isogami --bench graded` times 100 and 400 tiles; `-- 1600` (or any list of
 //! tile counts among 100, 400, 1600) chooses, `-- --runs N` repeats (default 3),
-//! `-- --iterations N` caps the fit as `isogami graded --iterations` does (default 400). A solve
+//! `-- --iterations N` caps the fit as `isogami graded --iterations` does (default 200). A solve
 //! takes seconds to minutes, so this is a plain timing harness, not criterion's (which takes
 //! at least ten samples): each size is graded `runs` times through the library's entry point
 //! (`api::graded_sheet`, as every front end) and the median optimisation time (the report's

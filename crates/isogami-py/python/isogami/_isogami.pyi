@@ -1109,7 +1109,7 @@ def graded(
     target: str = "disc",
     t: Optional[float] = None,
     states: int = 8,
-    iterations: int = 400,
+    iterations: int = 200,
     *,
     field: Union[Tuple[float, float], Tuple[float, float, float], Sequence[float], None] = None,
     progress: Optional[GradedProgress] = None,
