@@ -35,7 +35,8 @@ pub struct Args {
     /// the way; 1: the opened state alone, which leaves most sheets rigid).
     #[arg(long, default_value_t = GradedRequest::default().states)]
     states: usize,
-    /// Iterations of the optimisation.
+    /// Iterations of the optimisation (sheets of over a few hundred tiles come nearer their
+    /// target with more: 1,600 rotating squares 5.3 % from a disc at 200, 2.6 % at 400).
     #[arg(long, default_value_t = GradedRequest::default().solve.max_iterations)]
     iterations: usize,
     /// Write the graded sheet and its report as JSON to this file.
