@@ -125,27 +125,27 @@ impl Basis {
     }
 }
 
-/// Number of connected components of the pin graph.
-fn components(adj: &[Vec<(usize, usize)>]) -> usize {
-    let mut seen = vec![false; adj.len()];
+/// The piece (connected component) of the pin graph each tile is in, and how many there are.
+fn pieces(adj: &[Vec<(usize, usize)>]) -> (Vec<usize>, usize) {
+    let mut piece = vec![usize::MAX; adj.len()];
     let mut count = 0;
     for s in 0..adj.len() {
-        if seen[s] {
+        if piece[s] != usize::MAX {
             continue;
         }
-        count += 1;
-        seen[s] = true;
+        piece[s] = count;
         let mut stack = vec![s];
         while let Some(t) = stack.pop() {
             for &(_, u) in &adj[t] {
-                if !seen[u] {
-                    seen[u] = true;
+                if piece[u] == usize::MAX {
+                    piece[u] = count;
                     stack.push(u);
                 }
             }
         }
+        count += 1;
     }
-    count
+    (piece, count)
 }
 
 /// Longest cycle (in pins) enumerated exhaustively around every pin.
@@ -193,7 +193,7 @@ fn short_paths(
 /// BFS tree if that falls short), each as its segments.
 pub fn cycle_basis(tiles: usize, joints: &[(usize, usize, usize)]) -> Vec<Vec<Segment>> {
     let adj = adjacency(tiles, joints);
-    let rank = joints.len() + components(&adj) - tiles;
+    let rank = joints.len() + pieces(&adj).1 - tiles;
     let words = joints.len().div_ceil(64).max(1);
     let bits = |pins: &[usize]| {
         let mut v = vec![0u64; words];
@@ -368,24 +368,7 @@ pub fn place(
     let tiles = firsts.len();
     let adj = adjacency(tiles, joints);
     // Pieces of the pin graph; the first tile of each is held.
-    let mut piece = vec![usize::MAX; tiles];
-    let mut pieces = 0;
-    for s in 0..tiles {
-        if piece[s] != usize::MAX {
-            continue;
-        }
-        piece[s] = pieces;
-        let mut stack = vec![s];
-        while let Some(t) = stack.pop() {
-            for &(_, u) in &adj[t] {
-                if piece[u] == usize::MAX {
-                    piece[u] = pieces;
-                    stack.push(u);
-                }
-            }
-        }
-        pieces += 1;
-    }
+    let (piece, pieces) = pieces(&adj);
     let mut held = vec![false; pieces];
     let mut column = vec![None; tiles];
     let mut free = 0;
@@ -475,7 +458,7 @@ mod tests {
         for sheet in sheets() {
             let joints = joints(&sheet);
             let tiles = sheet.tiles.len();
-            let pieces = components(&adjacency(tiles, &joints));
+            let pieces = pieces(&adjacency(tiles, &joints)).1;
             let basis = cycle_basis(tiles, &joints);
             assert!(!basis.is_empty());
             assert_eq!(
