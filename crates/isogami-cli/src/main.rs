@@ -95,7 +95,10 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {}", output::usage::one_line(&e));
+            eprintln!(
+                "error: {}",
+                isogami::input::clip_echo(&output::usage::one_line(&e))
+            );
             ExitCode::from(2)
         }
     }

@@ -53,6 +53,16 @@ pub enum StoreError {
     /// stored value cannot be read.
     #[error("damaged database ({0}); restore it from a copy or re-run explore into a new file")]
     Damaged(String),
+    /// `db migrate` of a database already of the current schema: nothing to do, and it can be
+    /// used as it is.
+    #[error(
+        "already of schema version {version}, the current one: nothing to migrate; use it as \
+         it is"
+    )]
+    AlreadyCurrent {
+        /// The schema version it has (and the current one).
+        version: i64,
+    },
     /// A writer was killed in the middle of a commit; its rollback journal is still there.
     #[error(
         "an interrupted write left its rollback journal beside the file; run the same explore \

@@ -203,9 +203,9 @@ impl OldFile {
             }
             Some(v @ (LABELS_BEFORE_ISSUE_21 | BEFORE_FINITE_COLUMNS)) => v,
             Some(SCHEMA_VERSION) => {
-                return Err(StoreError::Damaged(format!(
-                    "already schema version {SCHEMA_VERSION}: nothing to migrate"
-                )))
+                return Err(StoreError::AlreadyCurrent {
+                    version: SCHEMA_VERSION,
+                })
             }
             Some(found) => {
                 return Err(StoreError::SchemaVersion {

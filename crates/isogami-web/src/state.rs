@@ -32,8 +32,9 @@ pub struct ServerSettings {
     pub header_timeout: Duration,
     /// Longest a request may take to send its body once its headers are in (default 10 s).
     pub body_timeout: Duration,
-    /// Exports that may run at once (default 2): each holds one of these while its work
-    /// runs, past its answer if the library is in a stage that cannot stop.
+    /// Exports and finite sheets (`/api/sheet`) that may run at once (default 2): each holds
+    /// one of these while its work runs, past its answer if the library is in a stage that
+    /// cannot stop.
     pub heavy_jobs: usize,
 }
 
@@ -71,7 +72,7 @@ struct Inner {
     jobs: Jobs,
     /// Graded-sheet jobs.
     graded_jobs: GradedJobs,
-    /// Permits of the heavy jobs (exports).
+    /// Permits of the heavy jobs (exports, finite sheets).
     heavy: Arc<Semaphore>,
 }
 

@@ -24,6 +24,7 @@ pub mod export;
 pub mod finite;
 pub mod geometry;
 pub mod graded;
+pub mod input;
 pub mod inverse;
 pub mod kinematics;
 pub mod linkage;

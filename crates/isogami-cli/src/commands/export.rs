@@ -15,6 +15,7 @@ use isogami::export::{
     GradedPatchRequest, PatchRequest, Scale, SettingsGroup, State, MAX_PATCH,
 };
 use isogami::finite::FiniteError;
+use isogami::input::{read_text, MAX_SHEET_BYTES};
 use isogami::stop::NEVER;
 use std::path::{Path, PathBuf};
 
@@ -95,6 +96,8 @@ pub struct Args {
 pub fn run(args: Args) -> CliResult {
     let request = request(&args)?;
     let options = options(&args)?;
+    // The destination before the work: a sheet can take minutes.
+    check_out(&args.out, args.format.extension().is_none())?;
     let (patch, files) = match (&args.sheet, &args.design) {
         (Some(path), _) => {
             let graded = GradedPatchRequest {
@@ -102,8 +105,7 @@ pub fn run(args: Args) -> CliResult {
                 state: request.state,
                 frames: request.frames,
             };
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| format!("--sheet {}: cannot read it: {e}", path.display()))?;
+            let text = read_text(path, MAX_SHEET_BYTES).map_err(|e| format!("--sheet {e}"))?;
             let input =
                 read_graded(&text).map_err(|e| format!("--sheet {}: {e}", path.display()))?;
             export_graded(
@@ -180,24 +182,34 @@ fn options(args: &Args) -> Result<ExportOptions, String> {
     Ok(options)
 }
 
-fn write_files(out: &Path, files: &ExportFiles) -> CliResult {
-    match files {
-        ExportFiles::One(bytes) => {
-            if out.is_dir() {
-                return Err(format!(
-                    "--out {}: is a folder, expected a file",
-                    out.display()
-                ));
-            }
-            write_atomic(out, bytes)
+/// Checks `--out` as a file or, for a folder format, a folder, writing nothing.
+fn check_out(out: &Path, folder: bool) -> CliResult {
+    let mut outputs = Outputs::new();
+    if folder {
+        if out.exists() && !out.is_dir() {
+            return Err(format!(
+                "--out {}: is a file, expected a folder",
+                out.display()
+            ));
         }
+        outputs.folder(out);
+    } else {
+        if out.is_dir() {
+            return Err(format!(
+                "--out {}: is a folder, expected a file",
+                out.display()
+            ));
+        }
+        outputs.file(out, Vec::new());
+    }
+    outputs.check()
+}
+
+fn write_files(out: &Path, files: &ExportFiles) -> CliResult {
+    check_out(out, matches!(files, ExportFiles::Folder(_)))?;
+    match files {
+        ExportFiles::One(bytes) => write_atomic(out, bytes),
         ExportFiles::Folder(named) => {
-            if out.exists() && !out.is_dir() {
-                return Err(format!(
-                    "--out {}: is a file, expected a folder",
-                    out.display()
-                ));
-            }
             // All the folder's files, or none.
             let mut outputs = Outputs::new();
             outputs.folder(out);

@@ -2,12 +2,13 @@
 //! it opens into a target outline, written as JSON, with the check that its closed tiling
 //! really opens into it along one motion.
 
-use crate::output::{emit, json_text, write_atomic, CliResult};
+use crate::output::{emit, json_text, write_atomic, CliResult, Outputs};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami::api::{graded_sheet, GradedRun};
-use isogami::graded::{self, outline_from_svg, GradedRequest, PathCheck, Target};
+use isogami::graded::{self, outline_from_svg, GradedRequest, PathCheck, Target, MAX_SVG_BYTES};
+use isogami::input::read_text;
 use isogami::stop::NEVER;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `graded`.
 #[derive(Debug, clap::Args)]
@@ -65,7 +66,7 @@ fn parse_target(text: &str) -> Result<Target, String> {
     let Some(path) = text.strip_prefix('@') else {
         return graded::parse_target(text).map_err(|e| e.to_string());
     };
-    let svg = std::fs::read_to_string(path).map_err(|e| format!("cannot read the file: {e}"))?;
+    let svg = read_text(Path::new(path), MAX_SVG_BYTES).map_err(|e| e.to_string())?;
     outline_from_svg(&svg)
         .map(Target::Outline)
         .map_err(|e| e.to_string())
@@ -73,6 +74,12 @@ fn parse_target(text: &str) -> Result<Target, String> {
 
 /// Grades one design towards one outline.
 pub fn run(args: Args) -> CliResult {
+    // The destination before the work: a large sheet takes minutes.
+    if let Some(path) = &args.out {
+        let mut outputs = Outputs::new();
+        outputs.file(path, Vec::new());
+        outputs.check()?;
+    }
     let mut request = GradedRequest {
         design: args.design.clone(),
         rows: args.region.0,

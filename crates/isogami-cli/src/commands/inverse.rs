@@ -4,6 +4,7 @@
 
 use crate::output::{emit, print_json, CliResult};
 use indicatif::{ProgressBar, ProgressStyle};
+use isogami::input::{read_text, MAX_TARGET_BYTES};
 use isogami::inverse::{inverse_design, InverseRequest, InverseResult, Scored, Target};
 use isogami_store::{Check, SavedDesign, Store, StoreError, StoreWriter};
 use serde::Serialize;
@@ -61,7 +62,7 @@ fn at(path: &Path, e: StoreError) -> String {
 fn read_target(text: &str) -> Result<Target, String> {
     let body = match text.strip_prefix('@') {
         Some(file) => {
-            std::fs::read_to_string(file).map_err(|e| format!("--target @{file}: {e}"))?
+            read_text(Path::new(file), MAX_TARGET_BYTES).map_err(|e| format!("--target @{e}"))?
         }
         None => text.to_string(),
     };

@@ -37,6 +37,15 @@ enum Destination {
     Through(PathBuf),
 }
 
+impl Destination {
+    /// The path written.
+    fn path(&self) -> &Path {
+        match self {
+            Destination::Replace(p) | Destination::Through(p) => p,
+        }
+    }
+}
+
 impl Outputs {
     /// No outputs yet.
     pub fn new() -> Self {
@@ -53,27 +62,39 @@ impl Outputs {
         self.folders.push(path.to_path_buf());
     }
 
-    /// Writes every output, or none (see the module documentation); the error is one line
-    /// naming the path.
-    pub fn write(self) -> Result<(), String> {
+    /// Checks every destination as [`Outputs::write`] does, writing nothing. A command
+    /// checks its output paths (contents still empty) before its work, so that a folder given
+    /// for a file, a missing parent or two outputs naming one file is refused at once, not
+    /// after minutes of computing.
+    pub fn check(&self) -> Result<(), String> {
+        self.destinations().map(drop)
+    }
+
+    /// Every output's checked destination (see the module documentation, step 1).
+    fn destinations(&self) -> Result<Vec<(PathBuf, Destination)>, String> {
         for folder in &self.folders {
             check_folder(folder)?;
         }
-        let mut destinations = Vec::with_capacity(self.files.len());
+        let mut destinations: Vec<(PathBuf, Destination)> = Vec::with_capacity(self.files.len());
         for (path, _) in &self.files {
             let d = destination(path, &self.folders)?;
-            let real = match &d {
-                Destination::Replace(p) | Destination::Through(p) => p,
-            };
-            if destinations
-                .iter()
-                .any(|(_, e): &(_, Destination)| match e {
-                    Destination::Replace(q) | Destination::Through(q) => q == real,
-                })
-            {
+            if destinations.iter().any(|(_, e)| e.path() == d.path()) {
                 return Err(format!("{}: named twice among the outputs", path.display()));
             }
             destinations.push((path.clone(), d));
+        }
+        Ok(destinations)
+    }
+
+    /// Writes every output, or none (see the module documentation); the error is one line
+    /// naming the path. Temporary files that a killed earlier run left beside a destination
+    /// are removed first.
+    pub fn write(self) -> Result<(), String> {
+        let destinations = self.destinations()?;
+        for (_, d) in &destinations {
+            if let Destination::Replace(real) = d {
+                remove_stale_temps(real);
+            }
         }
         let made = make_folders(&self.folders)?;
         let mut temps: Vec<(PathBuf, PathBuf)> = Vec::new();
@@ -240,12 +261,55 @@ fn kind(path: &Path, real: PathBuf, m: &Metadata) -> Result<Destination, String>
     }
 }
 
-/// A temporary name beside `real`, unique in this process.
+/// A temporary name beside `real`, unique in this process: `.NAME.tmpPID-K`.
 fn temp_beside(real: &Path, k: usize) -> PathBuf {
-    let name = real
-        .file_name()
-        .map_or_else(|| "output".into(), |n| n.to_string_lossy().into_owned());
-    real.with_file_name(format!(".{name}.tmp{}-{k}", std::process::id()))
+    real.with_file_name(format!(
+        ".{}.tmp{}-{k}",
+        file_name(real),
+        std::process::id()
+    ))
+}
+
+/// The file name of `real` as text (`output` for none).
+fn file_name(real: &Path) -> String {
+    real.file_name()
+        .map_or_else(|| "output".into(), |n| n.to_string_lossy().into_owned())
+}
+
+/// Removes the temporary files ([`temp_beside`]) of `real` whose process is gone: a run
+/// killed between writing and renaming them (SIGKILL cannot be caught) leaves them. A file
+/// of a process that still runs is left alone, and so is everything not named so. Only
+/// where `/proc` tells which processes run.
+fn remove_stale_temps(real: &Path) {
+    let proc = Path::new("/proc/self");
+    if !proc.exists() {
+        return;
+    }
+    let prefix = format!(".{}.tmp", file_name(real));
+    let folder = match real.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let Ok(entries) = fs::read_dir(folder) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let Some((pid, k)) = name
+            .strip_prefix(&prefix)
+            .and_then(|rest| rest.split_once('-'))
+        else {
+            continue;
+        };
+        let ours = !pid.is_empty()
+            && pid.bytes().all(|b| b.is_ascii_digit())
+            && !k.is_empty()
+            && k.bytes().all(|b| b.is_ascii_digit());
+        let alive = Path::new("/proc").join(pid).exists();
+        if ours && !alive && entry.file_type().is_ok_and(|t| t.is_file()) {
+            let _ = fs::remove_file(entry.path());
+        }
+    }
 }
 
 /// Writes `contents` to the new file `temp`, with the permissions of the file it will

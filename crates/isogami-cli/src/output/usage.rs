@@ -20,7 +20,7 @@ pub fn report(e: &clap::Error, args: &[OsString]) -> ExitCode {
             let path = command_path(args);
             eprintln!(
                 "error: {}; see '{} --help'",
-                summary(e, &path),
+                isogami::input::clip_echo(&summary(e, &path)),
                 path.join(" ")
             );
             ExitCode::from(2)

@@ -17,6 +17,7 @@ mod export_print_cli;
 mod graded_cli;
 mod graded_export;
 mod graded_svg_cli;
+mod hostile_inputs_cli;
 mod inverse_checks;
 mod inverse_cli;
 mod serve_cli;

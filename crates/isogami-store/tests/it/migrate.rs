@@ -93,3 +93,35 @@ fn old_files_are_refused_naming_the_migration_and_migrated_into_a_new_file() {
     assert_eq!(again.explored.as_ref().unwrap().committed, 0);
     assert_eq!((again.user_saved, again.user_merged), (0, 1));
 }
+
+/// Issue 42: `db migrate` of a healthy current database called it damaged and told the user
+/// to restore it from a copy. It says the file is current and usable, writes no new file,
+/// and leaves the old one as it was.
+#[test]
+fn a_current_database_is_not_called_damaged() {
+    let dir_guard = temp("migrate-current");
+    let dir = dir_guard.path();
+    let current = dir.join("current.db");
+    explore_into(
+        &current,
+        &common::two_family_request(1),
+        &mut |_| {},
+        &AtomicBool::new(false),
+    )
+    .unwrap();
+    let before = std::fs::read(&current).unwrap();
+    let new = dir.join("new.db");
+    let e = migrate(&current, &new, 1, &mut |_| {}, &AtomicBool::new(false)).unwrap_err();
+    assert!(
+        matches!(e, StoreError::AlreadyCurrent { version } if version == isogami_store::SCHEMA_VERSION),
+        "{e:?}"
+    );
+    let said = e.to_string();
+    assert!(
+        !said.contains("damaged") && !said.contains("restore"),
+        "{said}"
+    );
+    assert_eq!(std::fs::read(&current).unwrap(), before);
+    assert!(!new.exists(), "no new file for nothing to migrate");
+    Store::open_read(&current, Check::Full).unwrap();
+}

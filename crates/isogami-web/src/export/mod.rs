@@ -202,8 +202,9 @@ pub async fn export_bounded(
     })
 }
 
-/// One `heavy` permit, waited for at most `timeout` (busy after that), and the time left.
-async fn heavy_permit(
+/// One `heavy` permit, waited for at most `timeout` (busy after that), and the time left:
+/// exports and finite sheets share them.
+pub(crate) async fn heavy_permit(
     heavy: Arc<Semaphore>,
     timeout: Duration,
 ) -> ApiResult<(tokio::sync::OwnedSemaphorePermit, Duration)> {
@@ -291,8 +292,8 @@ fn busy() -> ApiError {
     ApiError::new(
         StatusCode::SERVICE_UNAVAILABLE,
         "busy",
-        "the server is running as many exports as it allows",
-        "try again in a moment, or run `isogami export` from the command line",
+        "the server is running as many exports and finite sheets as it allows",
+        "try again in a moment, or run `isogami export` or `isogami sheet` from the command line",
     )
 }
 

@@ -2,7 +2,8 @@
 //! of freedom with a free boundary, its completion to a one-DOF sheet or the library's reason
 //! why there is none, and on request the completed sheet's finite deployment. Every answer
 //! comes from `isogami::api::{finite_sheet, deploy_sheet}`, run off the async runtime under the
-//! live deployment's deadline ([`sheet_bounded`]).
+//! live deployment's deadline and one of the heavy-job permits exports take
+//! ([`sheet_bounded`]).
 //!
 //! | module | what |
 //! |---|---|
@@ -11,7 +12,8 @@
 pub mod query;
 
 use crate::error::{ApiError, ApiResult};
-use crate::live::{explain, run_bounded, timed_out, Deadline};
+use crate::export::heavy_permit;
+use crate::live::{explain, run_answered, timed_out, Deadline};
 use axum::http::StatusCode;
 use isogami::api::{
     deploy_sheet, finite_sheet, resolve_design, sheet_geometry, Design, SheetAnalysis,
@@ -23,7 +25,9 @@ use isogami::kinematics::Mechanism;
 use isogami::Error;
 use query::SheetQuery;
 use serde::Serialize;
+use std::sync::Arc;
 use std::time::Duration;
+use tokio::sync::Semaphore;
 
 /// The answer of `GET /api/sheet`.
 #[derive(Debug, Clone, Serialize)]
@@ -181,17 +185,32 @@ fn raw_analysis(
     finite_sheet(design, &raw, progress)
 }
 
-/// Runs `query` on the blocking pool, stopped at `timeout` or when the caller's future is
-/// dropped (the client went away).
-pub async fn sheet_bounded(query: SheetQuery, timeout: Duration) -> ApiResult<SheetAnswer> {
+/// Runs `query` on the blocking pool holding one `heavy` permit (waited for within
+/// `timeout`: 503 `busy` after that), answered by `timeout` (the time waited included) plus
+/// [`ANSWER_GRACE`](crate::live::ANSWER_GRACE), and stopped at the deadline or when the
+/// caller's future is dropped (the client went away).
+pub async fn sheet_bounded(
+    query: SheetQuery,
+    timeout: Duration,
+    heavy: Arc<Semaphore>,
+) -> ApiResult<SheetAnswer> {
     // A design that cannot be read is a bad value of the request: 400, as for exports.
     let design = resolve_design(&query.design).map_err(|e| {
         let why = explain(&e);
         ApiError::new(StatusCode::BAD_REQUEST, why.kind, why.message, why.hint)
     })?;
-    run_bounded(timeout, move |deadline| run(&design, &query, deadline))
-        .await?
-        .map_err(|e| explain_sheet(&e, timeout))
+    let (permit, left) = heavy_permit(heavy, timeout).await?;
+    run_answered(left, move |deadline| {
+        let _permit = permit;
+        run(&design, &query, deadline)
+    })
+    .await
+    .map_err(|e| match e.kind {
+        // Past the deadline without the job's own answer: the sheet's words, not a deployment's.
+        "timeout" => explain_sheet(&Error::Finite(FiniteError::Cancelled), timeout),
+        _ => e,
+    })?
+    .map_err(|e| explain_sheet(&e, timeout))
 }
 
 /// A finite-sheet error as an answer: stopped at the time limit 422 `timeout`; a region or

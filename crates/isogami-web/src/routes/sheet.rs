@@ -16,6 +16,6 @@ pub async fn sheet(
 ) -> ApiResult<Json<SheetAnswer>> {
     let query = parse_sheet(&pairs(raw.as_deref()))?;
     Ok(Json(
-        sheet_bounded(query, state.settings().sim_timeout).await?,
+        sheet_bounded(query, state.settings().sim_timeout, state.heavy().clone()).await?,
     ))
 }

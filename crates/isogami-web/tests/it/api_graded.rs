@@ -453,6 +453,45 @@ async fn a_field_job_reports_every_cells_ratio_and_exports_as_the_library_does()
     );
 }
 
+/// Issue 42: 6,000 nested groups (42 KB, under the body limit) overflowed a worker's stack
+/// and killed the server; one 20 KB entity used 6,000 times expanded to 120 MB and held the
+/// workers. Each is 400 `bad_target` with one line, alone and inside a job's body, and the
+/// server keeps answering. A tokio worker has the server's 2 MiB stack.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn hostile_svgs_are_refused_and_the_server_stays_up() {
+    let app = app();
+    let n = 6_000;
+    let nested = format!(
+        r#"<svg xmlns="http://www.w3.org/2000/svg">{}<circle r="3"/>{}</svg>"#,
+        "<g>".repeat(n),
+        "</g>".repeat(n)
+    );
+    let entity = format!(
+        r#"<!DOCTYPE svg [<!ENTITY e "{}">]><svg xmlns="http://www.w3.org/2000/svg"><desc>{}</desc><circle r="3"/></svg>"#,
+        "x".repeat(20_000),
+        "&e;".repeat(6_000)
+    );
+    for (svg, needle) in [
+        (nested, "deeper than 256 levels"),
+        (entity, "entities could expand"),
+    ] {
+        assert!(svg.len() < 48 * 1024, "{} bytes", svg.len());
+        let reply = post(&app, "/api/graded/svg?name=a.svg", svg.clone()).await;
+        assert_eq!(
+            assert_error(&reply, StatusCode::BAD_REQUEST, needle),
+            "bad_target"
+        );
+        assert!(reply.json()["error"].as_str().unwrap().contains(needle));
+        let body = serde_json::json!({"rows": 2, "cols": 2, "svg": svg, "svg_name": "a.svg"});
+        let reply = post(&app, "/api/graded", body.to_string()).await;
+        assert_eq!(
+            assert_error(&reply, StatusCode::BAD_REQUEST, needle),
+            "bad_target"
+        );
+        get(&app, "/api/stats").await.ok();
+    }
+}
+
 #[tokio::test]
 async fn an_svg_outline_is_read_by_the_library_and_graded_towards() {
     let app = app();

@@ -316,6 +316,62 @@ async fn sheets_past_the_time_limit_are_422_timeout() {
     }
 }
 
+/// Issue 42: 20 concurrent 12×12 deployments ran as 20 threads and answered after 10–12 s
+/// against a 2 s limit. Sheets now take the heavy-job permits exports take and are answered
+/// by their deadline: every one of a burst is answered within the limit and its grace (with
+/// a margin for a loaded machine), as `timeout`, `busy` or a result.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_burst_of_big_sheets_is_answered_by_the_deadline() {
+    let limit = Duration::from_millis(800);
+    let app = app_with(
+        &catalogue().db,
+        ServerSettings {
+            sim_timeout: limit,
+            heavy_jobs: 2,
+            ..ServerSettings::default()
+        },
+    );
+    let uri = "/api/sheet?design=rotating-squares&region=12x12&deploy=true&frames=200";
+    let started = Instant::now();
+    let replies = futures_join_all((0..12).map(|_| {
+        let app = app.clone();
+        async move {
+            let reply = get(&app, uri).await;
+            (reply, started.elapsed())
+        }
+    }))
+    .await;
+    let mut kinds = Vec::new();
+    for (reply, answered) in &replies {
+        assert!(
+            *answered < limit * 2 + Duration::from_millis(1500),
+            "answered after {answered:?} with a {limit:?} limit: {}",
+            reply.text()
+        );
+        if reply.status != 200 {
+            kinds.push(reply.json()["kind"].as_str().unwrap_or("?").to_string());
+        }
+    }
+    assert!(
+        kinds.iter().all(|k| k == "timeout" || k == "busy"),
+        "{kinds:?}"
+    );
+}
+
+/// Runs every future at once, each as its own task.
+async fn futures_join_all<F, T>(futures: impl Iterator<Item = F>) -> Vec<T>
+where
+    F: std::future::Future<Output = T> + Send + 'static,
+    T: Send + 'static,
+{
+    let handles: Vec<_> = futures.map(tokio::spawn).collect();
+    let mut out = Vec::new();
+    for h in handles {
+        out.push(h.await.unwrap());
+    }
+    out
+}
+
 /// What the library writes for `design` as a tiles CSV.
 fn tiles_csv(design: &str, request: &PatchRequest) -> Vec<u8> {
     let design = resolve_design(design).unwrap();

@@ -58,6 +58,9 @@ pub enum Error {
     /// A setting outside its range.
     #[error(transparent)]
     Settings(#[from] SettingsError),
+    /// A file the user named that cannot be read (missing, not a regular file, too large).
+    #[error(transparent)]
+    Input(#[from] crate::input::InputError),
 }
 
 impl Error {

@@ -111,7 +111,11 @@ impl Region {
                     .iter()
                     .map(|v| Vec2::new(v[0], v[1]) / edge_mm)
                     .collect();
-                if signed_area(&p).abs() <= 0.0 {
+                let area = signed_area(&p).abs();
+                if !area.is_finite() {
+                    return bad("the polygon's area overflows (coordinates too large)".into());
+                }
+                if area <= 0.0 {
                     return bad("the polygon has no area".into());
                 }
                 if crate::geometry::is_simple_problem(&p, 1e-9).is_some() {
@@ -149,24 +153,28 @@ impl Region {
         let origin = centroids.iter().fold(Vec2::zeros(), |a, c| a + c) / n as Real;
         // Lattice coordinates of the region's points bound the cells to look at; a margin of
         // two cells covers tiles whose centroid lies outside their cell's parallelogram.
+        // In floating point until the span is known to be small: a region of 1e308 mm has
+        // lattice coordinates no integer holds.
         let det = cross(&u, &w);
-        let (mut lo, mut hi) = ([i64::MAX; 2], [i64::MIN; 2]);
+        let (mut lo_f, mut hi_f) = ([Real::INFINITY; 2], [Real::NEG_INFINITY; 2]);
         for p in &poly {
             let rel = p + origin - centroids[0];
             let a = cross(&rel, &w) / det;
             let b = cross(&u, &rel) / det;
             for (d, v) in [a, b].into_iter().enumerate() {
-                lo[d] = lo[d].min(v.floor() as i64 - 2);
-                hi[d] = hi[d].max(v.ceil() as i64 + 2);
+                lo_f[d] = lo_f[d].min(v.floor() - 2.0);
+                hi_f[d] = hi_f[d].max(v.ceil() + 2.0);
             }
         }
-        let span = (hi[0] - lo[0]).max(hi[1] - lo[1]);
-        if span > 4 * MAX_REGION_CELLS as i64 {
+        let span = (hi_f[0] - lo_f[0]).max(hi_f[1] - lo_f[1]);
+        let most = 4 * MAX_REGION_CELLS;
+        if !(span <= most as Real) {
             return Err(FiniteError::BadRegion(format!(
-                "the region spans {span} cells; at most {} fit",
-                4 * MAX_REGION_CELLS
+                "the region spans {} cells; at most {most} fit",
+                crate::settings_error::short_real(span)
             )));
         }
+        let (lo, hi) = (lo_f.map(|v| v as i64), hi_f.map(|v| v as i64));
         let mut out = Vec::new();
         for j in lo[1]..=hi[1] {
             for i in lo[0]..=hi[0] {

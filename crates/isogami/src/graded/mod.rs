@@ -33,7 +33,7 @@ pub use field::{parse_field, parse_target, AreaField, Target};
 pub use model::{GradedJoint, GradedSheet, GradedTile, OpenedPose};
 pub use problem::{Problem, Weights};
 pub use solve::{optimise, GradedProgress, GradedReport, SolveSettings};
-pub use svg::outline_from_svg;
+pub use svg::{outline_from_svg, MAX_SVG_BYTES};
 pub use target::{parse_outline, Outline};
 
 use crate::api::{resolve_design, SheetRequest};
@@ -102,20 +102,18 @@ impl GradedRequest {
     }
 }
 
-/// Largest region side, in cells.
-pub const MAX_GRADED_CELLS: usize = 64;
+/// Largest region side, in cells: a finite sheet's ([`crate::finite::MAX_REGION_CELLS`]),
+/// which the graded sheet starts from.
+pub const MAX_GRADED_CELLS: usize = crate::finite::MAX_REGION_CELLS;
 
 /// The ungraded start and the problem of a request.
 pub fn setup(request: &GradedRequest) -> Result<(GradedSheet, Problem), crate::Error> {
     let bad = |m: String| -> crate::Error { GradedError::BadSetting(m).into() };
-    if request.rows == 0 || request.cols == 0 {
-        return Err(
-            GradedError::BadRegion("a region has at least one cell each way".into()).into(),
-        );
-    }
-    if request.rows > MAX_GRADED_CELLS || request.cols > MAX_GRADED_CELLS {
+    let side = 1..=MAX_GRADED_CELLS;
+    if !(side.contains(&request.rows) && side.contains(&request.cols)) {
+        // The finite sheet's words for the same refusal.
         return Err(GradedError::BadRegion(format!(
-            "{}x{} cells: at most {MAX_GRADED_CELLS} each way",
+            "{}x{} cells: rows and columns must be 1..={MAX_GRADED_CELLS}",
             request.rows, request.cols
         ))
         .into());

@@ -18,7 +18,13 @@
 //! `<text>` are ignored.
 //!
 //! Parsing is `roxmltree` (XML) and `svgtypes` (path data, points, transforms, lengths). No
-//! I/O: the front ends read the file.
+//! I/O: the front ends read the file (bounded by [`MAX_SVG_BYTES`]).
+//!
+//! Hostile documents are refused before they cost anything, whichever front end passes them
+//! on: a text longer than [`MAX_SVG_BYTES`], entities whose expansion could exceed
+//! [`MAX_EXPANDED_BYTES`] (bounded from the declarations before parsing, see
+//! [`entity_expansion_bound`]), more than [`MAX_NODES`] XML nodes, elements nested deeper
+//! than [`MAX_DEPTH`], or an outline of more than [`MAX_OUTLINE_VERTICES`] vertices.
 
 use super::error::GradedError;
 use super::target::Outline;
@@ -33,6 +39,23 @@ pub const FLATTEN_TOLERANCE: Real = 1e-4;
 
 /// Most line segments one curve is flattened into.
 const MAX_PIECES: usize = 512;
+
+/// Longest SVG text read (bytes).
+pub const MAX_SVG_BYTES: usize = 16 << 20;
+
+/// Most bytes the document's entity references may expand to (an upper bound computed from
+/// the declarations before parsing).
+pub const MAX_EXPANDED_BYTES: usize = 4 << 20;
+
+/// Most XML nodes (elements, text, comments) in the document.
+pub const MAX_NODES: u32 = 1_000_000;
+
+/// Deepest nesting of drawn elements below the root.
+pub const MAX_DEPTH: usize = 256;
+
+/// Most vertices of the outline after curves are flattened: a path of more pieces is
+/// refused, curves that would flatten to more are flattened more coarsely.
+pub const MAX_OUTLINE_VERTICES: usize = 4096;
 
 /// Arm length of the cubic Bézier of a quarter ellipse, as a fraction of its radius.
 const KAPPA: Real = 0.552_284_749_830_793_4;
@@ -67,12 +90,31 @@ const SHAPES: [&str; 7] = [
 /// shape, one not star-shaped about its centroid ([`Outline::validated`]), a non-finite
 /// coordinate.
 pub fn outline_from_svg(svg_text: &str) -> Result<Outline, GradedError> {
+    if svg_text.len() > MAX_SVG_BYTES {
+        return Err(bad(format!(
+            "the SVG is {} bytes, more than the {} MiB read",
+            svg_text.len(),
+            MAX_SVG_BYTES >> 20
+        )));
+    }
+    let bound = entity_expansion_bound(svg_text);
+    if bound > MAX_EXPANDED_BYTES {
+        return Err(bad(format!(
+            "the SVG's entities could expand to {bound} bytes, more than the {} MiB allowed",
+            MAX_EXPANDED_BYTES >> 20
+        )));
+    }
     let options = roxmltree::ParsingOptions {
         allow_dtd: true,
+        nodes_limit: MAX_NODES,
         ..roxmltree::ParsingOptions::default()
     };
-    let doc = roxmltree::Document::parse_with_options(svg_text, options)
-        .map_err(|e| bad(format!("not an SVG document ({e})")))?;
+    let doc = roxmltree::Document::parse_with_options(svg_text, options).map_err(|e| match e {
+        roxmltree::Error::NodesLimitReached => bad(format!(
+            "the SVG has more than {MAX_NODES} XML nodes; keep only the outline"
+        )),
+        e => bad(format!("not an SVG document ({e})")),
+    })?;
     let root = doc.root_element();
     if !in_svg(root) || root.tag_name().name() != "svg" {
         return Err(bad(format!(
@@ -81,7 +123,7 @@ pub fn outline_from_svg(svg_text: &str) -> Result<Outline, GradedError> {
         )));
     }
     let mut found = Vec::new();
-    collect(root, transform_of(root)?, &mut found)?;
+    collect(root, transform_of(root)?, 0, &mut found)?;
     let (node, transform) = match found[..] {
         [] => {
             return Err(bad(
@@ -107,6 +149,57 @@ pub fn outline_from_svg(svg_text: &str) -> Result<Outline, GradedError> {
         GradedError::BadTarget(m) => bad(format!("{what}: {m}")),
         other => other,
     })
+}
+
+/// An upper bound on the bytes `text`'s general entity references can expand to, from the
+/// document's internal DTD subset alone (no parsing): every reference in the document to a
+/// name other than XML's five predefined ones counts as the whole subset's length, times
+/// the 256 references roxmltree resolves at most below one reference when declarations
+/// refer to other entities. Zero for a document that declares no entity.
+pub fn entity_expansion_bound(text: &str) -> usize {
+    let Some(open) = text.find("<!DOCTYPE") else {
+        return 0;
+    };
+    let after = &text[open..];
+    // The internal subset: from the first `[` before the DOCTYPE's `>` to the `]>` after it.
+    let Some(start) = after
+        .find(['[', '>'])
+        .filter(|&k| after.as_bytes()[k] == b'[')
+    else {
+        return 0;
+    };
+    let Some(len) = after[start..].find("]") else {
+        return usize::MAX;
+    };
+    let subset = &after[start + 1..start + len];
+    if !subset.contains("<!ENTITY") {
+        return 0;
+    }
+    let body = &after[start + len..];
+    let nested = entity_references(subset) > 0;
+    let per_reference = subset.len().saturating_mul(if nested { 256 } else { 1 });
+    entity_references(body).saturating_mul(per_reference)
+}
+
+/// How many general entity references (`&name;`, not a character reference nor one of
+/// XML's predefined five) `text` holds, or parameter entity references (`%name;`).
+fn entity_references(text: &str) -> usize {
+    const PREDEFINED: [&str; 5] = ["amp;", "lt;", "gt;", "quot;", "apos;"];
+    text.match_indices(['&', '%'])
+        .filter(|&(k, mark)| {
+            let rest = &text[k + 1..];
+            let name = rest
+                .split(|c: char| !(c.is_alphanumeric() || matches!(c, '_' | ':' | '-' | '.')))
+                .next()
+                .unwrap_or("");
+            let starts = name
+                .chars()
+                .next()
+                .is_some_and(|c| c.is_alphabetic() || c == '_' || c == ':');
+            let closed = rest[name.len()..].starts_with(';');
+            starts && closed && (mark == "%" || !PREDEFINED.iter().any(|p| rest.starts_with(p)))
+        })
+        .count()
 }
 
 fn bad(message: impl Into<String>) -> GradedError {
@@ -179,12 +272,19 @@ fn hidden(node: roxmltree::Node<'_, '_>) -> bool {
         })
 }
 
-/// Every drawn shape below `node`, with its transform to the document's coordinates.
+/// Every drawn shape below `node` (at `depth` below the root), with its transform to the
+/// document's coordinates. Refused past [`MAX_DEPTH`] levels (the recursion's bound).
 fn collect<'a, 'input>(
     node: roxmltree::Node<'a, 'input>,
     transform: Affine,
+    depth: usize,
     found: &mut Vec<(roxmltree::Node<'a, 'input>, Affine)>,
 ) -> Result<(), GradedError> {
+    if depth >= MAX_DEPTH {
+        return Err(bad(format!(
+            "the SVG nests elements deeper than {MAX_DEPTH} levels"
+        )));
+    }
     for child in node.children().filter(|c| in_svg(*c)) {
         let name = child.tag_name().name();
         if NOT_DRAWN.contains(&name) || hidden(child) {
@@ -194,7 +294,7 @@ fn collect<'a, 'input>(
         if SHAPES.contains(&name) {
             found.push((child, t));
         } else {
-            collect(child, t, found)?;
+            collect(child, t, depth + 1, found)?;
         }
     }
     Ok(())
@@ -434,8 +534,48 @@ fn flatten(segs: &[Seg], transform: Affine, what: &str) -> Result<Vec<Vec2>, Gra
     if !(size > 0.0 && size.is_finite()) {
         return Err(bad(format!("{what} encloses no area")));
     }
-    let tol = FLATTEN_TOLERANCE * size;
-    let mut points = vec![*start];
+    // A start and one end per piece: vertices as drawn when every curve is one chord, so
+    // coarsening the curves always brings an outline of at most that many within the limit.
+    let vertices = pieces.len() + 1;
+    if vertices > MAX_OUTLINE_VERTICES {
+        return Err(bad(format!(
+            "{what} has {vertices} vertices; an outline may have at most \
+             {MAX_OUTLINE_VERTICES}: simplify it in your editor"
+        )));
+    }
+    // Curves flattened within FLATTEN_TOLERANCE of the size, or coarser when that would give
+    // more than MAX_OUTLINE_VERTICES points (a curve's pieces go as 1/√tolerance).
+    let mut tol = FLATTEN_TOLERANCE * size;
+    let mut points = flattened(*start, pieces, tol);
+    while points.len() > MAX_OUTLINE_VERTICES {
+        let over = points.len() as Real / MAX_OUTLINE_VERTICES as Real;
+        tol *= 1.2 * over * over;
+        points = flattened(*start, pieces, tol);
+    }
+    let same = |a: &Vec2, b: &Vec2| (a - b).norm() <= 1e-9 * size;
+    let end = *points.last().expect("a start");
+    if !closed && !same(&end, start) {
+        return Err(bad(format!(
+            "{what} is open (it ends away from where it starts): close it (Z) so that it bounds a shape"
+        )));
+    }
+    points.dedup_by(|b, a| same(a, b));
+    while points.len() > 1 && same(&points[0], points.last().expect("points")) {
+        points.pop();
+    }
+    match is_simple_problem(&points, 1e-9 * size) {
+        None => Ok(points),
+        Some(SimplicityProblem::SelfIntersection { a, b }) => Err(bad(format!(
+            "{what} crosses itself (pieces {a} and {b} of its flattened outline meet): an outline is a simple closed curve"
+        ))),
+        Some(_) => Err(bad(format!("{what} encloses no area"))),
+    }
+}
+
+/// The polyline through `start` and `pieces` with every curve cut into uniform pieces whose
+/// chords are within `tol` of it.
+fn flattened(start: Vec2, pieces: &[Seg], tol: Real) -> Vec<Vec2> {
+    let mut points = vec![start];
     for seg in pieces {
         let p0 = *points.last().expect("a start");
         match *seg {
@@ -462,24 +602,7 @@ fn flatten(segs: &[Seg], transform: Affine, what: &str) -> Result<Vec<Vec2>, Gra
             Seg::Move(_) | Seg::Close => {}
         }
     }
-    let same = |a: &Vec2, b: &Vec2| (a - b).norm() <= 1e-9 * size;
-    let end = *points.last().expect("a start");
-    if !closed && !same(&end, start) {
-        return Err(bad(format!(
-            "{what} is open (it ends away from where it starts): close it (Z) so that it bounds a shape"
-        )));
-    }
-    points.dedup_by(|b, a| same(a, b));
-    while points.len() > 1 && same(&points[0], points.last().expect("points")) {
-        points.pop();
-    }
-    match is_simple_problem(&points, 1e-9 * size) {
-        None => Ok(points),
-        Some(SimplicityProblem::SelfIntersection { a, b }) => Err(bad(format!(
-            "{what} crosses itself (pieces {a} and {b} of its flattened outline meet): an outline is a simple closed curve"
-        ))),
-        Some(_) => Err(bad(format!("{what} encloses no area"))),
-    }
+    points
 }
 
 /// Uniform pieces for a curve whose squared count is `n2`, at least one.
@@ -703,5 +826,124 @@ mod tests {
             assert!(e.contains(needle), "{text}: {e:?} does not say {needle:?}");
             assert_eq!(e.lines().count(), 1, "{text}: {e}");
         }
+    }
+
+    /// A nesting, entity or size that would cost the reader its stack, memory or time is
+    /// refused in one line before the work (issue 42: 6,000 nested groups overflowed a server
+    /// worker's stack; one 20 KB entity used 6,000 times expanded to 120 MB). The nested
+    /// documents are read on a thread with a quarter of a server worker's stack.
+    #[test]
+    fn hostile_documents_are_refused_before_the_work() {
+        let nested = |n: usize| {
+            format!(
+                r#"<svg xmlns="http://www.w3.org/2000/svg">{}<circle r="3"/>{}</svg>"#,
+                "<g>".repeat(n),
+                "</g>".repeat(n)
+            )
+        };
+        let entity = |size: usize, uses: usize| {
+            format!(
+                r#"<?xml version="1.0"?><!DOCTYPE svg [<!ENTITY big "{}">]><svg xmlns="http://www.w3.org/2000/svg"><desc>{}</desc><circle r="3"/></svg>"#,
+                "x".repeat(size),
+                "&big;".repeat(uses)
+            )
+        };
+        let laughs = format!(
+            r#"<!DOCTYPE svg [<!ENTITY a "{}"><!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;">]><svg xmlns="http://www.w3.org/2000/svg"><desc>{}</desc><circle r="3"/></svg>"#,
+            "y".repeat(1000),
+            "&b;".repeat(100)
+        );
+        let cases = [
+            (nested(6_000), "deeper than 256 levels"),
+            (nested(100_000), "deeper than 256 levels"),
+            (entity(20_000, 6_000), "entities could expand"),
+            (laughs, "entities could expand"),
+            (
+                format!("{}<svg/>", " ".repeat(MAX_SVG_BYTES)),
+                "more than the 16 MiB",
+            ),
+        ];
+        let refused = std::thread::Builder::new()
+            .stack_size(512 << 10)
+            .spawn(move || {
+                cases
+                    .iter()
+                    .map(|(text, needle)| (error(text), *needle))
+                    .collect::<Vec<_>>()
+            })
+            .unwrap()
+            .join()
+            .expect("no stack overflow");
+        for (e, needle) in refused {
+            assert!(e.starts_with("bad target: "), "{e}");
+            assert!(e.contains(needle), "{e:?} does not say {needle:?}");
+            assert_eq!(e.lines().count(), 1, "{e}");
+        }
+        // Just inside the limits, the same documents are read.
+        assert!(outline_from_svg(&nested(MAX_DEPTH - 2)).is_ok());
+        assert!(outline_from_svg(&entity(100, 100)).is_ok());
+    }
+
+    /// An editor's own entities (Illustrator declares its namespaces so) are read; the bound
+    /// counts only references to declared entities, not XML's predefined ones or characters.
+    #[test]
+    fn small_entities_are_read_and_the_bound_counts_references() {
+        let text = r#"<?xml version="1.0"?>
+<!DOCTYPE svg PUBLIC "-//W3C//DTD SVG 1.1//EN" "http://www.w3.org/Graphics/SVG/1.1/DTD/svg11.dtd" [
+  <!ENTITY ns_svg "http://www.w3.org/2000/svg">
+  <!ENTITY ns_ai "http://ns.adobe.com/AdobeIllustrator/10.0/">
+]>
+<svg xmlns="&ns_svg;" xmlns:i="&ns_ai;"><title>a &amp; b &#38; &lt;c&gt;</title><circle r="3"/></svg>"#;
+        assert!(matches!(outline_from_svg(text), Ok(Outline::Polygon(_))));
+        let subset = text[text.find('[').unwrap()..text.find(']').unwrap()].len() - 1;
+        assert_eq!(entity_expansion_bound(text), 2 * subset);
+        assert_eq!(entity_expansion_bound(&svg(r#"<circle r="3"/>"#)), 0);
+        assert_eq!(entity_references("&amp;&lt;&#38;&#x26;&a;%p; 100%;&b"), 2);
+    }
+
+    /// Issue 42: a path target of 10,000 vertices took 6 s, 100,000 more than a minute, with
+    /// no word. A path of more pieces than an outline may have is refused; curves that would
+    /// flatten to more points are flattened more coarsely, and the outline stays round.
+    #[test]
+    fn big_paths_are_refused_and_many_curves_coarsened() {
+        let ngon = |n: usize| {
+            let mut d = String::from("M 100 0");
+            for k in 1..n {
+                let a = std::f64::consts::TAU * k as Real / n as Real;
+                d += &format!(" L {:.6} {:.6}", 100.0 * a.cos(), 100.0 * a.sin());
+            }
+            svg(&format!(r#"<path d="{d} Z"/>"#))
+        };
+        for n in [MAX_OUTLINE_VERTICES + 1, 10_000, 100_000] {
+            let e = error(&ngon(n));
+            assert!(e.contains(&format!("has {n} vertices")), "{e}");
+            assert!(e.contains("at most 4096"), "{e}");
+        }
+        match outline_from_svg(&ngon(MAX_OUTLINE_VERTICES)) {
+            Ok(Outline::Polygon(p)) => assert_eq!(p.len(), MAX_OUTLINE_VERTICES),
+            other => panic!("{other:?}"),
+        }
+        // 400 scallops of a circle of radius 100, each a cubic bump 15 high: about 21 pieces
+        // each at the default tolerance (8,400 points), so flattened more coarsely.
+        let n = 400;
+        let at = |k: usize| {
+            let a = std::f64::consts::TAU * k as Real / n as Real;
+            Vec2::new(100.0 * a.cos(), 100.0 * a.sin())
+        };
+        let mut d = format!("M {} {}", at(0).x, at(0).y);
+        for k in 0..n {
+            let (p, q) = (at(k), at(k + 1));
+            let out = (p + q).normalize() * 20.0;
+            let (c1, c2) = (p + (q - p) / 3.0 + out, p + 2.0 * (q - p) / 3.0 + out);
+            d += &format!(" C {} {} {} {} {} {}", c1.x, c1.y, c2.x, c2.y, q.x, q.y);
+        }
+        let p = polygon(&format!(r#"<path d="{d} Z"/>"#));
+        assert!(
+            (2 * n..MAX_OUTLINE_VERTICES).contains(&p.len()),
+            "{} points",
+            p.len()
+        );
+        let reach = p.iter().map(|v| v.norm()).fold(0.0, Real::max);
+        assert!((110.0..=116.0).contains(&reach), "{reach}");
     }
 }

@@ -6,7 +6,14 @@
 use super::error::GradedError;
 use crate::geometry::signed_area;
 use crate::math::{cross, Real, Vec2};
+use crate::settings_error::short_real;
 use std::f64::consts::PI;
+
+/// Most elongated outline taken: an ellipse's longer semi-axis over its shorter, and for a
+/// polygon its bounding box's squared diagonal over its area (about length over width for a
+/// thin one; a square has 2). Thinner outlines are no shapes a sheet of tiles can fill, and
+/// scaled to the sheet's area they overflow the numbers.
+pub const MAX_ELONGATION: Real = 100.0;
 
 /// A target outline centred on the origin. Sizes are relative: the optimisation scales the
 /// outline to the area the design's own opened sheet covers.
@@ -27,19 +34,31 @@ pub enum Outline {
 
 impl Outline {
     /// Checks the outline: positive finite axes; a polygon of at least three points,
-    /// non-zero area, star-shaped about its centroid. A polygon comes back centred and
+    /// non-zero area, star-shaped about its centroid; neither more elongated than
+    /// [`MAX_ELONGATION`]. A polygon comes back centred and
     /// counter-clockwise.
     pub fn validated(self) -> Result<Outline, GradedError> {
         match self {
             Outline::Disc => Ok(Outline::Disc),
             Outline::Ellipse { a, b } => {
-                if a.is_finite() && b.is_finite() && a > 0.0 && b > 0.0 {
-                    Ok(Outline::Ellipse { a, b })
-                } else {
-                    Err(GradedError::BadTarget(format!(
-                        "an ellipse needs two positive semi-axes, not {a}, {b}"
-                    )))
+                if !(a.is_finite() && b.is_finite() && a > 0.0 && b > 0.0) {
+                    return Err(GradedError::BadTarget(format!(
+                        "an ellipse needs two positive semi-axes, not {}, {}",
+                        short_real(a),
+                        short_real(b)
+                    )));
                 }
+                let elongation = a.max(b) / a.min(b);
+                if !(elongation <= MAX_ELONGATION) {
+                    return Err(GradedError::BadTarget(format!(
+                        "an ellipse of semi-axes {}, {} is {} times longer than wide; \
+                         at most {MAX_ELONGATION} is taken",
+                        short_real(a),
+                        short_real(b),
+                        short_real((elongation * 100.0).round() / 100.0)
+                    )));
+                }
+                Ok(Outline::Ellipse { a, b })
             }
             Outline::Polygon(mut p) => {
                 if p.len() < 3 || p.iter().any(|v| !v.x.is_finite() || !v.y.is_finite()) {
@@ -48,10 +67,24 @@ impl Outline {
                     ));
                 }
                 let area = signed_area(&p);
-                if area.abs() <= 1e-12 * bbox_diag(&p).powi(2) {
+                let diag = bbox_diag(&p);
+                if !(area.is_finite() && diag.is_finite()) {
+                    return Err(GradedError::BadTarget(
+                        "the outline's size overflows (coordinates too large)".into(),
+                    ));
+                }
+                if area.abs() <= 1e-12 * diag.powi(2) {
                     return Err(GradedError::BadTarget(
                         "the outline encloses no area".into(),
                     ));
+                }
+                let elongation = diag.powi(2) / area.abs();
+                if !(elongation <= MAX_ELONGATION) {
+                    return Err(GradedError::BadTarget(format!(
+                        "the outline is too thin (bounding-box diagonal² / area = {}; at most \
+                         {MAX_ELONGATION} is taken)",
+                        short_real((elongation * 100.0).round() / 100.0)
+                    )));
                 }
                 if area < 0.0 {
                     p.reverse();
@@ -263,12 +296,23 @@ mod tests {
             "ellipse:1,-2",
             "polygon:0,0;1,0",
             "polygon:0,0;4,0;4,4;3,4;3,1;1,1;1,4;0,4",
+            // Issue 42: scaled to the sheet's area, these overflowed to infinity.
+            "ellipse:1,1e-300",
+            "ellipse:1e300,1",
+            "ellipse:100.5,1",
+            "polygon:0,0;1e308,0;0,1e308",
+            "polygon:0,0;1000,0;1000,1;0,1",
         ] {
             let e = parse_outline(text).unwrap_err();
             assert!(
                 e.to_string().contains("target") || e.to_string().contains("outline"),
                 "{e}"
             );
+            assert_eq!(e.to_string().lines().count(), 1, "{e}");
+        }
+        // At the limit, and a square, are taken.
+        for text in ["ellipse:100,1", "ellipse:1,100", "polygon:0,0;1,0;1,1;0,1"] {
+            parse_outline(text).unwrap();
         }
     }
 }
