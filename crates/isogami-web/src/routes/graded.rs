@@ -69,7 +69,10 @@ pub async fn svg(
             "upload an SVG file with one closed shape",
         )
     })?;
-    let outline = svg_outline(text, name)?;
+    // Off the async workers: a bounded but not free parse (up to 4,096 vertices checked for
+    // crossings) must not hold the cheap requests behind it.
+    let (text, owned_name) = (text.to_string(), name.to_string());
+    let outline = off_runtime(move || svg_outline(&text, &owned_name)).await?;
     let mut view = outline_view(&format!("@{name}"), &outline);
     view["name"] = json!(name);
     Ok(Json(view))
@@ -83,12 +86,23 @@ pub async fn start(
 ) -> ApiResult<(StatusCode, Json<Value>)> {
     let body = GradedBody::from_request(body)?;
     let limits = state.settings().graded;
-    let request = body.request(&limits)?;
-    let echo = Echo::of(&request, &body.outline_text());
+    let outline_text = body.outline_text();
+    // An SVG target is read off the async workers (see `svg`).
+    let request = off_runtime(move || body.request(&limits)).await?;
+    let echo = Echo::of(&request, &outline_text);
     let job = state.graded_jobs().start(echo, &limits)?;
     let id = job.id();
     tokio::task::spawn_blocking(move || job.run(&request));
     Ok(accepted(id))
+}
+
+/// Runs `f` on the blocking pool.
+async fn off_runtime<T: Send + 'static>(
+    f: impl FnOnce() -> ApiResult<T> + Send + 'static,
+) -> ApiResult<T> {
+    tokio::task::spawn_blocking(f)
+        .await
+        .map_err(|e| ApiError::internal(format!("reading the request failed: {e}")))?
 }
 
 fn job(state: &AppState, id: &str) -> ApiResult<Arc<GradedJob>> {
