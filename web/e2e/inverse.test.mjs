@@ -13,7 +13,7 @@ import { execFile } from 'node:child_process';
 import { basename, dirname } from 'node:path';
 import { promisify } from 'node:util';
 import {
-  buildSite, byTestId, canvasColours, canvasPixels, copyDb, env, getJson, launchBrowser, newPage, problems, screenshot, serveFolder, startServer,
+  buildSite, byTestId, canvasColours, canvasPixels, copyDb, env, getJson, launchBrowser, newPage, nextAnswer, problems, screenshot, serveFolder, startServer,
 } from './harness.mjs';
 import { EXAMPLES } from '../src/inverse-request.js';
 import { shellSplit } from '../test/shell.mjs';
@@ -173,7 +173,7 @@ test('a bad target shows the server’s message and starts nothing; the examples
   const page = await newPage(browser);
   await openPanel(page);
   await byTestId(page, 'target').fill('aera + isotropic');
-  const response = page.waitForResponse((r) => r.url().endsWith('/api/inverse') && r.request().method() === 'POST');
+  const response = nextAnswer(page, (r) => r.url().endsWith('/api/inverse') && r.method() === 'POST');
   await byTestId(page, 'run').click();
   const res = await response;
   assert.equal(res.status(), 400);
