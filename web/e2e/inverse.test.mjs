@@ -303,3 +303,25 @@ test('on the static site the page shows the command instead of running', async (
     await site.remove();
   }
 });
+
+test('inverse.html?target= fills the form and its command; an edited form survives a reload (issue 42 item 16)', async () => {
+  // Every example target, given in the URL as a link from elsewhere would give it.
+  const page = await newPage(browser);
+  for (const x of EXAMPLES) {
+    await page.goto(`${server.base}/inverse.html?target=${encodeURIComponent(x.target)}&budget=60`);
+    await page.waitForFunction(() => document.querySelector('[data-testid="top"]').value !== '');
+    assert.equal(await byTestId(page, 'target').inputValue(), x.target);
+    assert.equal(await byTestId(page, 'budget').inputValue(), '60');
+    const command = await byTestId(page, 'inverse-command').textContent();
+    assert.ok(command.includes('--budget 60'), command);
+    assert.ok(shellSplit(command).includes(x.target), command);
+  }
+  // A target typed in, then a reload: the same target and command.
+  await byTestId(page, 'target').fill('area(1.5)');
+  const typed = await byTestId(page, 'inverse-command').textContent();
+  await page.reload();
+  await page.waitForFunction(() => document.querySelector('[data-testid="top"]').value !== '');
+  assert.equal(await byTestId(page, 'target').inputValue(), 'area(1.5)');
+  assert.equal(await byTestId(page, 'inverse-command').textContent(), typed);
+  assert.deepEqual(problems(page), []);
+});
