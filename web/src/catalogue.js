@@ -341,20 +341,13 @@ function renderFacets(facets) {
     const long = items.length > FACET_SHOWN + 1;
     const open = openFacets.has(f.name);
     const shown = long && !open ? items.filter((_, i) => i < FACET_SHOWN || counts[i].missing || selected.includes(facetText(f.name, counts[i].value))) : items;
-    const more = long
-      ? h('button', {
-        type: 'button',
-        class: 'facet-more',
-        testid: `facet-more-${f.name}`,
-        'aria-expanded': String(open),
-        onclick: () => {
-          if (open) openFacets.delete(f.name);
-          else openFacets.add(f.name);
-          renderFacets(facets);
-          $('facets').querySelector(`[data-testid="facet-more-${f.name}"]`)?.focus();
-        },
-      }, open ? 'show fewer' : `show all ${items.length}`)
-      : null;
+    const flip = () => {
+      if (open) openFacets.delete(f.name);
+      else openFacets.add(f.name);
+      renderFacets(facets);
+      $('facets').querySelector(`[data-testid="facet-more-${f.name}"]`)?.focus();
+    };
+    const more = long && h('button', { type: 'button', class: 'facet-more', testid: `facet-more-${f.name}`, 'aria-expanded': String(open), onclick: flip }, open ? 'show fewer' : `show all ${items.length}`);
     return h(
       'fieldset',
       { class: 'facet', testid: `facet-${f.name}` },
