@@ -212,3 +212,113 @@ test('the table keeps the sorted column in view and the spec column beside it (i
   assert.ok(seen.tinted > 0, 'the sorted column is marked');
   assert.deepEqual(problems(page), []);
 });
+
+/** The table's layout as the page leaves it: the spec column's box, every column's header
+ * box, the sorted column's index and the box of the table's scrolling frame. */
+async function tableLayout(page) {
+  return page.evaluate(() => {
+    const wrap = document.querySelector('.table-wrap');
+    const box = (el) => {
+      const r = el.getBoundingClientRect();
+      return { left: r.left, right: r.right };
+    };
+    const heads = [...wrap.querySelectorAll('thead th')];
+    const rows = [...wrap.querySelectorAll('[data-testid="design-row"]')];
+    return {
+      wrap: { ...box(wrap), width: wrap.clientWidth },
+      spec: box(heads[0]),
+      columns: heads.map((th) => ({ label: th.textContent, ...box(th) })),
+      sorted: heads.findIndex((th) => th.classList.contains('sorted')),
+      specsWhole: rows.every((r) => r.querySelector('td').textContent === r.dataset.spec),
+    };
+  });
+}
+
+test('the sticky spec column cuts no column and leaves room for the others (issue 42 item 13)', async () => {
+  // At every common laptop width, the table as the page leaves it (default sort, scrolled to
+  // show the sorted column): no column is partly hidden under the spec column, the spec
+  // column takes at most a third of the table's width and holds every spec whole, and the
+  // sorted column is in view. At 1440 px every column up to the sorted one is in view.
+  for (const width of [1440, 1280, 1024]) {
+    const page = await newPage(browser);
+    await page.setViewportSize({ width, height: 900 });
+    await page.goto(`${server.base}/?view=table`);
+    await page.waitForSelector('[data-testid="design-row"]');
+    await page.waitForLoadState('networkidle');
+    const t = await tableLayout(page);
+    const edge = t.spec.right;
+    const cut = t.columns.slice(1).filter((c) => c.left < edge - 0.5 && c.right > edge + 0.5 && c.left < t.wrap.right);
+    assert.deepEqual(cut.map((c) => c.label), [], `${width} px: columns partly under the spec column (its right edge at ${edge})`);
+    assert.ok(t.spec.right - t.spec.left <= t.wrap.width / 3 + 0.5, `${width} px: spec column ${t.spec.right - t.spec.left} px of ${t.wrap.width}`);
+    assert.ok(t.specsWhole, `${width} px: every spec is shown whole`);
+    assert.ok(t.sorted > 0, 'the default view is sorted by a column other than spec');
+    const sorted = t.columns[t.sorted];
+    assert.ok(sorted.left >= edge - 0.5 && sorted.right <= t.wrap.right + 0.5, `${width} px: the sorted column ${sorted.label} is in view`);
+    if (width === 1440) {
+      const hidden = t.columns.slice(1, t.sorted).filter((c) => c.left < edge - 0.5);
+      assert.deepEqual(hidden.map((c) => c.label), [], '1440 px: every column up to the sorted one is in view');
+    }
+    assert.deepEqual(problems(page), []);
+    await page.close();
+  }
+});
+
+test('a newcomer finds an introduction and a glossary; on a phone the scatter comes before the filters (issue 42 item 18)', async () => {
+  const page = await newPage(browser);
+  await page.goto(`${server.base}/`);
+  await catalogueTotal(page);
+  // Every word the catalogue's columns, facets and axes use without explaining it.
+  const intro = byTestId(page, 'intro');
+  await intro.locator('summary').click();
+  const terms = await byTestId(page, 'glossary').locator('dt').allTextContents();
+  for (const word of [/IH famil/, /area ratio/, /ε/, /Poisson-like ratio ν/, /behaviour/, /linkages/, /joints/]) {
+    assert.ok(terms.some((t) => word.test(t)), `the glossary explains ${word}: ${terms.join(' | ')}`);
+  }
+  const text = await byTestId(page, 'glossary').textContent();
+  for (const b of ['isotropic auxetic', 'anisotropic auxetic', 'orthotropic positive Poisson']) assert.ok(text.includes(b), b);
+  // A phone (390 × 844): the scatter starts within the first screen, before the filters.
+  await page.setViewportSize({ width: 390, height: 844 });
+  await page.reload();
+  await catalogueTotal(page);
+  const tops = await page.evaluate(() => ({
+    scatter: document.querySelector('[data-testid="scatter"]').getBoundingClientRect().top + scrollY,
+    filters: document.querySelector('.filters').getBoundingClientRect().top + scrollY,
+  }));
+  assert.ok(tops.scatter < 844, `the scatter starts ${tops.scatter} px down`);
+  assert.ok(tops.scatter < tops.filters, 'the scatter comes before the filters');
+  assert.deepEqual(problems(page), []);
+});
+
+test('long facet lists show their first values until opened; the keyboard reaches a design in few Tabs (issue 42 item 18)', async () => {
+  const page = await newPage(browser);
+  await page.setViewportSize({ width: 1440, height: 900 });
+  await page.goto(`${server.base}/?view=grid`);
+  await catalogueTotal(page);
+  await page.waitForSelector('[data-testid="design-card"]');
+  const facets = await getJson(`${server.base}/api/facets`);
+  const long = Object.entries(facets).filter(([, values]) => Array.isArray(values) && values.length > 9);
+  assert.ok(long.length >= 1, 'the quick database has a facet with more than 9 values');
+  for (const [name, values] of long) {
+    const boxes = byTestId(page, `facet-${name}`).locator('input[type="checkbox"]');
+    assert.ok((await boxes.count()) <= 8, `${name}: at most 8 values shown of ${values.length}`);
+    await byTestId(page, `facet-more-${name}`).click();
+    assert.equal(await boxes.count(), values.length, `${name}: every value once opened`);
+    await byTestId(page, `facet-more-${name}`).click();
+  }
+  // Without the skip link: Tab from the top of the page to the first design card. Every stop
+  // before it is counted; a facet list adds at most 9 (8 values and its button).
+  await page.goto(`${server.base}/?view=grid`);
+  await page.waitForSelector('[data-testid="design-card"]');
+  let tabs = 0;
+  for (; tabs < 200; ) {
+    await page.keyboard.press('Tab');
+    tabs += 1;
+    if (await page.evaluate(() => Boolean(document.activeElement?.closest('[data-testid="design-card"]')))) break;
+  }
+  const facetStops = await page.$$eval('#facets fieldset', (sets) => sets.map((f) => f.querySelectorAll('input, button').length));
+  assert.ok(facetStops.every((n) => n <= 9), `stops per facet: ${facetStops}`);
+  // The header, the introduction, the scatter's controls and the toolbar take about 35 stops;
+  // the filters, their lists shortened, the rest.
+  assert.ok(tabs <= 64, `${tabs} Tabs to the first design`);
+  assert.deepEqual(problems(page), []);
+});

@@ -142,6 +142,40 @@ test('shape sliders say what the parameter does and are limited to the library v
   await page.close();
 });
 
+test('a design whose tile is not well-shaped cannot be saved, and its sliders reach back to the defaults (issue 42 item 17)', async () => {
+  // The issue's reproducer: IH28 with both parameters at 9, far outside the family's shapes
+  // (it builds, so it deploys, but the library finds no well-shaped band around it).
+  const DEGENERATE = 'IH28:9,9:1x1:a--a-b-bbb';
+  const ranges = await getJson(`${server.base}/api/shape/ranges?design=${encodeURIComponent(DEGENERATE)}&kerf=0.01`);
+  assert.ok(ranges.ranges.every((r) => r.well_shaped === null), 'the library calls it not well-shaped');
+  const family = (await getJson(`${server.base}/api/families`)).find((f) => f.name === 'IH28');
+  const page = await pageOf(1440, 900);
+  await openDesign(page, DEGENERATE);
+  await page.waitForFunction(() => document.querySelector('[data-testid="param-v0"]')?.dataset.lo !== undefined);
+  await page.waitForFunction(() => /not well-shaped/.test(document.querySelector('[data-testid="save-status"]').textContent));
+  assert.equal(await byTestId(page, 'save').isDisabled(), true, 'Save is disabled');
+  // Every slider reaches the family's default value (the valid interval alone, 8.1 … 9.9,
+  // trapped it near 9).
+  for (const r of ranges.ranges) {
+    const k = r.index;
+    const [min, max] = await byTestId(page, `param-v${k}`).evaluate((el) => [Number(el.min), Number(el.max)]);
+    const d = family.default_params[k];
+    assert.ok(min <= d && d <= max, `v${k}: default ${d} within the slider's ${min} … ${max}`);
+    assert.ok(min <= r.lo && r.hi <= max, `v${k}: the valid interval stays within the slider`);
+  }
+  await page.close();
+
+  // A live well-shaped design of the same family can be saved.
+  const fine = 'IH28:0.316978918628,0.36:1x1:a--a-b-bbb';
+  const good = await pageOf(1440, 900);
+  await openDesign(good, fine);
+  await good.waitForFunction(() => document.querySelector('[data-testid="param-v0"]')?.dataset.lo !== undefined);
+  await good.waitForFunction(() => !document.querySelector('[data-testid="save"]').disabled);
+  assert.equal(await byTestId(good, 'save-status').textContent(), '');
+  assert.deepEqual(problems(good), []);
+  await good.close();
+});
+
 test('a refused joint edit is explained beside the joint editor and marks every panel stale', async () => {
   const page = await pageOf(1440, 900);
   await openDesign(page, GENERIC);

@@ -23,7 +23,7 @@ import { join } from 'node:path';
 import { promisify } from 'node:util';
 import { DOMParser } from '@xmldom/xmldom';
 import {
-  allApiRows, byTestId, env, getJson, launchBrowser, moveSlider, newPage, problems, screenshot, startServer,
+  allApiRows, byTestId, env, getJson, launchBrowser, moveSlider, newPage, nextAnswer, problems, screenshot, startServer,
 } from './harness.mjs';
 import { slug } from '../src/schema.js';
 
@@ -197,7 +197,7 @@ test('a rectangle without a one-DOF completion is refused in the panel with the 
   page.on('download', () => {
     downloads += 1;
   });
-  const response = page.waitForResponse((r) => r.url().includes('/api/export?'));
+  const response = nextAnswer(page, (r) => r.url().includes('/api/export?'));
   await byTestId(page, 'export-download').click();
   const res = await response;
   assert.equal(res.status(), 422);
@@ -302,7 +302,7 @@ test('a hinge too wide is explained in the panel and nothing is downloaded', asy
   await byTestId(page, 'export-format').selectOption('svg');
   await byTestId(page, 'export-laser-hinge_mm').fill('1000');
   assert.match(await byTestId(page, 'export-command').textContent(), / --hinge-mm 1000 /);
-  const response = page.waitForResponse((r) => r.url().includes('/api/export?'));
+  const response = nextAnswer(page, (r) => r.url().includes('/api/export?'));
   await byTestId(page, 'export-download').click();
   const res = await response;
   assert.equal(res.status(), 400);

@@ -9,7 +9,7 @@
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  allApiRows, byTestId, canvasPixels, getJson, launchBrowser, newPage, pixelsChanged, pollUntil, problems, screenshot, startServer,
+  allApiRows, byTestId, canvasPixels, getJson, launchBrowser, newPage, nextAnswer, pixelsChanged, pollUntil, problems, screenshot, startServer,
 } from './harness.mjs';
 
 let server;
@@ -74,7 +74,7 @@ after(async () => {
  * answer as the page received it. */
 async function openDesign(page, spec) {
   await page.setViewportSize({ width: 1440, height: 900 });
-  const answer = page.waitForResponse((r) => r.url().includes('/api/sheet?') && r.status() === 200);
+  const answer = nextAnswer(page, (r) => r.url().includes('/api/sheet?'), { status: 200 });
   await page.goto(`${server.base}/design.html?spec=${encodeURIComponent(spec)}`);
   await page.waitForFunction(() => Number(document.body.dataset.deployments || 0) >= 1);
   await page.waitForFunction(() => document.querySelector('[data-testid="finite-panel"]')?.dataset.state === 'ready');
@@ -223,7 +223,7 @@ test('a region without a one-DOF sheet shows the library’s reason and the raw 
 test('a region in mm asks for that region, and a bad size asks nothing', async () => {
   const page = await newPage(browser);
   await openDesign(page, floppy.spec);
-  const answered = page.waitForResponse((r) => r.url().includes('/api/sheet?') && r.url().includes('region=disc%3A45'));
+  const answered = nextAnswer(page, (r) => r.url().includes('/api/sheet?') && r.url().includes('region=disc%3A45'));
   await byTestId(page, 'finite-shape').selectOption('disc');
   await byTestId(page, 'finite-radius').fill('45');
   const res = await answered;

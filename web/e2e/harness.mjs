@@ -303,26 +303,111 @@ export async function liveSettled(page, timeout = 60000) {
   );
 }
 
+/** A response whose body was read the moment it finished loading: `status()` and `json()`
+ * like a playwright Response, but usable after the page has moved on. (A Response's body is
+ * fetched from the browser on demand; once the page aborts that request — a live queue
+ * superseding it — or navigates, the body is gone, and a test that reads it after its next
+ * interaction fails now and then: "Response body is not available …".) */
+function readAnswer(status, url, text) {
+  return {
+    status: () => status,
+    url: () => url,
+    text: async () => text,
+    json: async () => JSON.parse(text),
+  };
+}
+
+/** The next request of `page` that matches `match(request)` and finishes loading (an aborted
+ * or failed one does not count), with its body read at once (readAnswer). Call it before the
+ * interaction that sends the request. `status` (optional) also filters on the response's
+ * status. */
+export function nextAnswer(page, match, { status = null, timeout = 60000 } = {}) {
+  return new Promise((ok, fail) => {
+    let done = false;
+    const stop = () => {
+      done = true;
+      page.off('requestfinished', listener);
+      clearTimeout(timer);
+    };
+    const timer = setTimeout(() => {
+      stop();
+      fail(new Error(`no finished request matched in ${timeout} ms`));
+    }, timeout);
+    const listener = async (req) => {
+      if (done || !match(req)) return;
+      try {
+        const res = await req.response();
+        if (!res || done || (status !== null && res.status() !== status)) return;
+        const text = (await res.body()).toString('utf8');
+        if (done) return;
+        stop();
+        ok(readAnswer(res.status(), req.url(), text));
+      } catch (e) {
+        if (!done) {
+          stop();
+          fail(e);
+        }
+      }
+    };
+    page.on('requestfinished', listener);
+  });
+}
+
+/** Records every finished request of `page` matching `match`, bodies read at once; returns
+ * `{ answerOf, stop }`: `answerOf(request)` waits (up to 10 s) for that request's answer
+ * (readAnswer), or null when it never finished (aborted or failed: the page never used it). */
+export function recordAnswers(page, match) {
+  const reads = new Map();
+  const listener = (req) => {
+    if (!match(req)) return;
+    reads.set(req, (async () => {
+      const res = await req.response();
+      return res && readAnswer(res.status(), req.url(), (await res.body()).toString('utf8'));
+    })().catch(() => null));
+  };
+  page.on('requestfinished', listener);
+  return {
+    async answerOf(req) {
+      const res = await req.response().catch(() => null);
+      if (res) await res.finished();
+      else return null;
+      const end = Date.now() + 10000;
+      while (!reads.has(req) && Date.now() < end) await new Promise((ok) => setTimeout(ok, 20));
+      return reads.get(req) ?? null;
+    },
+    stop: () => page.off('requestfinished', listener),
+  };
+}
+
+const isDeploy = (r) => r.url().endsWith('/api/deploy') && r.method() === 'POST';
+
 /** Presses `key` `times` on the design page's slider `testid`, waits for the first deployment
- * the presses start and then for the edit to settle (liveSettled); the response to the last
- * deployment asked for, the one the page now shows (200) or refuses. */
+ * the presses start to finish and then for the edit to settle (liveSettled); the answer
+ * (readAnswer) to the last deployment asked for, the one the page now shows (200) or refuses.
+ * Every body is read as its request finishes: an earlier deployment aborted by a later one
+ * has none. */
 export async function moveSlider(page, testid, key, times) {
   const asked = [];
-  const listener = (r) => {
-    if (r.url().endsWith('/api/deploy') && r.method() === 'POST') asked.push(r);
+  const onRequest = (r) => {
+    if (isDeploy(r)) asked.push(r);
   };
-  page.on('request', listener);
+  page.on('request', onRequest);
+  const record = recordAnswers(page, isDeploy);
   try {
-    const first = page.waitForResponse((r) => r.url().endsWith('/api/deploy') && r.request().method() === 'POST');
+    const first = nextAnswer(page, isDeploy);
     const slider = byTestId(page, testid);
     await slider.focus();
     for (let k = 0; k < times; k += 1) await slider.press(key);
     await first;
     await liveSettled(page);
+    const last = asked[asked.length - 1];
+    const answer = await record.answerOf(last);
+    if (!answer) throw new Error(`the last deployment asked for (${asked.length} asked) did not finish`);
+    return answer;
   } finally {
-    page.off('request', listener);
+    page.off('request', onRequest);
+    record.stop();
   }
-  return asked[asked.length - 1].response();
 }
 
 /** Retries `read()` (every `every` ms) until `ok(value)` or `timeout` ms have passed; the last

@@ -13,7 +13,7 @@ import { execFile } from 'node:child_process';
 import { basename, dirname } from 'node:path';
 import { promisify } from 'node:util';
 import {
-  buildSite, byTestId, canvasColours, canvasPixels, copyDb, env, getJson, launchBrowser, newPage, problems, screenshot, serveFolder, startServer,
+  buildSite, byTestId, canvasColours, canvasPixels, copyDb, env, getJson, launchBrowser, newPage, nextAnswer, problems, screenshot, serveFolder, startServer,
 } from './harness.mjs';
 import { EXAMPLES } from '../src/inverse-request.js';
 import { shellSplit } from '../test/shell.mjs';
@@ -173,7 +173,7 @@ test('a bad target shows the server’s message and starts nothing; the examples
   const page = await newPage(browser);
   await openPanel(page);
   await byTestId(page, 'target').fill('aera + isotropic');
-  const response = page.waitForResponse((r) => r.url().endsWith('/api/inverse') && r.request().method() === 'POST');
+  const response = nextAnswer(page, (r) => r.url().endsWith('/api/inverse') && r.method() === 'POST');
   await byTestId(page, 'run').click();
   const res = await response;
   assert.equal(res.status(), 400);
@@ -302,4 +302,26 @@ test('on the static site the page shows the command instead of running', async (
     await files.stop();
     await site.remove();
   }
+});
+
+test('inverse.html?target= fills the form and its command; an edited form survives a reload (issue 42 item 16)', async () => {
+  // Every example target, given in the URL as a link from elsewhere would give it.
+  const page = await newPage(browser);
+  for (const x of EXAMPLES) {
+    await page.goto(`${server.base}/inverse.html?target=${encodeURIComponent(x.target)}&budget=60`);
+    await page.waitForFunction(() => document.querySelector('[data-testid="top"]').value !== '');
+    assert.equal(await byTestId(page, 'target').inputValue(), x.target);
+    assert.equal(await byTestId(page, 'budget').inputValue(), '60');
+    const command = await byTestId(page, 'inverse-command').textContent();
+    assert.ok(command.includes('--budget 60'), command);
+    assert.ok(shellSplit(command).includes(x.target), command);
+  }
+  // A target typed in, then a reload: the same target and command.
+  await byTestId(page, 'target').fill('area(1.5)');
+  const typed = await byTestId(page, 'inverse-command').textContent();
+  await page.reload();
+  await page.waitForFunction(() => document.querySelector('[data-testid="top"]').value !== '');
+  assert.equal(await byTestId(page, 'target').inputValue(), 'area(1.5)');
+  assert.equal(await byTestId(page, 'inverse-command').textContent(), typed);
+  assert.deepEqual(problems(page), []);
 });

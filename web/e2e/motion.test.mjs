@@ -6,7 +6,7 @@
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  allApiRows, byTestId, getJson, launchBrowser, newPage, openDesign as openHarnessDesign, problems, startServer,
+  allApiRows, byTestId, getJson, launchBrowser, newPage, nextAnswer, openDesign as openHarnessDesign, problems, startServer,
 } from './harness.mjs';
 import { SHOWN, variantRows } from '../src/motion-panel.js';
 
@@ -67,7 +67,7 @@ test('a motion found only once shows no panel', async (t) => {
     return;
   }
   const page = await newPage(browser);
-  const answered = page.waitForResponse((r) => r.url().includes('/api/motion?'));
+  const answered = nextAnswer(page, (r) => r.url().includes('/api/motion?'));
   await openDesign(page, alone.spec);
   assert.equal((await (await answered).json()).class.variants.length, 1);
   await page.waitForTimeout(100); // the answer renders (or here: leaves the panel hidden)

@@ -6,7 +6,7 @@
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  byTestId, launchBrowser, newPage, openDesign as openHarnessDesign, problems as allProblems, startServer,
+  byTestId, launchBrowser, moveSlider, newPage, openDesign as openHarnessDesign, problems as allProblems, startServer,
 } from './harness.mjs';
 
 // These designs are not in the database: the page asks for the stored one first (404), then
@@ -38,14 +38,12 @@ const openDesign = (page, spec) => openHarnessDesign(page, server.base, spec);
 const deployments = (page) => page.evaluate(() => Number(document.body.dataset.deployments || 0));
 const paramsOf = (spec) => spec.split(':')[1].split(',').map(Number);
 
-/** Presses `key` `times` on slider `id` and waits for the deployment that follows. */
+/** Presses `key` `times` on slider `id` and waits for the edit to settle (moveSlider): the
+ * answer to the last deployment asked for, its body already read, and the count of
+ * deployments shown before the presses. */
 async function press(page, id, key, times) {
   const count = await deployments(page);
-  const deployed = page.waitForResponse((r) => r.url().endsWith('/api/deploy') && r.request().method() === 'POST');
-  const slider = byTestId(page, id);
-  await slider.focus();
-  for (let k = 0; k < times; k += 1) await slider.press(key);
-  const res = await deployed;
+  const res = await moveSlider(page, id, key, times);
   return { res, count };
 }
 

@@ -20,8 +20,12 @@ import {
   PAGE_SIZES, catalogueSearch, designHref, filterParams, parseCatalogueState, rememberCatalogue,
 } from './url.js';
 import { allRows, catalogueCsv, catalogueJson, dictionaryCsv, download } from './export.js';
+import { revealedScroll, specBreaks } from './table-model.js';
 
 const $ = (id) => document.getElementById(id);
+
+/** A spec as text that may break after its commas and colons (a narrow sticky column). */
+const specText = (spec) => specBreaks(spec).flatMap((piece, k) => (k ? [h('wbr'), piece] : [piece]));
 
 const TABLE_COLUMNS = [
   ['spec', 'spec'], ['family', 'family'], ['cell', 'cell'], ['tile_count', 'tiles'],
@@ -295,6 +299,10 @@ function syncControls() {
   if (state.ranges.some((r) => !MAIN_MEASURES.includes(r.measure))) $('ranges').querySelector('details').open = true;
 }
 
+/** Values a long facet list shows until opened; the facets opened by the user. */
+const FACET_SHOWN = 8;
+const openFacets = new Set();
+
 function renderFacets(facets) {
   const boxes = FACETS.map((f) => {
     const counts = [...(facets[f.name] || [])];
@@ -328,11 +336,24 @@ function renderFacets(facets) {
       const label = c.missing ? text : facetLabel(f.name, c.value);
       return h('li', {}, h('label', {}, box, ` ${label} `, h('span', { class: 'count' }, String(c.count))));
     });
+    // A long list shows its first FACET_SHOWN values (and any ticked) until it is opened, so
+    // the keyboard and a phone reach the results without passing every family.
+    const long = items.length > FACET_SHOWN + 1;
+    const open = openFacets.has(f.name);
+    const shown = long && !open ? items.filter((_, i) => i < FACET_SHOWN || counts[i].missing || selected.includes(facetText(f.name, counts[i].value))) : items;
+    const flip = () => {
+      if (open) openFacets.delete(f.name);
+      else openFacets.add(f.name);
+      renderFacets(facets);
+      $('facets').querySelector(`[data-testid="facet-more-${f.name}"]`)?.focus();
+    };
+    const more = long && h('button', { type: 'button', class: 'facet-more', testid: `facet-more-${f.name}`, 'aria-expanded': String(open), onclick: flip }, open ? 'show fewer' : `show all ${items.length}`);
     return h(
       'fieldset',
       { class: 'facet', testid: `facet-${f.name}` },
       h('legend', {}, f.label),
-      items.length ? h('ul', {}, items) : h('p', { class: 'empty' }, 'none'),
+      items.length ? h('ul', {}, shown) : h('p', { class: 'empty' }, 'none'),
+      more,
     );
   });
   $('facets').replaceChildren(h('h2', {}, 'Facets'), ...boxes);
@@ -364,15 +385,20 @@ function renderPage(page) {
   }
 }
 
-/** Scrolls a table horizontally so its sorted column is visible beside the sticky spec column. */
+/** Scrolls a table sideways so its sorted column is in view beside the sticky spec column,
+ * no column left half under it (revealedScroll); the room that needs after the last column is
+ * the table's right margin. */
 function revealSortedColumn(wrap) {
-  const th = wrap.querySelector('th.sorted');
-  const first = wrap.querySelector('th');
-  if (!th || th === first) return;
-  const left = th.offsetLeft - first.offsetWidth;
-  const right = th.offsetLeft + th.offsetWidth - wrap.clientWidth;
-  if (wrap.scrollLeft > left) wrap.scrollLeft = left;
-  else if (wrap.scrollLeft < right) wrap.scrollLeft = right;
+  const heads = [...wrap.querySelectorAll('thead th')];
+  const i = heads.findIndex((th) => th.classList.contains('sorted'));
+  const table = wrap.querySelector('table');
+  table.style.marginRight = '';
+  if (i <= 0) return;
+  // The sticky column's offsetLeft moves with the scroll: it starts the table at 0.
+  const columns = heads.map((th, k) => ({ left: k ? th.offsetLeft : 0, width: th.offsetWidth }));
+  const { scroll, tail } = revealedScroll(columns, i, wrap.clientWidth, wrap.scrollLeft);
+  if (tail > 0) table.style.marginRight = `${tail}px`;
+  wrap.scrollLeft = scroll;
 }
 
 /** A span of values as text: one value, or "lo–hi". */
@@ -555,11 +581,12 @@ function table(rows) {
       { testid: 'design-row', 'data-spec': r.spec },
       TABLE_COLUMNS.map(([key]) => {
         const sorted = state.sort?.key === key ? ' sorted' : '';
-        if (key === 'spec') return h('td', { class: sorted.trim() }, h('a', { href: designHref(r.spec) }, h('code', {}, r.spec)));
+        if (key === 'spec') return h('td', { class: sorted.trim() }, h('a', { href: designHref(r.spec) }, h('code', {}, specText(r.spec))));
         if (key === 'cell') return h('td', { class: sorted.trim() }, facetLabel('cell', r.cell));
         const v = r[key];
         const num = typeof v === 'number';
-        return h('td', { class: `${num ? 'num' : ''}${sorted}`.trim() }, num ? fmt(v) : facetLabel(key, v ?? null));
+        const wraps = key === 'behaviour' || key === 'linkage_signature' ? ' wraps' : '';
+        return h('td', { class: `${num ? 'num' : ''}${sorted}${wraps}`.trim() }, num ? fmt(v) : facetLabel(key, v ?? null));
       }),
     ),
   );

@@ -24,6 +24,7 @@ import {
   SHARED_LINKAGE_COLOUR,
 } from './patch.js';
 import { drawSheet } from './sheet.js';
+import { FIT, attachZoom } from './zoom-pan.js';
 import { createEditor } from './editor.js';
 import { LatestThrottle } from './live-queue.js';
 import { catalogueHref, designSearch, parseDesignState } from './url.js';
@@ -45,6 +46,10 @@ let editor = null;
 let playing = false;
 let live = null; // LatestThrottle of live deployments
 let rangesRequest = null; // AbortController of the running GET /api/shape/ranges
+// Whether the design shown is well-shaped at its shape (every parameter inside its well-shaped
+// band, GET /api/shape/ranges): true, false, or null until that answer is in. Save waits for true.
+let wellShaped = null;
+let sheetZoom = FIT; // the sheet canvas's zoom and pan (zoom-pan.js)
 let exportPanel = null;
 let finitePanel = null;
 
@@ -221,7 +226,25 @@ function markStale(stale, kind = '') {
       }
     }
   }
-  $('save').disabled = stale || !data.live || !view || view.origin !== null;
+  updateSave();
+}
+
+/** Save: enabled for a live design shown (not stale, not stored) once it is known to be
+ * well-shaped; a design that is not says why beside the button. */
+function updateSave() {
+  const stale = document.body.dataset.stale === 'true';
+  const status = $('save-status');
+  $('save').disabled = stale || !data.live || !view || view.origin !== null || wellShaped !== true;
+  const reason = data.live && view && view.origin === null && wellShaped === false
+    ? 'not saved: the tile is not well-shaped at this shape (degenerate or self-touching); move the sliders back into the green band'
+    : '';
+  if (reason) {
+    status.textContent = reason;
+    status.dataset.reason = 'ill-shaped';
+  } else if (status.dataset.reason) {
+    status.textContent = '';
+    delete status.dataset.reason;
+  }
 }
 
 /** Asks for each shape parameter's valid range at the design shown (server mode). */
@@ -234,13 +257,21 @@ const rangesSoon = debounce(async (spec, kerf) => {
     const answer = await data.shapeRanges(spec, kerf, controller.signal);
     if (rangesRequest !== controller || !view || view.spec !== spec) return;
     editor.setRanges(answer);
-  } catch {
-    // No ranges: the sliders keep their default span (the server still refuses bad shapes).
+    wellShaped = answer.ranges.every((r) => r.well_shaped !== null);
+    updateSave();
+  } catch (e) {
+    // No ranges: the sliders keep their default span (the server still refuses bad shapes);
+    // a design that does not build (422) is not saved.
+    if (e?.name !== 'AbortError' && rangesRequest === controller && view?.spec === spec) {
+      wellShaped = e?.status === 422 ? false : null;
+      updateSave();
+    }
   }
 }, 120);
 
 /** Shows a DesignView: canvas, plots, measures, editor; its notice (multi-DOF, locked) if any. */
 function showView(v, { fromEditor, source = null }) {
+  if (v.spec !== view?.spec) wellShaped = null;
   view = v;
   state.spec = v.spec;
   state.kerf = fromEditor ? v.report.kerf : state.kerf;
@@ -258,7 +289,7 @@ function showView(v, { fromEditor, source = null }) {
   const origin = v.origin ?? 'live';
   $('origin').textContent = origin === 'live' ? 'live (not in the database)' : `${origin} design`;
   $('origin').dataset.origin = origin;
-  $('save').disabled = !data.live || v.origin !== null;
+  updateSave();
   const dragging = fromEditor && live && live.busy();
   if (dragging) followUps = true;
   else rangesSoon(v.spec, v.report.kerf);
@@ -288,7 +319,7 @@ function showView(v, { fromEditor, source = null }) {
 function renderFrame() {
   if (!view) return;
   const frame = frameAt(view.report, state.t);
-  drawSheet($('sheet'), view, frame, { rows: state.rows, cols: state.cols, colour: state.colour, cell: state.cell, links: state.links, bounds });
+  drawSheet($('sheet'), view, frame, { rows: state.rows, cols: state.cols, colour: state.colour, cell: state.cell, links: state.links, bounds, zoom: sheetZoom });
   plots.expansion.setMarker(state.t);
   plots.polar.update(frame.F);
   $('t').value = String(state.t);
@@ -374,6 +405,10 @@ function setupControls() {
     $('download-gif').hidden = true;
     $('gif-note').textContent = 'GIF: needs `isogami serve`.';
   }
+  attachZoom($('sheet'), () => sheetZoom, (z) => {
+    sheetZoom = z;
+    renderFrame();
+  });
   new ResizeObserver(() => renderFrame()).observe($('sheet'));
 }
 

@@ -37,6 +37,15 @@ export function paramRange(d) {
   return [d - half, d + half];
 }
 
+/** The span of a shape slider from its range `r` (GET /api/shape/ranges): the valid interval
+ * where the tile is well-shaped at the value; where it is not, that interval joined with the
+ * family's default span around `d` (paramRange), so the slider can go back. */
+export function sliderSpan(r, d) {
+  if (r.well_shaped || d === undefined || !Number.isFinite(d)) return [r.lo, r.hi];
+  const [lo, hi] = paramRange(d);
+  return [Math.min(r.lo, lo), Math.max(r.hi, hi)];
+}
+
 /** A slider value rounded to 4 decimals, kept inside [min, max] (rounding must not leave
  * the valid range); at an end, exactly that end. */
 export function sliderValue(raw, min, max) {
@@ -333,17 +342,21 @@ export function createEditor(container, { live, onChange, reason, shape = null }
     for (const r of ranges.ranges) {
       const input = inputs[r.index];
       if (!input) continue;
-      input.min = String(r.lo);
-      input.max = String(r.hi);
-      input.step = String((r.hi - r.lo) / 400);
+      // Not well-shaped here (the tile is degenerate at this shape): the valid interval, searched
+      // only near the value, would trap the slider there; it reaches back to the family's
+      // default span too.
+      const [min, max] = sliderSpan(r, info?.default_params?.[r.index]);
+      input.min = String(min);
+      input.max = String(max);
+      input.step = String((max - min) / 400);
       input.value = String(design.params[r.index]);
       input.dataset.lo = String(r.lo);
       input.dataset.hi = String(r.hi);
       const well = bands[r.index].firstChild;
-      const span = r.hi - r.lo;
+      const span = max - min;
       if (r.well_shaped && span > 0) {
         const [a, b] = r.well_shaped;
-        well.style.left = `${(100 * (a - r.lo)) / span}%`;
+        well.style.left = `${(100 * (a - min)) / span}%`;
         well.style.width = `${(100 * (b - a)) / span}%`;
         well.hidden = false;
         bands[r.index].dataset.well = `${a},${b}`;
@@ -356,7 +369,9 @@ export function createEditor(container, { live, onChange, reason, shape = null }
         const open = [r.lo_open ? 'below' : null, r.hi_open ? 'above' : null].filter(Boolean).join(' and ');
         text.textContent = `valid ${fmt(r.lo)} … ${fmt(r.hi)} with the others fixed` +
           (open ? ` (valid ${open} too: searched no further)` : '') +
-          (r.well_shaped ? `; well-shaped ${fmt(r.well_shaped[0])} … ${fmt(r.well_shaped[1])} (shaded green)` : '; the tile is not well-shaped here');
+          (r.well_shaped
+            ? `; well-shaped ${fmt(r.well_shaped[0])} … ${fmt(r.well_shaped[1])} (shaded green)`
+            : `; the tile is not well-shaped here (the slider reaches back to ${fmt(min)} … ${fmt(max)})`);
       }
     }
   }

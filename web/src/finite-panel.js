@@ -8,6 +8,7 @@
 // server and asks nothing.
 
 import { h, fmt } from './dom.js';
+import { FIT, attachZoom, zoomedTransform } from './zoom-pan.js';
 import {
   dofBadge, finiteFrameAt, latticeOf, placePolygon, poseOutside, sheetCommand, sheetKerfDiffers, sheetLayers, sheetParams,
 } from './sheet-request.js';
@@ -27,6 +28,7 @@ export function createFinitePanel(container, { data, current, defaultKerf = () =
   let asked = '';
   let lastT = 0;
   let bounds = null;
+  let zoom = FIT; // the canvas's zoom and pan (zoom-pan.js)
 
   if (!data.live) {
     container.replaceChildren(
@@ -81,6 +83,10 @@ export function createFinitePanel(container, { data, current, defaultKerf = () =
     el.refusal = h('p', { class: 'notice notice-refused', testid: 'finite-refusal', hidden: true });
     el.error = h('div', { class: 'notice notice-error', role: 'alert', testid: 'finite-error', hidden: true });
     el.canvas = h('canvas', { id: 'finite-canvas', testid: 'finite-canvas', role: 'img', 'aria-label': 'the finite sheet' });
+    attachZoom(el.canvas, () => zoom, (z) => {
+      zoom = z;
+      render(lastT);
+    });
     el.motion = h('p', { class: 'muted finite-motion', testid: 'finite-motion' });
     el.status = h('span', { class: 'muted', testid: 'finite-status', 'aria-live': 'polite' });
     el.command = h('code', { testid: 'finite-command' });
@@ -255,10 +261,12 @@ export function createFinitePanel(container, { data, current, defaultKerf = () =
     const [x0, y0, x1, y1] = bounds.box;
     const pad = 10;
     const s = Math.min((width - 2 * pad) / Math.max(1e-9, x1 - x0), (height - 2 * pad) / Math.max(1e-9, y1 - y0));
-    const cx = (x0 + x1) / 2;
-    const cy = (y0 + y1) / 2;
-    ctx.setTransform(ratio * s, 0, 0, -ratio * s, ratio * (width / 2 - s * cx), ratio * (height / 2 + s * cy));
-    const px = 1 / s;
+    // The scale fits the whole motion; the sheet as it is at t is centred (a thin sheet that
+    // turns as it opens would otherwise sit in a corner of its motion's box).
+    const [cx, cy] = centreOf(tiles) ?? [(x0 + x1) / 2, (y0 + y1) / 2];
+    ctx.setTransform(...zoomedTransform(zoom, width, height, ratio, [s, width / 2 - s * cx, height / 2 + s * cy]));
+    canvas.dataset.zoom = `${zoom.k},${zoom.x},${zoom.y}`;
+    const px = 1 / (s * zoom.k);
     ctx.lineJoin = 'round';
     const count = { floppy: 0, removed: 0, added: 0, solid: 0 };
     // Ghosts first, under the sheet.
@@ -290,6 +298,15 @@ export function createFinitePanel(container, { data, current, defaultKerf = () =
       t: frame ? t.toFixed(3) : '',
     });
     el.motion.textContent = motionWords(shown, frame);
+  }
+
+  /** Centre of the bounding box of `tiles` as drawn, or null for none. */
+  function centreOf(tiles) {
+    let b = [Infinity, Infinity, -Infinity, -Infinity];
+    for (const tile of tiles) {
+      for (const [x, y] of placePolygon(answer.drawing.tiles[tile.tile], tile.pose)) b = [Math.min(b[0], x), Math.min(b[1], y), Math.max(b[2], x), Math.max(b[3], y)];
+    }
+    return Number.isFinite(b[0]) ? [(b[0] + b[2]) / 2, (b[1] + b[3]) / 2] : null;
   }
 
   function motionWords(shown, frame) {

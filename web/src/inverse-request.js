@@ -169,3 +169,32 @@ export function historyPoints(job) {
   if ((job.evaluations ?? 0) > last[0]) points.push([job.evaluations, last[1]]);
   return points;
 }
+
+/** The form's fields that the page's URL keeps (query key → form key). */
+const URL_FIELDS = [
+  ['target', 'target'], ['top', 'top'], ['budget', 'budget'], ['confirm', 'confirm'],
+  ['triage', 'triage'], ['samples', 'samples'], ['kerf', 'kerf'],
+];
+
+/** The form values a URL's query string sets (`?target=area&budget=80&refine-kerf=1`): only
+ * the keys present, as text; `refineKerf` true for `refine-kerf=1`. */
+export function formFromSearch(search) {
+  const q = new URLSearchParams(search);
+  const out = {};
+  for (const [key, field] of URL_FIELDS) if (q.has(key)) out[field] = q.get(key);
+  if (q.has('refine-kerf')) out.refineKerf = q.get('refine-kerf') === '1';
+  return out;
+}
+
+/** The query string that keeps form `f` in the URL: every non-empty field, so a reload or a
+ * shared link shows the same form (formFromSearch reads it back). */
+export function formSearch(f) {
+  const q = new URLSearchParams();
+  for (const [key, field] of URL_FIELDS) {
+    const v = String(f[field] ?? '').trim();
+    if (v) q.set(key, v);
+  }
+  if (f.refineKerf) q.set('refine-kerf', '1');
+  const s = q.toString();
+  return s ? `?${s}` : '';
+}

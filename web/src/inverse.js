@@ -12,7 +12,7 @@ import { h, fmt, showNotice, clearNotice } from './dom.js';
 import { createLinePlot } from './plots.js';
 import { designHref } from './url.js';
 import {
-  EXAMPLES, NUMBER_FIELDS, cliCommand, emptyForm, formProblem, historyPoints, inverseBody, leaderRows,
+  EXAMPLES, NUMBER_FIELDS, cliCommand, emptyForm, formFromSearch, formProblem, formSearch, historyPoints, inverseBody, leaderRows,
   progressLine, resultRows,
 } from './inverse-request.js';
 
@@ -52,9 +52,24 @@ function showError(e) {
   showNotice($('notice'), { message: e.message, hint: e.hint || '', kind: e.kind || 'error' });
 }
 
-function updateCommand() {
+/** The command line of the form; `keep` (an edit, not the page's first fill) also keeps the
+ * form in the URL. */
+function updateCommand(keep = true) {
   const f = form();
   $('command').textContent = String(f.target).trim() ? cliCommand(f, settings?.database) : '';
+  // The form lives in the URL: a reload or a shared link keeps the target and the command.
+  if (!keep) return;
+  const search = formSearch(f);
+  if (search !== location.search) history.replaceState(null, '', `${location.pathname}${search}`);
+}
+
+/** Fills the form from the URL's query (`?target=…`, as formSearch writes it). */
+function formFromUrl() {
+  const given = formFromSearch(location.search);
+  for (const [field, value] of Object.entries(given)) {
+    if (field === 'refineKerf') $('refine-kerf').checked = value;
+    else $(field).value = value;
+  }
 }
 
 async function main() {
@@ -102,6 +117,7 @@ async function main() {
       }, x.label),
     ),
   );
+  formFromUrl();
   $('inverse-form').addEventListener('input', updateCommand);
   $('inverse-form').addEventListener('change', updateCommand);
   $('inverse-form').addEventListener('submit', (event) => {
@@ -110,7 +126,7 @@ async function main() {
   });
   $('stop').addEventListener('click', stop);
   $('save-all').addEventListener('click', saveAll);
-  updateCommand();
+  updateCommand(false);
   if (!data.live) {
     $('run').disabled = true;
     $('progress-section').hidden = true;

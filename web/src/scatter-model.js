@@ -2,7 +2,8 @@
 // resolution tied to the view, so a stack is what the eye sees as one point), colour keys and
 // palettes (behaviour or family), axis ticks whose labels stay short and distinct on any range
 // (an offset label when the span is tiny next to the values, one tick when all are equal), a
-// brushed rectangle as rounded range bounds, and the nearest stack in an arrow key's direction.
+// brushed rectangle as rounded range bounds, the stack under the pointer, and the nearest stack
+// in an arrow key's direction.
 
 import * as d3 from 'd3';
 
@@ -140,6 +141,32 @@ export function stackSlices(stack, key) {
 /** The drawn radius of a stack of `count` designs (3 px for one, growing with √count, ≤ 22). */
 export function stackRadius(count) {
   return Math.min(22, 3 + 2 * Math.sqrt(count - 1));
+}
+
+/** How far from a stack's centre the pointer still picks it: its radius, at least 4 px, plus
+ * 3 px of slack (a lone design is a small target). */
+export function pickRadius(r) {
+  return Math.max(r, 4) + 3;
+}
+
+/**
+ * The index of the stack that the pointer at (px, py) picks among drawn stacks `[{px, py, r}]`,
+ * or -1: among stacks within their pick radius, the one nearest in units of that radius. A
+ * stack's centre is always its own (distance 0), and a small stack drawn over a big one takes
+ * only the part of the big disc nearer to it in those units, not its whole pick disc.
+ */
+export function pickStack(stacks, px, py) {
+  let best = -1;
+  let bestScore = Infinity;
+  stacks.forEach((s, i) => {
+    const reach = pickRadius(s.r);
+    const score = Math.hypot(s.px - px, s.py - py) / reach;
+    if (score <= 1 && score < bestScore) {
+      bestScore = score;
+      best = i;
+    }
+  });
+  return best;
 }
 
 const MINUS = '\u2212';

@@ -10,7 +10,7 @@
 import * as d3 from 'd3';
 import { h, fmt } from './dom.js';
 import {
-  axisTicks, colourKey, fittingTicks, nearestInDirection, roundedRange, stackPoints, stackQuantum,
+  axisTicks, colourKey, fittingTicks, nearestInDirection, pickStack, roundedRange, stackPoints, stackQuantum,
   stackRadius, stackSlices,
 } from './scatter-model.js';
 
@@ -315,11 +315,8 @@ export function createScatter(container, options) {
   /** The top-most drawn stack whose disc (plus 3 px) holds the pixel. */
   function stackAt(px, py) {
     if (!view) return null;
-    for (let i = view.drawn.length - 1; i >= 0; i -= 1) {
-      const d = view.drawn[i];
-      if (Math.hypot(d.px - px, d.py - py) <= Math.max(d.r, 4) + 3) return d.stack;
-    }
-    return null;
+    const i = pickStack(view.drawn, px, py);
+    return i < 0 ? null : view.drawn[i].stack;
   }
 
   function drawnOf(stack) {

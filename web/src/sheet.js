@@ -2,8 +2,9 @@
 // pins, the linkage loops (on by default: each loop a line through its joints in its linkage's
 // colour over a white halo, as the paper's Fig. 6) and optionally the unit cell with its
 // lattice vectors. The scale is fixed over the whole motion (bounds from patch.js) so the sheet
-// visibly opens. The loops drawn are left on the canvas as `data-linkage-loops` (JSON: index,
-// colour and points in CSS pixels) so that tests can check the pixels along them.
+// visibly opens; the user's zoom and pan (zoom-pan.js) apply on top. The loops drawn are left
+// on the canvas as `data-linkage-loops` (JSON: index, colour and points in CSS pixels) so that
+// tests can check the pixels along them.
 
 import {
   linkageColour,
@@ -13,8 +14,10 @@ import {
   tileColours,
   unitCell,
 } from './patch.js';
+import { FIT, zoomPoint, zoomedTransform } from './zoom-pan.js';
 
-/** Draws `frame` of `view` into `canvas` with options {rows, cols, colour, cell, links, bounds}. */
+/** Draws `frame` of `view` into `canvas` with options {rows, cols, colour, cell, links, bounds,
+ * zoom} (zoom: a zoom-pan.js state, FIT when absent). */
 export function drawSheet(canvas, view, frame, opts) {
   const ratio = window.devicePixelRatio || 1;
   const width = canvas.clientWidth || 600;
@@ -34,9 +37,12 @@ export function drawSheet(canvas, view, frame, opts) {
   const s = Math.min((width - 2 * pad) / Math.max(1e-9, x1 - x0), (height - 2 * pad) / Math.max(1e-9, y1 - y0));
   const polygons = patchPolygons(view, frame, opts.rows, opts.cols);
   const [cx, cy] = centre(polygons);
-  // World y points up; the canvas's down.
-  ctx.setTransform(ratio * s, 0, 0, -ratio * s, ratio * (width / 2 - s * cx), ratio * (height / 2 + s * cy));
-  const px = 1 / s;
+  // World y points up; the canvas's down. The user's zoom and pan (zoom-pan.js) on top.
+  const zoom = opts.zoom ?? FIT;
+  const fit = [s, width / 2 - s * cx, height / 2 + s * cy];
+  ctx.setTransform(...zoomedTransform(zoom, width, height, ratio, fit));
+  canvas.dataset.zoom = `${zoom.k},${zoom.x},${zoom.y}`;
+  const px = 1 / (s * zoom.k);
   const fill = tileColours(view, frame, opts.colour);
   ctx.lineJoin = 'round';
   for (const poly of polygons) {
@@ -83,7 +89,7 @@ export function drawSheet(canvas, view, frame, opts) {
       }
     }
   }
-  const toCss = ([x, y]) => [round1(width / 2 + s * (x - cx)), round1(height / 2 - s * (y - cy))];
+  const toCss = ([x, y]) => zoomPoint(zoom, width, height, [width / 2 + s * (x - cx), height / 2 - s * (y - cy)]).map(round1);
   canvas.dataset.linkageLoops = JSON.stringify(
     loops.map((l) => ({ index: l.index, colour: linkageColour(l.index), points: l.points.map(toCss) })),
   );

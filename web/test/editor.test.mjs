@@ -3,7 +3,7 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { sliderValue, spreadPins } from '../src/editor.js';
+import { paramRange, sliderSpan, sliderValue, spreadPins } from '../src/editor.js';
 
 test('a rounded slider value never leaves [min, max]', () => {
   // The library's range ends have 12 digits; rounding to 4 decimals could step past them.
@@ -40,4 +40,21 @@ test('pins far apart stay near their corner', () => {
   const at = spreadPins([{ end: [0, 0], other: [1, 0] }, { end: [1, 1], other: [0, 1] }], 0.02);
   assert.ok(Math.abs(at[0][0] - 0.044) < 1e-12 && at[0][1] === 0);
   assert.ok(Math.abs(at[1][0] - (1 - 0.044)) < 1e-12);
+});
+
+test('a slider where the tile is not well-shaped reaches back to the family default span', () => {
+  // Every default from −2 to 2 in steps of 0.25, the value far away on either side.
+  for (let d = -2; d <= 2; d += 0.25) {
+    for (const value of [d + 9, d - 9]) {
+      const r = { lo: value - 0.9, hi: value + 0.9, well_shaped: null };
+      const [min, max] = sliderSpan(r, d);
+      const [lo, hi] = paramRange(d);
+      assert.ok(min <= lo && max >= hi, `default span ${lo} … ${hi} inside ${min} … ${max}`);
+      assert.ok(min <= r.lo && max >= r.hi, 'the valid interval stays inside');
+      // Well-shaped: exactly the valid interval (nothing to go back to).
+      assert.deepEqual(sliderSpan({ ...r, well_shaped: [r.lo, r.hi] }, d), [r.lo, r.hi]);
+    }
+  }
+  // No default known: the valid interval.
+  assert.deepEqual(sliderSpan({ lo: 1, hi: 2, well_shaped: null }, undefined), [1, 2]);
 });

@@ -6,7 +6,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  EXAMPLES, cellText, cliCommand, emptyForm, familyCell, formProblem, historyPoints, inverseBody, leaderRows, pair,
+  EXAMPLES, cellText, cliCommand, emptyForm, familyCell, formFromSearch, formProblem, formSearch, historyPoints, inverseBody, leaderRows, pair,
   progressLine, resultRows,
 } from '../src/inverse-request.js';
 import { shellSplit } from './shell.mjs';
@@ -137,4 +137,18 @@ test('table rows: leaders in their order, results with before, after and measure
   assert.equal(older[0].end, 'max steps at [0.1, 0.25]', 'a result without end_label: the key in words');
   assert.equal(pair([1 / 3, 2]), '[0.3333, 2]');
   assert.equal(cellText('3x2'), '3×2');
+});
+
+test('the form round-trips through the URL: every example target, with and without options', () => {
+  for (const x of EXAMPLES) {
+    for (const extra of [{}, { top: '5', budget: '120', kerf: '0.02', refineKerf: true }]) {
+      const f = { target: x.target, top: '', budget: '', confirm: '', triage: '', samples: '', kerf: '', refineKerf: false, ...extra };
+      const back = formFromSearch(formSearch(f));
+      assert.equal(back.target, x.target);
+      for (const [k, v] of Object.entries(extra)) assert.equal(back[k], v, `${k} of ${x.target}`);
+      assert.ok(!('samples' in back), 'empty fields stay out of the URL');
+    }
+  }
+  assert.deepEqual(formFromSearch(''), {});
+  assert.equal(formSearch({ target: '  ' }), '');
 });

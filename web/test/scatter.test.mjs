@@ -4,7 +4,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  PALETTE, OTHER, axisTicks, colourKey, fittingTicks, nearestInDirection, roundedRange,
+  PALETTE, OTHER, axisTicks, colourKey, fittingTicks, nearestInDirection, pickRadius, pickStack, roundedRange,
   stackPoints, stackQuantum, stackRadius, stackSlices,
 } from '../src/scatter-model.js';
 
@@ -126,4 +126,42 @@ test('arrow keys go to the nearest stack in their direction', () => {
   assert.equal(nearestInDirection(s, s[0], 'ArrowLeft'), -1);
   assert.equal(nearestInDirection(s, s[2], 'ArrowRight'), -1);
   assert.equal(nearestInDirection(s, s[0], 'Enter'), -1);
+});
+
+test('the pointer picks each stack at its centre, and a big stack keeps most of its disc', () => {
+  // Random layouts (seeded): one big stack with small stacks scattered over and around it.
+  let seed = 42;
+  const rand = () => {
+    seed = (seed * 1103515245 + 12345) % 2 ** 31;
+    return seed / 2 ** 31;
+  };
+  for (let trial = 0; trial < 50; trial += 1) {
+    const big = { px: 100, py: 100, r: stackRadius(124) };
+    const stacks = [big];
+    const n = 1 + Math.floor(rand() * 6);
+    for (let k = 0; k < n; k += 1) {
+      const a = rand() * 2 * Math.PI;
+      const d = 1 + rand() * (big.r + 8);
+      stacks.push({ px: 100 + d * Math.cos(a), py: 100 + d * Math.sin(a), r: stackRadius(1 + Math.floor(rand() * 4)) });
+    }
+    // Every centre picks its own stack, whatever the drawing order.
+    for (const order of [stacks, [...stacks].reverse()]) {
+      order.forEach((s, i) => assert.equal(pickStack(order, s.px, s.py), i, `trial ${trial}`));
+    }
+    // Each small stack takes at most the part of the big disc nearer to it in pick radii: at
+    // most (r_s / r_b)² of the big disc each, so the big one keeps at least half here.
+    let own = 0;
+    let all = 0;
+    for (let x = big.px - big.r; x <= big.px + big.r; x += 0.5) {
+      for (let y = big.py - big.r; y <= big.py + big.r; y += 0.5) {
+        if (Math.hypot(x - big.px, y - big.py) > big.r) continue;
+        all += 1;
+        if (pickStack(stacks, x, y) === 0) own += 1;
+      }
+    }
+    assert.ok(own / all >= 0.5, `trial ${trial}: the big stack keeps ${own / all} of its disc`);
+  }
+  // Outside every pick radius, nothing.
+  assert.equal(pickStack([{ px: 0, py: 0, r: 3 }], pickRadius(3) + 0.1, 0), -1);
+  assert.equal(pickStack([{ px: 0, py: 0, r: 3 }], pickRadius(3) - 0.1, 0), 0);
 });
