@@ -80,7 +80,7 @@ fn rotating_squares_stay_one_dof_as_the_sheet_grows() {
 }
 
 /// The large sizes of the acceptance (slow in debug: run by
-/// `scripts/finite-scale.sh` in release).
+/// `scripts/finite/scale.sh` in release).
 #[test]
 #[ignore]
 fn large_sheets_keep_their_one_motion() {
