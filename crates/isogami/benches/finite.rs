@@ -54,7 +54,6 @@ fn bench(c: &mut Criterion) {
             mech: &mech,
             q: &q,
             motion: &motion,
-            settings: settings.mobility,
             // IH9 keeps 49.2 % of a 10×10 region: below the default 50 %, still a completion.
             min_covered: 0.0,
             keep_going: isogami::stop::NEVER,
@@ -68,7 +67,7 @@ fn bench(c: &mut Criterion) {
                     &mech,
                     &poses,
                     Some(&periodic),
-                    settings.mobility,
+                    isogami::stop::NEVER,
                 ))
             })
         });

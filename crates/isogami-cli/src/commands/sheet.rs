@@ -236,24 +236,39 @@ fn describe_deployment(o: &mut String, d: &SheetDeployment) {
         a.compared_steps,
         a.until_periodic_t
     );
-    if d.one_dof_throughout {
+    let checked_bad: Vec<String> = d
+        .checks
+        .iter()
+        .filter(|c| c.dof != 1 || !c.follows_periodic)
+        .map(|c| format!("t = {:.3}: {} DOF", c.t, c.dof))
+        .collect();
+    if checked_bad.is_empty() {
         outln!(
             o,
             "            one DOF at each of {} states checked",
             d.checks.len()
         );
     } else {
-        let bad: Vec<String> = d
-            .checks
-            .iter()
-            .filter(|c| c.dof != 1 || !c.follows_periodic)
-            .map(|c| format!("t = {:.3}: {} DOF", c.t, c.dof))
-            .collect();
         outln!(
             o,
             "warning: the sheet is not one-DOF everywhere along the way ({}); it may leave this path",
-            bad.join(", ")
+            checked_bad.join(", ")
         );
+    }
+    for (what, states) in [("sheet", &d.singular), ("periodic", &d.periodic_singular)] {
+        for s in states.iter() {
+            outln!(
+                o,
+                "warning: the {what} path is singular at t = {:.4} ({} extra first-order motion{}, \
+                 lowest eigenvalue {:.1e} against {:.1e} along the path): a sheet pulled through \
+                 it can branch off the periodic motion there; stop short of it or guide the sheet",
+                s.t,
+                s.extra_motions,
+                if s.extra_motions == 1 { "" } else { "s" },
+                s.lowest,
+                s.typical
+            );
+        }
     }
 }
 

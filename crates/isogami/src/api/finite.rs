@@ -6,8 +6,7 @@ use crate::cell::UnitCell;
 use crate::deploy::{DeploySettings, Progress, Trajectory};
 use crate::error::Result;
 use crate::finite::{
-    complete, periodic_velocity, sheet_mobility, Completion, Context, FiniteError, FiniteSheet,
-    Region, SheetMobility,
+    complete, sheet_kernel, Completion, Context, FiniteError, FiniteSheet, Region, SheetMobility,
 };
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
@@ -30,7 +29,8 @@ pub struct SheetRequest {
     pub complete: bool,
     /// Smallest fraction of the region's area a completed sheet must keep, in [0, 1].
     pub min_covered: Real,
-    /// The periodic deployment's settings (its mobility tolerance is the zero threshold).
+    /// The periodic deployment's settings (a finite sheet's zeros are decided by its
+    /// spectrum's gap, see [`crate::finite::kernel`], not by the mobility tolerance).
     pub settings: DeploySettings,
 }
 
@@ -209,16 +209,15 @@ pub(crate) fn sheet_of_trajectory(
         mech,
         q,
         motion: &motion,
-        settings: mobility,
         min_covered: request.min_covered,
         keep_going,
     };
     let raw_mobility = ctx.mobility(&requested)?;
-    let closed_motion = motion_at(&mech.rest)?;
+    // Only the count is wanted closed: the kernel, without the extra modes' localisation
+    // (a closed 40×40 rotating-squares patch has 158 of them).
     let closed_dof = |sheet: &FiniteSheet| -> Result<usize> {
         let poses = sheet.poses(mech, &mech.rest);
-        let periodic = periodic_velocity(sheet, mech, &closed_motion);
-        Ok(sheet_mobility(sheet, mech, &poses, Some(&periodic), mobility)?.dof)
+        Ok(sheet_kernel(sheet, mech, &poses, keep_going)?.dof)
     };
     if !keep_going() {
         return Err(FiniteError::Cancelled.into());

@@ -6,8 +6,8 @@ use super::{SheetAnalysis, SheetRequest};
 use crate::deploy::{deploy_with, select_frames, EndReason, Progress, TilePose};
 use crate::error::Result;
 use crate::finite::{
-    check_states, periodic_agreement, sheet_pairs, ClosedSheet, FiniteError, PeriodicAgreement,
-    SheetMeasures, StateCheck,
+    check_states, periodic_agreement, periodic_singular_states, sheet_pairs, sheet_singular_states,
+    ClosedSheet, FiniteError, PeriodicAgreement, SheetMeasures, SingularState, StateCheck,
 };
 use crate::math::Real;
 use crate::topology::Design;
@@ -85,8 +85,16 @@ pub struct SheetDeployment {
     pub agreement: PeriodicAgreement,
     /// The sheet's degrees of freedom at states along the way.
     pub checks: Vec<StateCheck>,
+    /// Singular states of the finite deployment (every accepted state but the closed one
+    /// counted; see [`crate::finite::singular`]): states where the sheet has extra
+    /// first-order motions, so a sheet pulled through one can branch off the periodic
+    /// motion there.
+    pub singular: Vec<SingularState>,
+    /// Singular states of the periodic deployment, counted the same way on the mechanism.
+    pub periodic_singular: Vec<SingularState>,
     /// Whether every check found one degree of freedom with the periodic motion: when not,
-    /// the sheet can leave the path computed here (see the checks).
+    /// the sheet can leave the path computed here (see the checks; and the singular states,
+    /// where it can too).
     pub one_dof_throughout: bool,
     /// Frames of tile poses, the closed state first and the last state last.
     pub frames: Vec<SheetFrame>,
@@ -143,6 +151,8 @@ pub fn deploy_sheet(
             ))
     };
     let checks = check_states(&sheet, &mech, &traj, request.checks, settings.mobility)?;
+    let singular = sheet_singular_states(&sheet, &mech, &traj, 1, crate::stop::NEVER)?;
+    let periodic_singular = periodic_singular_states(&mech, periodic, settings.mobility)?;
     let mut max_hull_area_ratio: Real = 0.0;
     for s in &traj.steps {
         max_hull_area_ratio = max_hull_area_ratio.max(measure(&s.q)?.hull_area_ratio);
@@ -193,6 +203,8 @@ pub fn deploy_sheet(
         },
         agreement: periodic_agreement(&sheet, &mech, &traj, periodic, settings.contact.dhat),
         one_dof_throughout: checks.iter().all(|c| c.dof == 1 && c.follows_periodic),
+        singular,
+        periodic_singular,
         checks,
         frames,
         analysis,

@@ -4,7 +4,7 @@
 //!
 //! Computed from the periodic deployment the exploration makes anyway (the admission's
 //! trajectory), at the state [`api::finite_sheet`] counts at, with the same region, counting
-//! state, smallest covered fraction and zero threshold: the figures are those of
+//! state and smallest covered fraction: the figures are those of
 //! `api::finite_sheet(design, &finite_request(settings), ..)` (tested), without deploying
 //! again and without the closed-state counts that analysis adds.
 
@@ -36,7 +36,7 @@ pub struct FiniteFigures {
 
 /// The finite-sheet request whose figures the catalogue stores: 6×6 cells, counted at the
 /// default state (t = 0.3), completed keeping at least the default share of the region, with
-/// the catalogue's deploy settings (its mobility tolerance the zero threshold).
+/// the catalogue's deploy settings.
 pub fn finite_request(settings: &CatalogSettings) -> SheetRequest {
     SheetRequest {
         region: Region::Cells {
@@ -79,7 +79,6 @@ pub(crate) fn figures_of_trajectory(
         mech,
         q,
         motion: &motion,
-        settings: mobility,
         min_covered: request.min_covered,
         keep_going: crate::stop::NEVER,
     };

@@ -19,7 +19,6 @@ use super::sheet::{FiniteSheet, SheetTile};
 use crate::cell::UnitCell;
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
-use crate::mobility::MobilitySettings;
 use crate::stop::KeepGoing;
 use serde::Serialize;
 use std::collections::HashSet;
@@ -62,12 +61,10 @@ pub struct Context<'a> {
     pub q: &'a DVec,
     /// The periodic motion at `q` (a state-space vector of `mech`).
     pub motion: &'a DVec,
-    /// Zero threshold.
-    pub settings: MobilitySettings,
     /// Smallest covered fraction accepted: a completion that keeps less of the region is
     /// refused (a lone linkage loop is a one-DOF sheet, but not the sheet that was asked for).
     pub min_covered: Real,
-    /// Polled before every pruning round: `false` stops completion with
+    /// Polled before every pruning round and through every count: `false` stops completion with
     /// [`FiniteError::Cancelled`] ([`crate::stop::NEVER`] never stops it).
     pub keep_going: KeepGoing<'a>,
 }
@@ -77,7 +74,7 @@ impl Context<'_> {
     pub fn mobility(&self, sheet: &FiniteSheet) -> Result<SheetMobility, FiniteError> {
         let poses = sheet.poses(self.mech, self.q);
         let periodic = periodic_velocity(sheet, self.mech, self.motion);
-        sheet_mobility(sheet, self.mech, &poses, Some(&periodic), self.settings)
+        sheet_mobility(sheet, self.mech, &poses, Some(&periodic), self.keep_going)
     }
 }
 

@@ -193,7 +193,7 @@ pub fn state_check(
         .map_or_else(|| DVec::zeros(q.len()), |m| m.vector);
     let poses = sheet.poses(mech, q);
     let periodic = periodic_velocity(sheet, mech, &motion);
-    let m = sheet_mobility(sheet, mech, &poses, Some(&periodic), settings)?;
+    let m = sheet_mobility(sheet, mech, &poses, Some(&periodic), crate::stop::NEVER)?;
     Ok(StateCheck {
         step,
         t: traj.t(step),

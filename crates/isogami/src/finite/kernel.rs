@@ -12,12 +12,33 @@
 //! the kernel, and Rayleigh–Ritz on it gives the small eigenvalues and their vectors. The
 //! block grows until it holds at least two non-zero Ritz values (so the gap to the smallest
 //! non-zero eigenvalue is seen). Small sheets use the dense solver directly.
+//!
+//! ## Which eigenvalues are zero
+//!
+//! No fixed threshold separates them. A sheet's softest real motion stiffens as the sheet
+//! grows — the lowest non-zero eigenvalue of rotating squares' H is 6.1e-6 at 10×10, 2.9e-7
+//! at 20×20 and 1.5e-8 at 40×40 — while its true zeros stay at rounding, about ε·λ_max.
+//! A threshold fixed at 1e-9·λ_max therefore counts large sheets' soft motions as motions
+//! (an IH15 sheet of 14×14 cells, one DOF by a dense SVD, was pruned by 252 tiles).
+//! So the rank is decided by the spectrum itself ([`zero_count`]): eigenvalues are scaled
+//! by λ_max (a Gershgorin bound), anything below the rounding floor `ε · √unknowns` is
+//! rounding (a backward-stable eigenvalue of H is off by about ε·λ_max times a factor that
+//! grows with its size, like √size for errors of independent sign), and the zeros are the eigenvalues below the largest
+//! relative gap `μ_{k} / max(μ_{k−1}, floor)` of the sorted, scaled spectrum, the gap's lower
+//! side within [`ZERO_REACH`] floors. The zeros form one cluster at rounding (measured at
+//! 1e-19..1e-20 of λ_max) and the motions another, decades above the floor at every size
+//! tested (rotating squares' softest 2e-9 of λ_max at 40×40, against a floor of 2e-14);
+//! within either cluster neighbouring eigenvalues differ by small factors, so the largest
+//! ratio is the gap between them. The reach keeps a soft but real motion, far above
+//! rounding yet far below the stiff ones, from being counted as a zero because the gap
+//! above it is the larger. A sheet whose lowest eigenvalue is itself above the reach (rigid,
+//! no motion) has no zero.
 
 use super::error::FiniteError;
 use super::sheet::FiniteSheet;
 use crate::kinematics::Mechanism;
 use crate::math::{perp, rotation, symmetric_eigen, DMat, Real, Vec2};
-use crate::mobility::MobilitySettings;
+use crate::stop::KeepGoing;
 use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, Side};
@@ -33,10 +54,15 @@ const SOLVES: usize = 3;
 pub struct SheetKernel {
     /// The tile whose columns were left out (its velocity is zero in every vector).
     pub reference: usize,
-    /// Degrees of freedom: eigenvalues below the threshold.
+    /// Degrees of freedom: eigenvalues below the spectrum's largest relative gap.
     pub dof: usize,
-    /// The zero threshold: `rel_tol · max(λ_max bound, 1)`.
+    /// The rounding floor `ε · √unknowns · λ_max` (λ_max a Gershgorin bound): eigenvalues
+    /// below it are rounding whatever the gap.
     pub threshold: Real,
+    /// The lowest eigenvalues computed, ascending (every eigenvalue for a small sheet).
+    pub values: Vec<Real>,
+    /// The scale the eigenvalues are judged against: a Gershgorin bound on λ_max.
+    pub scale: Real,
     /// Largest eigenvalue counted as zero.
     pub largest_zero: Option<Real>,
     /// Smallest eigenvalue counted as non-zero (a Ritz value: an upper bound when the
@@ -48,13 +74,53 @@ pub struct SheetKernel {
 }
 
 impl SheetKernel {
-    /// log10(smallest non-zero / largest zero), capped at 300.
+    /// log10(smallest non-zero / largest zero), the largest zero taken no lower than the
+    /// rounding floor (a zero computed as 1e-300, or negative, is rounding all the same).
     pub fn gap_decades(&self) -> Option<Real> {
         match (self.largest_zero, self.smallest_nonzero) {
-            (Some(z), Some(nz)) => Some((nz / z.max(1e-300)).log10().min(300.0)),
+            (Some(z), Some(nz)) => Some((nz / z.max(self.threshold)).log10()),
             _ => None,
         }
     }
+}
+
+/// Rounding floor of the scaled spectrum: ε times the square root of the number of unknowns
+/// (rounding errors of independent sign add up like a random walk).
+pub fn rounding_floor(unknowns: usize) -> Real {
+    Real::EPSILON * (unknowns.max(1) as Real).sqrt()
+}
+
+/// A zero may sit at most this many rounding floors up: an eigenvalue further above rounding
+/// is a motion's stiffness, however soft (a closed IH1 sheet has one at 50 floors, 3e-12 of
+/// λ_max, a singular value 7e-6 of J's where its zeros are 1e-19).
+pub const ZERO_REACH: Real = 10.0;
+
+/// How many of the ascending eigenvalues `values` (the lowest of H's, possibly not all) are
+/// zero: those below the largest ratio `μ_k / max(μ_{k−1}, floor)` of the spectrum scaled by
+/// `scale` (λ_max), with μ_{−1} = floor = [`rounding_floor`]`(unknowns)`, among the splits
+/// whose lower side is within [`ZERO_REACH`] floors (see the module documentation). Ties go
+/// to the lower split.
+pub fn zero_count(values: &[Real], scale: Real, unknowns: usize) -> usize {
+    let floor = rounding_floor(unknowns);
+    let scale = if scale > 0.0 { scale } else { 1.0 };
+    let mut below = floor;
+    let mut best = (0, Real::NEG_INFINITY);
+    for (k, &v) in values.iter().enumerate() {
+        if below > ZERO_REACH * floor {
+            break;
+        }
+        let mu = (v / scale).max(floor);
+        let ratio = mu / below;
+        if ratio > best.1 {
+            best = (k, ratio);
+        }
+        below = mu;
+    }
+    // Every computed eigenvalue within reach of the floor: all are zeros.
+    if values.iter().all(|&v| v / scale <= ZERO_REACH * floor) {
+        return values.len();
+    }
+    best.0
 }
 
 /// The 2 × 6 Jacobian block of one pin: columns (x_a, y_a, θ_a, x_b, y_b, θ_b).
@@ -77,13 +143,14 @@ fn reference_tile(sheet: &FiniteSheet) -> usize {
 }
 
 /// The kernel of the sheet's H at tile poses `poses` (as [`FiniteSheet::poses`] gives).
+/// `keep_going` is polled between the sparse solver's solves: `false` ends the work with
+/// [`FiniteError::Cancelled`].
 pub fn sheet_kernel(
     sheet: &FiniteSheet,
     mech: &Mechanism,
     poses: &[(Vec2, Real)],
-    settings: MobilitySettings,
+    keep_going: KeepGoing<'_>,
 ) -> Result<SheetKernel, FiniteError> {
-    settings.validate()?;
     let n = sheet.len();
     if n == 0 {
         return Err(FiniteError::EmptySheet);
@@ -149,14 +216,18 @@ pub fn sheet_kernel(
             row_sum[c] += v.abs();
         }
     }
-    let lambda_max = row_sum.iter().copied().fold(0.0, Real::max);
-    let threshold = settings.rel_tol * lambda_max.max(1.0);
+    let lambda_max = row_sum
+        .iter()
+        .copied()
+        .fold(0.0, Real::max)
+        .max(Real::MIN_POSITIVE);
+    let threshold = rounding_floor(size) * lambda_max;
     let (values, vectors) = if size <= DENSE_MAX {
         dense_spectrum(&entries, size)?
     } else {
-        sparse_spectrum(&entries, size, threshold)?
+        sparse_spectrum(&entries, size, lambda_max, keep_going)?
     };
-    let dof = values.iter().filter(|&&v| v < threshold).count();
+    let dof = zero_count(&values, lambda_max, size);
     // Lift the kernel vectors to full coordinates (the reference tile's rows zero).
     let mut full = DMat::zeros(3 * n, dof);
     for k in 0..dof {
@@ -174,6 +245,8 @@ pub fn sheet_kernel(
         threshold,
         largest_zero: values[..dof].last().copied(),
         smallest_nonzero: values.get(dof).copied(),
+        values,
+        scale: lambda_max,
         vectors: full,
     })
 }
@@ -192,16 +265,19 @@ fn dense_spectrum(
     Ok((spec.values, spec.vectors))
 }
 
-/// The smallest eigenvalues (every one below `threshold` and at least two above it, or all)
-/// and their vectors, by shift-inverted subspace iteration on a sparse Cholesky factor.
+/// The smallest eigenvalues (the zeros by [`zero_count`] and at least two above them, or
+/// all) and their vectors, by shift-inverted subspace iteration on a sparse Cholesky factor.
+/// `keep_going` is polled between solves.
 fn sparse_spectrum(
     entries: &[((usize, usize), Real)],
     size: usize,
-    threshold: Real,
+    lambda_max: Real,
+    keep_going: KeepGoing<'_>,
 ) -> Result<(Vec<Real>, DMat), FiniteError> {
-    // σ well below the threshold (so kernel directions dominate after a few solves), large
-    // enough for the factorisation of a singular H + σI to stay positive.
-    let mut sigma = 1e-3 * threshold;
+    // σ near the rounding floor (so kernel directions dominate after a few solves, and the
+    // softest motions of a large sheet, ~1e-9·λ_max, are still far above it), large enough
+    // for the factorisation of a singular H + σI to stay positive.
+    let mut sigma = 1e-12 * lambda_max;
     let llt = loop {
         let mut triplets: Vec<Triplet<usize, usize, Real>> = entries
             .iter()
@@ -220,7 +296,7 @@ fn sparse_spectrum(
             .map_err(|_| FiniteError::Factorisation)?;
         match h.sp_cholesky(Side::Lower) {
             Ok(llt) => break llt,
-            Err(_) if sigma < 0.1 * threshold => sigma *= 10.0,
+            Err(_) if sigma < 1e-10 * lambda_max => sigma *= 10.0,
             Err(_) => return Err(FiniteError::Factorisation),
         }
     };
@@ -248,6 +324,9 @@ fn sparse_spectrum(
             (seed >> 11) as Real / (1u64 << 53) as Real - 0.5
         });
         for _ in 0..SOLVES {
+            if !keep_going() {
+                return Err(FiniteError::Cancelled);
+            }
             let mut m = Mat::<Real>::from_fn(size, block, |r, c| x[(r, c)]);
             llt.solve_in_place(m.as_mut());
             x = DMat::from_fn(size, block, |r, c| m[(r, c)]);
@@ -260,11 +339,90 @@ fn sparse_spectrum(
         let small = x.transpose() * &hx;
         let small = (&small + small.transpose()) * 0.5;
         let spec = symmetric_eigen(small).ok_or(FiniteError::Eigen)?;
-        let zeros = spec.values.iter().filter(|&&v| v < threshold).count();
+        let zeros = zero_count(&spec.values, lambda_max, size);
         if zeros + 2 <= block || block == size {
             let vectors = &x * spec.vectors;
             return Ok((spec.values, vectors));
         }
         block = (2 * block).min(size);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A xorshift stream in [0, 1).
+    fn stream(mut seed: u64) -> impl FnMut() -> Real {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as Real / (1u64 << 53) as Real
+        }
+    }
+
+    /// Spectra made by a rule (seeded): k zeros at rounding (anywhere in ±floor, negative
+    /// ones included), then motions from a lowest one 1e-9..1e-2 of λ_max (a sheet's soft
+    /// motions at any size) rising by factors up to 30 to λ_max. The count is k every time,
+    /// whatever the scale of H.
+    #[test]
+    fn the_zeros_are_the_cluster_below_the_largest_gap() {
+        let mut rand = stream(0x9e37_79b9_7f4a_7c15);
+        for case in 0..2000 {
+            let unknowns = 30 + (rand() * 20_000.0) as usize;
+            let scale = (10.0 as Real).powf(4.0 * rand() - 2.0);
+            let floor = rounding_floor(unknowns);
+            let k = (rand() * 6.0) as usize;
+            let mut values: Vec<Real> = (0..k)
+                .map(|_| (2.0 * rand() - 1.0) * floor * scale)
+                .collect();
+            let mut mu = (10.0 as Real).powf(-9.0 + 7.0 * rand());
+            while mu < 1.0 && values.len() < k + 40 {
+                values.push(mu * scale);
+                mu *= 1.0 + 29.0 * rand();
+            }
+            values.sort_by(Real::total_cmp);
+            assert_eq!(
+                zero_count(&values, scale, unknowns),
+                k,
+                "case {case}: {values:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_spectrum_all_at_rounding_is_all_zeros_and_none_is_none() {
+        assert_eq!(zero_count(&[0.0, 1e-17, -1e-16], 2.0, 100), 3);
+        assert_eq!(zero_count(&[], 2.0, 100), 0);
+        assert_eq!(zero_count(&[1e-3, 2e-3, 0.5], 2.0, 100), 0);
+    }
+
+    /// The closed IH1 sheet of the issue: a zero at 1e-19, a soft motion 50 floors up, the
+    /// stiff ones from 1e-7: one zero, though the gap above the soft motion is the larger.
+    #[test]
+    fn a_soft_motion_far_above_rounding_is_not_a_zero() {
+        let floor = rounding_floor(318);
+        let values = [2e-19, 50.0 * floor, 9e-8, 1e-5, 1.3e-5];
+        assert_eq!(zero_count(&values, 1.0, 318), 1);
+    }
+
+    #[test]
+    fn the_gap_is_finite_when_the_largest_zero_is_negative_or_nil() {
+        let kernel = |z: Real| SheetKernel {
+            reference: 0,
+            dof: 1,
+            threshold: 1e-13,
+            largest_zero: Some(z),
+            smallest_nonzero: Some(1e-6),
+            values: vec![z, 1e-6],
+            scale: 1.0,
+            vectors: DMat::zeros(3, 1),
+        };
+        for z in [-3e-15, 0.0, 1e-300] {
+            let gap = kernel(z).gap_decades().unwrap();
+            assert!((gap - 7.0).abs() < 1e-9, "{z}: {gap}");
+        }
+        assert!((kernel(1e-11).gap_decades().unwrap() - 5.0).abs() < 1e-9);
     }
 }

@@ -15,7 +15,7 @@ use super::kernel::{sheet_kernel, SheetKernel};
 use super::sheet::FiniteSheet;
 use crate::kinematics::Mechanism;
 use crate::math::{DMat, DVec, Real, Vec2};
-use crate::mobility::MobilitySettings;
+use crate::stop::KeepGoing;
 use serde::Serialize;
 
 /// A tile moves in a mode when its velocity is above this fraction of the mode's largest.
@@ -42,7 +42,9 @@ pub struct SheetMobility {
     /// Degrees of freedom of the largest piece plus three per other piece (each other piece
     /// moves freely).
     pub dof: usize,
-    /// The zero threshold on eigenvalues of H (non-dimensional).
+    /// The rounding floor on eigenvalues of H (non-dimensional): below it an eigenvalue is
+    /// zero whatever the spectrum (the zeros are decided by its largest gap, see
+    /// [`super::kernel`]).
     pub threshold: Real,
     /// Largest eigenvalue counted as zero.
     pub largest_zero: Option<Real>,
@@ -97,18 +99,21 @@ pub fn periodic_velocity(sheet: &FiniteSheet, mech: &Mechanism, motion: &DVec) -
 /// The mobility of `sheet` at tile poses `poses`; `periodic` is the periodic motion's
 /// velocity of the sheet's tiles ([`periodic_velocity`]) at the same state, or `None` when
 /// there is none to compare (the extra modes are then every non-rigid motion but one).
+/// `keep_going` is polled through the work (the solver's solves, the modes' localisation):
+/// `false` ends it with [`FiniteError::Cancelled`].
 pub fn sheet_mobility(
     sheet: &FiniteSheet,
     mech: &Mechanism,
     poses: &[(Vec2, Real)],
     periodic: Option<&DVec>,
-    settings: MobilitySettings,
+    keep_going: KeepGoing<'_>,
 ) -> Result<SheetMobility, FiniteError> {
-    let kernel = sheet_kernel(sheet, mech, poses, settings)?;
+    let kernel = sheet_kernel(sheet, mech, poses, keep_going)?;
     let (_, pieces) = sheet.pieces();
     let pins = sheet.pins();
     let weights = rotation_weights(sheet, mech);
-    let (follows_periodic, floppy, leverage) = extra_modes(&kernel, poses, periodic, &weights);
+    let (follows_periodic, floppy, leverage) =
+        extra_modes(&kernel, poses, periodic, &weights, keep_going)?;
     Ok(SheetMobility {
         tiles: sheet.len(),
         joints: sheet.joints.len(),
@@ -144,7 +149,8 @@ fn extra_modes(
     poses: &[(Vec2, Real)],
     periodic: Option<&DVec>,
     weights: &[Real],
-) -> (bool, Vec<FloppyMode>, Vec<Real>) {
+    keep_going: KeepGoing<'_>,
+) -> Result<(bool, Vec<FloppyMode>, Vec<Real>), FiniteError> {
     let n = poses.len();
     let weigh = |v: &mut DVec| {
         for (t, w) in weights.iter().enumerate() {
@@ -183,7 +189,7 @@ fn extra_modes(
     }
     // The kernel (weighted, with the rigid motions of the reference piece added back) less
     // the rigid motions, as an orthonormal basis.
-    let nothing = (false, Vec::new(), vec![0.0; n]);
+    let nothing = Ok((false, Vec::new(), vec![0.0; n]));
     let d = kernel.vectors.ncols();
     let mut rest = DMat::zeros(3 * n, d);
     for k in 0..d {
@@ -230,14 +236,17 @@ fn extra_modes(
         }
     }
     if basis.ncols() == 0 {
-        return (follows, Vec::new(), vec![0.0; n]);
+        return Ok((follows, Vec::new(), vec![0.0; n]));
+    }
+    if !keep_going() {
+        return Err(FiniteError::Cancelled);
     }
     // Each tile's share of the extra modes: the diagonal of the projector onto them, summed
     // over the tile's three coordinates (independent of the basis chosen).
     let leverage = (0..n)
         .map(|t| (0..3).map(|d| basis.row(3 * t + d).norm_squared()).sum())
         .collect();
-    (follows, localise(&basis, n), leverage)
+    Ok((follows, localise(&basis, n, keep_going)?, leverage))
 }
 
 /// An orthonormal basis of the span of `m`'s columns: the eigenvectors of its Gram matrix
@@ -257,13 +266,20 @@ fn orthonormal_span(m: &DMat) -> Option<DMat> {
 }
 
 /// The modes of `basis` (orthonormal columns) in a local basis, each with the tiles that move
-/// in it; most local first.
-fn localise(basis: &DMat, n: usize) -> Vec<FloppyMode> {
+/// in it; most local first. `keep_going` is polled before every pivot.
+fn localise(
+    basis: &DMat,
+    n: usize,
+    keep_going: KeepGoing<'_>,
+) -> Result<Vec<FloppyMode>, FiniteError> {
     let e = basis.ncols();
     // Greedy row pivots: the largest remaining row, then every row projected off it.
     let mut residual = basis.clone();
     let mut pivots = Vec::with_capacity(e);
     for _ in 0..e {
+        if !keep_going() {
+            return Err(FiniteError::Cancelled);
+        }
         let (best, norm) = (0..residual.nrows())
             .map(|r| (r, residual.row(r).norm()))
             .fold((0, 0.0), |acc, x| if x.1 > acc.1 { x } else { acc });
@@ -306,5 +322,5 @@ fn localise(basis: &DMat, n: usize) -> Vec<FloppyMode> {
             .cmp(&b.tiles.len())
             .then(a.tiles.cmp(&b.tiles))
     });
-    modes
+    Ok(modes)
 }

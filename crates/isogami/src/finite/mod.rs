@@ -13,6 +13,7 @@
 //! - [`complete`]: boundary completion to a sheet whose one motion is the periodic one;
 //! - [`deploy`]: a one-DOF sheet opening with contact among its own tiles (the periodic
 //!   deployment with the sheet's contact pairs), its measures and checks;
+//! - [`singular`]: singular (bifurcation) states along a path, periodic or finite;
 //! - [`pull`]: any sheet, floppy or not, as a mechanism of its own pulled apart by two
 //!   tiles, and how far its tiles leave the periodic motion.
 //!
@@ -28,6 +29,7 @@ pub mod mobility;
 pub mod pull;
 pub mod region;
 pub mod sheet;
+pub mod singular;
 
 pub use complete::{complete, Completion, CompletionReport, Context};
 pub use deploy::{
@@ -43,3 +45,4 @@ pub use pull::{
 };
 pub use region::{Region, MAX_REGION_CELLS};
 pub use sheet::{FiniteSheet, SheetJoint, SheetTile};
+pub use singular::{periodic_singular_states, sheet_singular_states, SingularState};

@@ -259,12 +259,30 @@ fn a_floppy_raw_sheet_pulled_apart_leaves_the_periodic_motion() {
 #[test]
 fn a_completed_sheet_leaves_the_motion_only_at_a_branch_point() {
     // IH9's completed 2x2 sheet is one DOF at the counting state, but at t ≈ 0.03 of the
-    // periodic motion it has a second motion; pulled, it takes that branch.
+    // periodic motion it has a second motion (a singular state of its path, where the
+    // count at the accepted states around it is still one); pulled, it takes that branch.
     let out = pull(IH9, 2, true);
     assert_eq!(out.dof, 1);
     let leaves = out.leaves.expect("leaves at the branch point");
-    assert_eq!(leaves.dof, 2, "{leaves:?}");
     assert!(leaves.before_periodic_t < 0.1, "{leaves:?}");
+    let design = resolve_design(IH9).unwrap();
+    let mech = Mechanism::new(&design.cell().unwrap(), &design.joints).unwrap();
+    let path = isogami::api::deploy_path(&design, &Default::default(), &mut |_| true).unwrap();
+    let singular = isogami::finite::sheet_singular_states(
+        out.analysis.sheet(),
+        &mech,
+        &path.trajectory,
+        1,
+        isogami::stop::NEVER,
+    )
+    .unwrap();
+    let (lo, hi) = (leaves.after_periodic_t, leaves.before_periodic_t);
+    assert!(
+        singular
+            .iter()
+            .any(|s| s.t >= lo.min(hi) - 0.02 && s.t <= lo.max(hi) + 0.02),
+        "{leaves:?} {singular:?}"
+    );
 }
 
 #[test]

@@ -118,7 +118,7 @@ fn free_boundary_dof_equals_an_independent_dense_rank_count() {
                     &mech,
                     &poses,
                     Some(&periodic),
-                    Default::default(),
+                    isogami::stop::NEVER,
                 )
                 .unwrap();
                 assert_eq!(
@@ -353,7 +353,6 @@ fn a_stop_check_stops_completion_between_its_rounds() {
         mech: &mech,
         q: &q,
         motion: &motion,
-        settings: Default::default(),
         min_covered: 0.5,
         keep_going,
     };

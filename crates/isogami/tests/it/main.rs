@@ -16,6 +16,7 @@ mod explore_screen;
 mod explore_topology;
 mod export;
 mod finite_deploy;
+mod finite_scale;
 mod finite_sheets;
 mod inverse;
 #[cfg(feature = "render")] // rasterises with resvg

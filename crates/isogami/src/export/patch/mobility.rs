@@ -151,7 +151,7 @@ pub(super) fn finite_patch(
         }
         let poses = requested.poses(mech, &mech.rest);
         let m: SheetMobility =
-            crate::finite::sheet_mobility(&requested, mech, &poses, None, settings.mobility)
+            crate::finite::sheet_mobility(&requested, mech, &poses, None, keep_going)
                 .map_err(crate::Error::from)?;
         let info = PatchMobility::raw(m.dof, requested.len());
         return Ok((requested, info));
