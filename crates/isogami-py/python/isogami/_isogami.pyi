@@ -54,6 +54,8 @@ __all__ = [
     "StoredDesign",
     "TilingError",
     "__version__",
+    "_compute_calls",
+    "_restore",
     "analyze",
     "area_ratio",
     "cell",
@@ -288,6 +290,12 @@ class Analysis:
     def modes(self) -> List[Motion]: ...
     def to_dict(self) -> Dict[str, Any]:
         """As ``isogami analyze --json`` prints it."""
+
+def _restore(cls: str, tag: str, json: bytes, arrays: List[bytes]) -> Any:
+    """Unpickling a computed result from its data (see ``isogami._restore``)."""
+
+def _compute_calls() -> int:
+    """How many computations this process has started (unpickling starts none)."""
 
 def analyze(design: DesignLike, tol: Optional[float] = None) -> Analysis:
     """Mobility of a design (relative zero tolerance ``tol``, default 1e-9)."""
