@@ -7,7 +7,7 @@ from typing import final, overload, Any, Callable, Dict, List, Literal, Mapping,
 import numpy as np
 import numpy.typing as npt
 
-from ._types import FloatArray, IntArray, Matrix, Vector, DesignLike, CellLike, FamilyLike, Progress, Method, Behaviour, FacetValues, Ranges, InverseProgress, GradedProgress
+from ._types import FloatArray, IntArray, IntPair, Matrix, Vector, DesignLike, CellLike, FamilyLike, Progress, Method, Behaviour, FacetValues, Ranges, InverseProgress, GradedProgress
 
 __version__: str
 __all__ = [
@@ -951,7 +951,7 @@ def pull_sheet(
     t: float = 0.3,
     complete: bool = True,
     min_cover: float = 0.5,
-    grips: Optional[Tuple[int, int]] = None,
+    grips: Optional[IntPair] = None,
     frames: int = 24,
     settings: Optional[DeploySettings] = None,
     progress: Optional[Progress] = None,
@@ -1113,7 +1113,7 @@ class GradedRun:
 
 def graded(
     design: DesignLike,
-    region: Union[Tuple[int, int], str] = (3, 3),
+    region: Union[IntPair, str] = (3, 3),
     target: str = "disc",
     t: Optional[float] = None,
     states: int = 8,
