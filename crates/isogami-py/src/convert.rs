@@ -194,3 +194,34 @@ pub fn matrices(
     let lead = shape[..shape.len() - 2].to_vec();
     Ok(((!lead.is_empty()).then_some(lead), out))
 }
+
+/// The two integers of a pair argument — a tuple, a list, a numpy array or any other
+/// iterable of exactly two integers (ints, numpy integer scalars, 0-d integer arrays; never
+/// a bool or a float) — as Python ints, values as given (range checks are the caller's).
+/// None for anything else (a str is not a pair: callers read "AxB" first).
+pub fn int_pair<'py>(obj: &Bound<'py, PyAny>) -> Option<[Bound<'py, pyo3::types::PyInt>; 2]> {
+    if obj.is_instance_of::<pyo3::types::PyString>() || obj.is_instance_of::<pyo3::types::PyBytes>()
+    {
+        return None;
+    }
+    let items: Vec<Bound<'py, PyAny>> = obj.try_iter().ok()?.collect::<PyResult<_>>().ok()?;
+    match &items[..] {
+        [a, b] => Some([index_of(a)?, index_of(b)?]),
+        _ => None,
+    }
+}
+
+/// A pair argument of non-negative sizes (see [`int_pair`]); `Err(shown)` for a pair out of
+/// `usize`, with the values as given; None when it is no pair of ints.
+pub fn size_pair(obj: &Bound<'_, PyAny>) -> Option<Result<(usize, usize), String>> {
+    let [a, b] = int_pair(obj)?;
+    let size = |v: &Bound<'_, pyo3::types::PyInt>| {
+        v.extract::<i64>()
+            .ok()
+            .and_then(|n| usize::try_from(n).ok())
+    };
+    Some(match (size(&a), size(&b)) {
+        (Some(x), Some(y)) => Ok((x, y)),
+        _ => Err(format!("({a}, {b})")),
+    })
+}

@@ -3,17 +3,23 @@
 //! The library call runs with the GIL released.
 
 use crate::convert::{array, design_of, int_array, to_python};
+use crate::deployment_state::Held;
 use crate::errors;
 use crate::progress::Watch;
 use crate::settings::{apply, pairs, PyDeploySettings};
-use isogami::api::{deploy as lib_deploy, DeployRequest, Deployment, FrameSelection};
+use isogami::api::{
+    deploy as lib_deploy, resolve_design, DeployRequest, Deployment, FrameSelection,
+};
+use isogami::contact::{ContactModel, ContactSettings};
 use isogami::deploy::{DeploySettings, FrameReport};
+use isogami::kinematics::Mechanism;
 use isogami::measure::{classify_with, expansion_profile, ClassifyTolerances, FrameMeasures};
 use isogami::render::deployment_frame_svgs;
 use numpy::{PyArray1, PyArray2, PyArray3};
 use pyo3::exceptions::{PyIndexError, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use std::sync::OnceLock;
 
 /// A finished deployment: the report ``isogami deploy --json`` prints, and its frames as
 /// numpy arrays (n frames, evenly spaced in t unless every step was asked for).
@@ -27,11 +33,39 @@ use pyo3::types::PyDict;
 /// attributes; ``report()`` gives the whole report as a dict.
 #[pyclass(name = "Deployment", module = "isogami", frozen)]
 pub struct PyDeployment {
-    inner: Deployment,
-    recipe: crate::pickle::Recipe,
+    pub(crate) inner: Held,
+    /// The mechanism and contact model, for drawing: built from the design when first
+    /// needed (an unpickled deployment has only its data).
+    pub(crate) scene: OnceLock<(Mechanism, ContactModel)>,
 }
 
 impl PyDeployment {
+    fn new(d: Deployment, contact: ContactSettings) -> Self {
+        let scene = OnceLock::new();
+        let _ = scene.set((d.mechanism, d.contact));
+        PyDeployment {
+            inner: Held {
+                report: d.report,
+                frames: d.frames,
+                contact,
+            },
+            scene,
+        }
+    }
+
+    /// The mechanism and contact model (built from the design on first use).
+    fn scene(&self) -> PyResult<&(Mechanism, ContactModel)> {
+        if let Some(s) = self.scene.get() {
+            return Ok(s);
+        }
+        let design = resolve_design(&self.inner.report.design).map_err(errors::library)?;
+        let cell = design.cell().map_err(|e| errors::library(e.into()))?;
+        let mech = Mechanism::new(&cell, &design.joints).map_err(|e| errors::library(e.into()))?;
+        let contact =
+            ContactModel::new(&mech, self.inner.contact).map_err(|e| errors::library(e.into()))?;
+        Ok(self.scene.get_or_init(|| (mech, contact)))
+    }
+
     fn frames(&self) -> &[FrameReport] {
         &self.inner.report.frames
     }
@@ -59,7 +93,7 @@ impl PyDeployment {
     }
 
     fn tile_count(&self) -> usize {
-        self.inner.mechanism.tile_count()
+        self.frames().first().map_or(0, |f| f.tiles.len())
     }
 
     /// A frame index from a Python index (negative counts from the end) or the frame nearest
@@ -278,7 +312,7 @@ impl PyDeployment {
     #[getter]
     fn states<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let f = &self.inner.frames;
-        let m = self.inner.mechanism.layout.len();
+        let m = f.first().map_or(0, |r| r.q.len());
         let v = f.iter().flat_map(|r| r.q.iter().copied()).collect();
         array(py, (f.len(), m), v)
     }
@@ -344,32 +378,31 @@ impl PyDeployment {
     #[pyo3(signature = (width=480.0))]
     fn frame_svgs(&self, width: f64) -> PyResult<Vec<String>> {
         let width = crate::convert::finite("width", width)?.clamp(16.0, 8192.0);
+        let (mechanism, contact) = self.scene()?;
         Ok(deployment_frame_svgs(
-            &self.inner.mechanism,
-            &self.inner.contact,
+            mechanism,
+            contact,
             &self.inner.frames,
             width,
         ))
     }
 
-    fn _repr_svg_(&self) -> String {
+    fn _repr_svg_(&self) -> PyResult<String> {
         let last = self.inner.frames.len().saturating_sub(1);
-        deployment_frame_svgs(
-            &self.inner.mechanism,
-            &self.inner.contact,
-            &self.inner.frames[last..],
-            360.0,
+        let (mechanism, contact) = self.scene()?;
+        Ok(
+            deployment_frame_svgs(mechanism, contact, &self.inner.frames[last..], 360.0)
+                .pop()
+                .unwrap_or_default(),
         )
-        .pop()
-        .unwrap_or_default()
     }
 
-    /// Pickles as the call that made it (see the `pickle` module).
+    /// Pickles as its data (see the `pickle` module).
     fn __reduce__<'py>(
         &self,
         py: Python<'py>,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
-        crate::pickle::reduce(py, &self.recipe)
+        crate::pickle::reduce_state(py, self)
     }
 
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
@@ -534,21 +567,8 @@ pub fn deploy(
     let request = DeployRequest { settings, frames };
     request.validate().map_err(|e| errors::library(e.into()))?;
     let design = design_of(design)?;
-    let frames_arg = match request.frames {
-        FrameSelection::Evenly(n) => n.into_pyobject(py)?.into_any(),
-        FrameSelection::AllSteps => "all".into_pyobject(py)?.into_any(),
-    };
-    let recipe = crate::pickle::recipe(
-        py,
-        "deploy",
-        vec![design.to_string().into_pyobject(py)?.into_any()],
-        &[
-            ("settings", crate::pickle::settings(py, settings)?),
-            ("frames", frames_arg),
-        ],
-    )?;
     let mut watch = Watch::new(progress.filter(|p| !p.is_none()), timeout)?;
     let result = py.detach(|| lib_deploy(&design, &request, &mut |n| watch.tick(n)));
     let inner = watch.finish(result)?;
-    Ok(PyDeployment { inner, recipe })
+    Ok(PyDeployment::new(inner, settings.contact))
 }

@@ -83,21 +83,20 @@ pub fn dims_of(obj: &Bound<'_, PyAny>) -> PyResult<CellDims> {
             .parse()
             .map_err(|e: isogami::cell::CellError| errors::library(e.into()));
     }
-    if let Ok((a, b)) = obj.extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>() {
-        if let (Some(a), Some(b)) = (index_of(&a), index_of(&b)) {
-            // Sizes as given (-1 stays -1), not wrapped into a byte.
-            let small =
-                |v: &Bound<'_, PyAny>| v.extract::<i64>().ok().and_then(|v| u8::try_from(v).ok());
-            return match (small(&a), small(&b)) {
-                (Some(a), Some(b)) => CellDims::new(a, b).map_err(|e| errors::library(e.into())),
-                _ => Err(errors::library(
-                    isogami::cell::CellError::BadCell {
-                        input: format!("{a}x{b}"),
-                    }
-                    .into(),
-                )),
-            };
-        }
+    if let Some([a, b]) = crate::convert::int_pair(obj) {
+        // Sizes as given (-1 stays -1), not wrapped into a byte.
+        let small = |v: &Bound<'_, pyo3::types::PyInt>| {
+            v.extract::<i64>().ok().and_then(|v| u8::try_from(v).ok())
+        };
+        return match (small(&a), small(&b)) {
+            (Some(a), Some(b)) => CellDims::new(a, b).map_err(|e| errors::library(e.into())),
+            _ => Err(errors::library(
+                isogami::cell::CellError::BadCell {
+                    input: format!("{a}x{b}"),
+                }
+                .into(),
+            )),
+        };
     }
     Err(PyTypeError::new_err(format!(
         "cell must be a str 'AxB' or a pair (a, b) of ints, got {}",

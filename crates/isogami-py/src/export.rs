@@ -3,7 +3,7 @@
 //! export entry point. Formats are listed and parsed by the library, so a format it gains
 //! appears here at once. Returns the file contents; Python writes them where it likes.
 
-use crate::convert::{design_of, index_of, type_name};
+use crate::convert::{design_of, type_name};
 use crate::errors;
 use crate::progress::Watch;
 use isogami::export::laser::{LaserSettings, Material};
@@ -41,35 +41,16 @@ fn patch_size(obj: &Bound<'_, PyAny>) -> PyResult<(usize, usize)> {
         ));
     }
     // A pair of ints: a tuple, a list, a numpy array of two integers.
-    let not_pair = || {
-        PyTypeError::new_err(format!(
+    match crate::convert::size_pair(obj) {
+        Some(Ok(pair)) => Ok(pair),
+        Some(Err(shown)) => Err(errors::ExportError::new_err(format!(
+            "patch {shown}: rows and columns must be positive ints"
+        ))),
+        None => Err(PyTypeError::new_err(format!(
             "patch must be 'ROWSxCOLS' or a pair of ints, got {}",
             type_name(obj)
-        ))
-    };
-    let items: Vec<Bound<'_, PyAny>> = obj
-        .try_iter()
-        .map_err(|_| not_pair())?
-        .collect::<PyResult<_>>()
-        .map_err(|_| not_pair())?;
-    let [r, c] = &items[..] else {
-        return Err(not_pair());
-    };
-    let size = |v: &Bound<'_, PyAny>| -> PyResult<usize> {
-        let i = index_of(v).ok_or_else(not_pair)?;
-        // Negative or huge sizes are refused as given (never wrapped).
-        i.extract::<i64>()
-            .ok()
-            .and_then(|n| usize::try_from(n).ok())
-            .ok_or_else(|| {
-                errors::ExportError::new_err(format!(
-                    "patch ({}, {}): rows and columns must be positive ints",
-                    r.str().map(|s| s.to_string()).unwrap_or_default(),
-                    c.str().map(|s| s.to_string()).unwrap_or_default()
-                ))
-            })
-    };
-    Ok((size(r)?, size(c)?))
+        ))),
+    }
 }
 
 /// The state: a number t in [0, 1] or "open".

@@ -27,7 +27,6 @@ use pyo3::types::PyDict;
 #[pyclass(name = "FiniteSheet", module = "isogami", frozen)]
 pub struct PyFiniteSheet {
     pub(crate) inner: SheetAnalysis,
-    pub(crate) recipe: crate::pickle::Recipe,
 }
 
 fn tile_rows<'py>(py: Python<'py>, sheet: &FiniteSheet) -> PyResult<Bound<'py, PyArray2<i64>>> {
@@ -177,12 +176,12 @@ impl PyFiniteSheet {
     fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.inner)
     }
-    /// Pickles as the call that made it (see the `pickle` module).
+    /// Pickles as its data (see the `pickle` module).
     fn __reduce__<'py>(
         &self,
         py: Python<'py>,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
-        crate::pickle::reduce(py, &self.recipe)
+        crate::pickle::reduce_state(py, self)
     }
 
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
@@ -216,7 +215,6 @@ impl PyFiniteSheet {
 #[pyclass(name = "SheetDeployment", module = "isogami", frozen)]
 pub struct PySheetDeployment {
     inner: SheetDeployment,
-    recipe: crate::pickle::Recipe,
 }
 
 impl PySheetDeployment {
@@ -233,10 +231,9 @@ impl PySheetDeployment {
 impl PySheetDeployment {
     /// The sheet that was deployed (its ``tiles`` order the poses).
     #[getter]
-    fn sheet(&self, py: Python<'_>) -> PyResult<PyFiniteSheet> {
+    fn sheet(&self) -> PyResult<PyFiniteSheet> {
         Ok(PyFiniteSheet {
             inner: self.inner.analysis.clone(),
-            recipe: crate::pickle::part(py, &self.recipe, "sheet", py.None().into_bound(py))?,
         })
     }
     /// Why the finite deployment ended (``"contact_limit"``, ``"max_steps"``, ...).
@@ -316,12 +313,12 @@ impl PySheetDeployment {
     fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.inner)
     }
-    /// Pickles as the call that made it (see the `pickle` module).
+    /// Pickles as its data (see the `pickle` module).
     fn __reduce__<'py>(
         &self,
         py: Python<'py>,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
-        crate::pickle::reduce(py, &self.recipe)
+        crate::pickle::reduce_state(py, self)
     }
 
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
@@ -340,37 +337,6 @@ impl PySheetDeployment {
             self.inner.end.hull_area_ratio
         )
     }
-}
-
-/// The recipe of a finite-sheet call (see the `pickle` module): the design's spec, the
-/// region as given and the request's settings, plus `extra` keywords.
-pub(crate) fn sheet_recipe<'py>(
-    py: Python<'py>,
-    name: &str,
-    design: &Bound<'py, PyAny>,
-    region: &str,
-    request: &SheetRequest,
-    extra: Vec<(&str, Bound<'py, PyAny>)>,
-) -> PyResult<crate::pickle::Recipe> {
-    let spec = design_of(design)?.to_string();
-    let mut kwargs = vec![
-        ("region", region.into_pyobject(py)?.into_any()),
-        ("edge_mm", request.edge_mm.into_pyobject(py)?.into_any()),
-        ("t", request.t.into_pyobject(py)?.into_any()),
-        (
-            "complete",
-            pyo3::types::PyBool::new(py, request.complete)
-                .to_owned()
-                .into_any(),
-        ),
-        (
-            "min_cover",
-            request.min_covered.into_pyobject(py)?.into_any(),
-        ),
-        ("settings", crate::pickle::settings(py, request.settings)?),
-    ];
-    kwargs.extend(extra);
-    crate::pickle::recipe(py, name, vec![spec.into_pyobject(py)?.into_any()], &kwargs)
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -427,11 +393,10 @@ pub fn finite_sheet(
     overrides: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyFiniteSheet> {
     let request = sheet_request(region, edge_mm, t, complete, min_cover, settings, overrides)?;
-    let recipe = sheet_recipe(py, "finite_sheet", design, region, &request, vec![])?;
     let inner = run_detached(py, design, progress, timeout, |design, progress| {
         lib_finite_sheet(design, &request, progress)
     })?;
-    Ok(PyFiniteSheet { inner, recipe })
+    Ok(PyFiniteSheet { inner })
 }
 
 /// Deploys the finite sheet ``finite_sheet`` would make (same arguments) with contact among
@@ -468,12 +433,10 @@ pub fn deploy_sheet(
         frames,
         ..SheetDeployRequest::default()
     };
-    let extra = vec![("frames", frames.into_pyobject(py)?.into_any())];
-    let recipe = sheet_recipe(py, "deploy_sheet", design, region, &request.sheet, extra)?;
     let inner = run_detached(py, design, progress, timeout, |design, progress| {
         lib_deploy_sheet(design, &request, progress)
     })?;
-    Ok(PySheetDeployment { inner, recipe })
+    Ok(PySheetDeployment { inner })
 }
 
 /// Tile poses of every frame as an (f, n, 3) array of (x, y, θ).
@@ -503,3 +466,6 @@ pub(crate) fn run_detached<T: Send>(
     let result = py.detach(|| f(&design, &mut |n| watch.tick(n)));
     watch.finish(result)
 }
+
+crate::pickled_inner!(PyFiniteSheet, "FiniteSheet");
+crate::pickled_inner!(PySheetDeployment, "SheetDeployment");

@@ -522,12 +522,16 @@ fn region_of(region: &Bound<'_, PyAny>) -> PyResult<(usize, usize)> {
             ))
         });
     }
-    region.extract::<(usize, usize)>().map_err(|_| {
-        PyTypeError::new_err(format!(
+    match crate::convert::size_pair(region) {
+        Some(Ok(pair)) => Ok(pair),
+        Some(Err(shown)) => Err(PyValueError::new_err(format!(
+            "region {shown}: rows and columns must be non-negative ints"
+        ))),
+        None => Err(PyTypeError::new_err(format!(
             "region must be (rows, cols) or \"RxC\", got {}",
             type_name(region)
-        ))
-    })
+        ))),
+    }
 }
 
 /// Grades ``design``'s finite sheet of ``region`` cells — (rows, cols) or ``"RxC"`` — so that

@@ -13,6 +13,7 @@ mod compare;
 mod convert;
 mod database;
 mod deployment;
+mod deployment_state;
 mod design;
 mod errors;
 mod export;
@@ -55,6 +56,8 @@ fn _isogami(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<finite::PySheetDeployment>()?;
     m.add_class::<pull::PySheetPull>()?;
     m.add_class::<graded::PyGradedRun>()?;
+    m.add_function(wrap_pyfunction!(pickle::_restore, m)?)?;
+    m.add_function(wrap_pyfunction!(pickle::_compute_calls, m)?)?;
     m.add_function(wrap_pyfunction!(design::design, m)?)?;
     m.add_function(wrap_pyfunction!(family::families, m)?)?;
     m.add_function(wrap_pyfunction!(family::family, m)?)?;

@@ -75,18 +75,12 @@ impl PyLinkages {
         self.inner.linkages.len()
     }
 
-    /// Pickles as ``isogami.linkages(spec)`` (see the `pickle` module).
+    /// Pickles as its data (see the `pickle` module).
     fn __reduce__<'py>(
         &self,
         py: Python<'py>,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
-        let r = crate::pickle::recipe(
-            py,
-            "linkages",
-            vec![self.design.to_string().into_pyobject(py)?.into_any()],
-            &[],
-        )?;
-        crate::pickle::reduce(py, &r)
+        crate::pickle::reduce_state(py, self)
     }
 
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
@@ -104,6 +98,21 @@ impl PyLinkages {
     }
 }
 
+impl crate::pickle::Pickled for PyLinkages {
+    const CLASS: &'static str = "Linkages";
+    /// The design's spec and the analysis.
+    fn save(&self) -> PyResult<(Vec<u8>, Vec<Vec<f64>>)> {
+        let state = (self.design.to_string(), &self.inner);
+        Ok((crate::pickle::to_json(&state)?, Vec::new()))
+    }
+    fn load(json: &[u8], _arrays: Vec<Vec<f64>>) -> PyResult<Self> {
+        let (spec, inner): (String, LinkageAnalysis) =
+            Python::attach(|py| crate::pickle::from_json(py, Self::CLASS, json))?;
+        let design = isogami::api::Design::resolve(&spec).map_err(|e| errors::library(e.into()))?;
+        Ok(PyLinkages { design, inner })
+    }
+}
+
 impl PyLinkages {
     fn tile_count(&self) -> usize {
         self.design.cell().map(|c| c.tiles.len()).unwrap_or(0)
@@ -115,6 +124,7 @@ impl PyLinkages {
 #[pyfunction]
 pub fn linkages(py: Python<'_>, design: &Bound<'_, PyAny>) -> PyResult<PyLinkages> {
     let design = design_of(design)?;
+    crate::pickle::computing();
     let inner = py
         .detach(|| lib_linkages(&design))
         .map_err(errors::library)?;

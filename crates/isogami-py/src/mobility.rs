@@ -13,7 +13,53 @@ use pyo3::prelude::*;
 #[pyclass(name = "Motion", module = "isogami", frozen)]
 pub struct PyMotion {
     inner: Motion,
-    recipe: crate::pickle::Recipe,
+}
+
+/// A motion's vector, skipped by its JSON, from the pickled arrays.
+fn with_vector(mut m: Motion, vector: Option<Vec<f64>>) -> Motion {
+    m.vector = isogami::math::DVec::from_vec(vector.unwrap_or_default());
+    m
+}
+
+impl crate::pickle::Pickled for PyMotion {
+    const CLASS: &'static str = "Motion";
+    fn save(&self) -> PyResult<(Vec<u8>, Vec<Vec<f64>>)> {
+        let v = self.inner.vector.as_slice().to_vec();
+        Ok((crate::pickle::to_json(&self.inner)?, vec![v]))
+    }
+    fn load(json: &[u8], arrays: Vec<Vec<f64>>) -> PyResult<Self> {
+        let m = Python::attach(|py| crate::pickle::from_json(py, Self::CLASS, json))?;
+        Ok(PyMotion {
+            inner: with_vector(m, arrays.into_iter().next()),
+        })
+    }
+}
+
+impl crate::pickle::Pickled for PyAnalysis {
+    const CLASS: &'static str = "Analysis";
+    /// The vectors of the motion, then of every mode.
+    fn save(&self) -> PyResult<(Vec<u8>, Vec<Vec<f64>>)> {
+        let m = &self.inner.mobility;
+        let vectors = m
+            .motion
+            .iter()
+            .chain(&m.modes)
+            .map(|m| m.vector.as_slice().to_vec())
+            .collect();
+        Ok((crate::pickle::to_json(&self.inner)?, vectors))
+    }
+    fn load(json: &[u8], arrays: Vec<Vec<f64>>) -> PyResult<Self> {
+        let mut inner: Analysis =
+            Python::attach(|py| crate::pickle::from_json(py, Self::CLASS, json))?;
+        let mut vectors = arrays.into_iter();
+        let m = &mut inner.mobility;
+        m.motion = m.motion.take().map(|v| with_vector(v, vectors.next()));
+        m.modes = std::mem::take(&mut m.modes)
+            .into_iter()
+            .map(|v| with_vector(v, vectors.next()))
+            .collect();
+        Ok(PyAnalysis { inner })
+    }
 }
 
 #[pymethods]
@@ -54,12 +100,12 @@ impl PyMotion {
         PyArray1::from_slice(py, self.inner.vector.as_slice())
     }
 
-    /// Pickles as the call that made it (see the `pickle` module).
+    /// Pickles as its data (see the `pickle` module).
     fn __reduce__<'py>(
         &self,
         py: Python<'py>,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
-        crate::pickle::reduce(py, &self.recipe)
+        crate::pickle::reduce_state(py, self)
     }
 
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
@@ -83,7 +129,6 @@ impl PyMotion {
 #[pyclass(name = "Analysis", module = "isogami", frozen)]
 pub struct PyAnalysis {
     inner: Analysis,
-    recipe: crate::pickle::Recipe,
 }
 
 #[pymethods]
@@ -175,28 +220,23 @@ impl PyAnalysis {
     /// The opening direction (None when rigid): for one DOF the null vector signed to open
     /// the sheet; for several, the unit combination that opens it fastest.
     #[getter]
-    fn motion(&self, py: Python<'_>) -> PyResult<Option<PyMotion>> {
-        let recipe = crate::pickle::part(py, &self.recipe, "motion", py.None().into_bound(py))?;
-        Ok(self
-            .inner
+    fn motion(&self) -> Option<PyMotion> {
+        self.inner
             .mobility
             .motion
             .clone()
-            .map(|inner| PyMotion { inner, recipe }))
+            .map(|inner| PyMotion { inner })
     }
 
     /// A basis of all first-order motions (``dof`` of them).
     #[getter]
-    fn modes(&self, py: Python<'_>) -> PyResult<Vec<PyMotion>> {
-        let mut out = Vec::new();
-        for (i, m) in self.inner.mobility.modes.iter().enumerate() {
-            let key = i.into_pyobject(py)?.into_any();
-            out.push(PyMotion {
-                inner: m.clone(),
-                recipe: crate::pickle::part(py, &self.recipe, "modes", key)?,
-            });
-        }
-        Ok(out)
+    fn modes(&self) -> Vec<PyMotion> {
+        self.inner
+            .mobility
+            .modes
+            .iter()
+            .map(|m| PyMotion { inner: m.clone() })
+            .collect()
     }
 
     /// The analysis as ``isogami analyze --json`` prints it.
@@ -204,12 +244,12 @@ impl PyAnalysis {
         to_python(py, &self.inner)
     }
 
-    /// Pickles as the call that made it (see the `pickle` module).
+    /// Pickles as its data (see the `pickle` module).
     fn __reduce__<'py>(
         &self,
         py: Python<'py>,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
-        crate::pickle::reduce(py, &self.recipe)
+        crate::pickle::reduce_state(py, self)
     }
 
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
@@ -244,14 +284,9 @@ pub fn analyze(
     let settings = MobilitySettings {
         rel_tol: tol.unwrap_or(MobilitySettings::default().rel_tol),
     };
-    let recipe = crate::pickle::recipe(
-        py,
-        "analyze",
-        vec![design.to_string().into_pyobject(py)?.into_any()],
-        &[("tol", settings.rel_tol.into_pyobject(py)?.into_any())],
-    )?;
+    crate::pickle::computing();
     let inner = py
         .detach(|| lib_analyze(&design, settings))
         .map_err(errors::library)?;
-    Ok(PyAnalysis { inner, recipe })
+    Ok(PyAnalysis { inner })
 }

@@ -53,6 +53,7 @@ impl Watch {
                 )))
             }
         };
+        crate::pickle::computing();
         let now = Instant::now();
         Ok(Watch {
             callback: callback.map(Bound::unbind),

@@ -3,7 +3,7 @@
 //! leave the periodic motion (the library's `api::pull_sheet`), as numpy arrays.
 
 use crate::convert::{int_array, to_python};
-use crate::finite::{poses_array, run_detached, sheet_recipe, sheet_request, PyFiniteSheet};
+use crate::finite::{poses_array, run_detached, sheet_request, PyFiniteSheet};
 use isogami::api::{pull_sheet as lib_pull_sheet, PullFrame, SheetPull, SheetPullRequest};
 use numpy::{PyArray1, PyArray3};
 use pyo3::prelude::*;
@@ -18,7 +18,6 @@ use pyo3::types::PyDict;
 #[pyclass(name = "SheetPull", module = "isogami", frozen)]
 pub struct PySheetPull {
     inner: SheetPull,
-    recipe: crate::pickle::Recipe,
 }
 
 impl PySheetPull {
@@ -35,10 +34,9 @@ impl PySheetPull {
 impl PySheetPull {
     /// The sheet that was pulled (its ``tiles`` order the poses).
     #[getter]
-    fn sheet(&self, py: Python<'_>) -> PyResult<PyFiniteSheet> {
+    fn sheet(&self) -> PyResult<PyFiniteSheet> {
         Ok(PyFiniteSheet {
             inner: self.inner.analysis.clone(),
-            recipe: crate::pickle::part(py, &self.recipe, "sheet", py.None().into_bound(py))?,
         })
     }
     /// Degrees of freedom of the pulled sheet.
@@ -122,12 +120,12 @@ impl PySheetPull {
     fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.inner)
     }
-    /// Pickles as the call that made it (see the `pickle` module).
+    /// Pickles as its data (see the `pickle` module).
     fn __reduce__<'py>(
         &self,
         py: Python<'py>,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
-        crate::pickle::reduce(py, &self.recipe)
+        crate::pickle::reduce_state(py, self)
     }
 
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
@@ -175,7 +173,7 @@ pub fn pull_sheet(
     t: f64,
     complete: bool,
     min_cover: f64,
-    grips: Option<(usize, usize)>,
+    grips: Option<&Bound<'_, PyAny>>,
     frames: Option<&Bound<'_, PyAny>>,
     settings: Option<&Bound<'_, PyAny>>,
     progress: Option<Bound<'_, PyAny>>,
@@ -185,16 +183,32 @@ pub fn pull_sheet(
     let frames = crate::convert::count_or("frames", frames, 0, 24)?;
     let request = SheetPullRequest {
         sheet: sheet_request(region, edge_mm, t, complete, min_cover, settings, overrides)?,
-        grips: grips.map(|(a, b)| [a, b]),
+        grips: grips_of(grips)?,
         frames,
     };
-    let extra = vec![
-        ("grips", grips.into_pyobject(py)?.into_any()),
-        ("frames", frames.into_pyobject(py)?.into_any()),
-    ];
-    let recipe = sheet_recipe(py, "pull_sheet", design, region, &request.sheet, extra)?;
     let inner = run_detached(py, design, progress, timeout, |design, progress| {
         lib_pull_sheet(design, &request, progress)
     })?;
-    Ok(PySheetPull { inner, recipe })
+    Ok(PySheetPull { inner })
+}
+
+crate::pickled_inner!(PySheetPull, "SheetPull");
+
+/// The grips argument: None, or a pair of tile indices (any pair form, see
+/// `convert::int_pair`).
+fn grips_of(grips: Option<&Bound<'_, PyAny>>) -> PyResult<Option<[usize; 2]>> {
+    match grips {
+        None => Ok(None),
+        Some(g) if g.is_none() => Ok(None),
+        Some(g) => match crate::convert::size_pair(g) {
+            Some(Ok((a, b))) => Ok(Some([a, b])),
+            Some(Err(shown)) => Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "grips {shown}: tile indices must be non-negative ints"
+            ))),
+            None => Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                "grips must be a pair (held, pulled) of tile indices, got {}",
+                crate::convert::type_name(g)
+            ))),
+        },
+    }
 }

@@ -348,8 +348,36 @@ impl PyQuery {
         Ok(d)
     }
 
+    /// Pickles as its data (see the `pickle` module), so a query can go to pool workers.
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        crate::pickle::reduce_state(py, self)
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<Self>()
+            .is_ok_and(|o| o.get().inner == self.inner && o.get().limit == self.limit)
+    }
+
     fn __repr__(&self) -> String {
         let json = serde_json::to_string(&self.inner).unwrap_or_default();
         format!("isogami.Query({json})")
+    }
+}
+
+impl crate::pickle::Pickled for PyQuery {
+    const CLASS: &'static str = "Query";
+    fn save(&self) -> PyResult<(Vec<u8>, Vec<Vec<f64>>)> {
+        Ok((
+            crate::pickle::to_json(&(&self.inner, self.limit))?,
+            Vec::new(),
+        ))
+    }
+    fn load(json: &[u8], _arrays: Vec<Vec<f64>>) -> PyResult<Self> {
+        let (inner, limit) = Python::attach(|py| crate::pickle::from_json(py, Self::CLASS, json))?;
+        Ok(PyQuery { inner, limit })
     }
 }

@@ -30,6 +30,42 @@ pub struct ServeArgs {
     read_only: bool,
 }
 
+/// The marker beside `db` that says its first-run exploration has not finished: made before
+/// `serve` explores a missing database, removed when the exploration has finished.
+fn first_run_marker(db: &std::path::Path) -> PathBuf {
+    let mut name = db.as_os_str().to_owned();
+    name.push(".first-run");
+    PathBuf::from(name)
+}
+
+/// Makes the database with the quick exploration when it does not exist, and finishes that
+/// exploration when an earlier `serve` was stopped during it (the marker is still there): the
+/// exploration skips the work units already committed, so it resumes where it stopped.
+fn first_run(db: &std::path::Path) -> CliResult {
+    let marker = first_run_marker(db);
+    if db.exists() && !marker.exists() {
+        return Ok(());
+    }
+    if db.exists() {
+        eprintln!(
+            "{} is an unfinished first-run exploration (stopped before the end): resuming it",
+            db.display()
+        );
+    } else {
+        eprintln!(
+            "{} does not exist: running the quick exploration to create it",
+            db.display()
+        );
+        std::fs::write(
+            &marker,
+            b"the first-run exploration of isogami serve has not finished\n",
+        )
+        .map_err(|e| format!("{}: {e}", marker.display()))?;
+    }
+    explore::run(explore::Args::quick(db.to_path_buf()))?;
+    std::fs::remove_file(&marker).map_err(|e| format!("{}: {e}", marker.display()))
+}
+
 /// Serves until Ctrl-C.
 pub fn serve(args: ServeArgs) -> CliResult {
     if !(args.sim_timeout.is_finite() && args.sim_timeout > 0.0 && args.sim_timeout <= 600.0) {
@@ -38,13 +74,7 @@ pub fn serve(args: ServeArgs) -> CliResult {
             args.sim_timeout
         ));
     }
-    if !args.db.exists() {
-        eprintln!(
-            "{} does not exist: running the quick exploration to create it",
-            args.db.display()
-        );
-        explore::run(explore::Args::quick(args.db.clone()))?;
-    }
+    first_run(&args.db)?;
     let settings = ServerSettings {
         sim_timeout: Duration::from_secs_f64(args.sim_timeout),
         allow_save: !args.read_only,

@@ -175,19 +175,18 @@ __all__ = [
 
 
 def _rebuild(name, args, kwargs):
-    """Unpickling: ``isogami.<name>(*args, **kwargs)``, the call that made a pickled result
-    (``name`` may be dotted: ``"Record._from_json"``)."""
+    """Unpickling a value (a design, family, cell, settings, record...): the constructor call
+    ``isogami.<name>(*args, **kwargs)`` that makes it, which computes nothing (``name`` may be
+    dotted: ``"Record._from_json"``)."""
     target = globals()[name.split(".")[0]]
     for part in name.split(".")[1:]:
         target = getattr(target, part)
     return target(*args, **kwargs)
 
 
-def _part(parent, attr, key):
-    """Unpickling a part of a result: ``getattr(parent, attr)`` of the rebuilt parent
-    (``parent`` a ``_rebuild`` argument tuple), called with or indexed by ``key`` unless it
-    is None."""
-    value = getattr(_rebuild(*parent), attr)
-    if key is None:
-        return value
-    return value(key) if callable(value) else value[key]
+def _restore(cls, tag, data, arrays):
+    """Unpickling a computed result from its pickled data (``tag`` names the layout; another
+    layout than this version's raises ``pickle.UnpicklingError``). Computes nothing."""
+    from . import _isogami
+
+    return _isogami._restore(cls, tag, data, arrays)

@@ -7,7 +7,7 @@ from typing import final, overload, Any, Callable, Dict, List, Literal, Mapping,
 import numpy as np
 import numpy.typing as npt
 
-from ._types import FloatArray, IntArray, Matrix, Vector, DesignLike, CellLike, FamilyLike, Progress, Method, Behaviour, FacetValues, Ranges, InverseProgress, GradedProgress
+from ._types import FloatArray, IntArray, IntPair, Matrix, Vector, DesignLike, CellLike, FamilyLike, Progress, Method, Behaviour, FacetValues, Ranges, InverseProgress, GradedProgress
 
 __version__: str
 __all__ = [
@@ -54,6 +54,8 @@ __all__ = [
     "StoredDesign",
     "TilingError",
     "__version__",
+    "_compute_calls",
+    "_restore",
     "analyze",
     "area_ratio",
     "cell",
@@ -288,6 +290,12 @@ class Analysis:
     def modes(self) -> List[Motion]: ...
     def to_dict(self) -> Dict[str, Any]:
         """As ``isogami analyze --json`` prints it."""
+
+def _restore(cls: str, tag: str, json: bytes, arrays: List[bytes]) -> Any:
+    """Unpickling a computed result from its data (see ``isogami._restore``)."""
+
+def _compute_calls() -> int:
+    """How many computations this process has started (unpickling starts none)."""
 
 def analyze(design: DesignLike, tol: Optional[float] = None) -> Analysis:
     """Mobility of a design (relative zero tolerance ``tol``, default 1e-9)."""
@@ -943,7 +951,7 @@ def pull_sheet(
     t: float = 0.3,
     complete: bool = True,
     min_cover: float = 0.5,
-    grips: Optional[Tuple[int, int]] = None,
+    grips: Optional[IntPair] = None,
     frames: int = 24,
     settings: Optional[DeploySettings] = None,
     progress: Optional[Progress] = None,
@@ -1105,7 +1113,7 @@ class GradedRun:
 
 def graded(
     design: DesignLike,
-    region: Union[Tuple[int, int], str] = (3, 3),
+    region: Union[IntPair, str] = (3, 3),
     target: str = "disc",
     t: Optional[float] = None,
     states: int = 8,

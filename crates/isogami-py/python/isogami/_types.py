@@ -14,7 +14,9 @@ IntArray = npt.NDArray[np.int64]
 Matrix = Union[Sequence[Sequence[float]], FloatArray]
 Vector = Union[Sequence[float], FloatArray]
 DesignLike = Union["Design", "Record", "StoredDesign", str]
-CellLike = Union[str, Tuple[int, int], Sequence[int]]
+# A pair of ints in any form: a tuple, a list, numpy integer scalars, a numpy integer array.
+IntPair = Union[Tuple[int, int], Sequence[int], Sequence["np.integer[Any]"], "npt.NDArray[np.integer[Any]]"]
+CellLike = Union[str, IntPair]
 FamilyLike = Union[str, int, "np.integer[Any]", "Family"]
 Progress = Callable[[int], Optional[bool]]
 # Unions of one-value Literals (equal to Literal["rigid-modes", "ncm", "springs"] for a type
@@ -34,4 +36,4 @@ InverseProgress = Callable[[Dict[str, Any]], Optional[bool]]
 # A graded sheet's optimisation: progress(iteration, cost).
 GradedProgress = Callable[[int, float], Optional[bool]]
 
-__all__ = ["FloatArray", "IntArray", "Matrix", "Vector", "DesignLike", "CellLike", "FamilyLike", "Progress", "Method", "Behaviour", "FacetValues", "Ranges", "InverseProgress", "GradedProgress"]
+__all__ = ["FloatArray", "IntArray", "IntPair", "Matrix", "Vector", "DesignLike", "CellLike", "FamilyLike", "Progress", "Method", "Behaviour", "FacetValues", "Ranges", "InverseProgress", "GradedProgress"]

@@ -73,7 +73,7 @@ impl Default for SheetRequest {
 }
 
 /// A finite sheet of a design: the raw region and, when asked, its completion.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct SheetAnalysis {
     /// The design's spec.
     pub design: String,

@@ -67,7 +67,7 @@ pub fn resolve_design(text: &str) -> Result<Design> {
 }
 
 /// The mobility analysis of a design, with the counts a reader wants beside it.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct Analysis {
     /// Spec string.
     pub design: String,

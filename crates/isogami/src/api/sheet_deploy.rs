@@ -37,7 +37,7 @@ impl Default for SheetDeployRequest {
 }
 
 /// One frame of a finite deployment.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct SheetFrame {
     /// Step index of the finite deployment.
     pub step: usize,
@@ -53,7 +53,7 @@ pub struct SheetFrame {
 }
 
 /// How the periodic sheet's deployment ended, seen on the finite sheet's tiles.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct PeriodicEnd {
     /// Why the periodic deployment ended.
     pub end_reason: EndReason,
@@ -64,7 +64,7 @@ pub struct PeriodicEnd {
 }
 
 /// A finite sheet deployed with contact among its own tiles.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct SheetDeployment {
     /// The sheet: region, raw mobility and completion ([`SheetAnalysis::sheet`] is the one
     /// deployed).

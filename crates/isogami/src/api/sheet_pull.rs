@@ -43,7 +43,7 @@ impl Default for SheetPullRequest {
 }
 
 /// One frame of a pull.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct PullFrame {
     /// Step index of the pull.
     pub step: usize,
@@ -62,7 +62,7 @@ pub struct PullFrame {
 }
 
 /// A finite sheet pulled apart by two of its tiles.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct SheetPull {
     /// The sheet: region, raw mobility and completion ([`SheetAnalysis::sheet`] is the one
     /// pulled).
@@ -96,7 +96,7 @@ pub struct SheetPull {
 /// degrees of freedom on the periodic path in between. A floppy sheet leaves through its
 /// extra modes; a one-DOF sheet can leave only at a branch point of its motion, where it
 /// has a second one (2 DOF there).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct PullLeave {
     /// t of the periodic state nearest the last frame that still follows the motion.
     pub after_periodic_t: Real,

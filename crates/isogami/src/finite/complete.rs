@@ -24,7 +24,7 @@ use serde::Serialize;
 use std::collections::HashSet;
 
 /// What completion did.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct CompletionReport {
     /// Tiles the region asked for.
     pub requested: usize,
@@ -41,7 +41,7 @@ pub struct CompletionReport {
 }
 
 /// A completed sheet and its mobility (one degree of freedom, the periodic motion).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct Completion {
     /// The completed sheet.
     pub sheet: FiniteSheet,

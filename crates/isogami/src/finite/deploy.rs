@@ -50,7 +50,7 @@ pub fn sheet_pairs(sheet: &FiniteSheet) -> Vec<CandidatePair> {
 }
 
 /// The finite sheet's own opening measures at one state.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct SheetMeasures {
     /// Area of the convex hull of every tile vertex over the closed sheet's.
     pub hull_area_ratio: Real,
@@ -140,7 +140,7 @@ fn centre_stretches(x: &[Vec2], y: &[Vec2]) -> Option<[Real; 2]> {
 }
 
 /// The sheet's mobility at one state of its deployment.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct StateCheck {
     /// Step index in the finite deployment.
     pub step: usize,
@@ -204,7 +204,7 @@ pub fn state_check(
 
 /// How far the sheet's tiles are from where the periodic deployment puts them, over the
 /// states both deployments share.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct PeriodicAgreement {
     /// States compared (the closed state first): the finite and periodic deployments take
     /// the same steps until contact makes them differ.

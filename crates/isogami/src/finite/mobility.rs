@@ -22,7 +22,7 @@ use serde::Serialize;
 pub const MOVER_FRACTION: Real = 0.05;
 
 /// One extra mode of a finite sheet.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct FloppyMode {
     /// Indices (in [`FiniteSheet::tiles`]) of the tiles that move in it, ascending.
     pub tiles: Vec<usize>,
@@ -31,7 +31,7 @@ pub struct FloppyMode {
 }
 
 /// The mobility of a finite sheet at one state.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct SheetMobility {
     /// Tiles.
     pub tiles: usize,

@@ -47,7 +47,7 @@ impl MobilitySettings {
 }
 
 /// First-order velocity of one tile.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct TileVelocity {
     /// ẋ (units of L).
     pub vx: Real,
@@ -58,7 +58,7 @@ pub struct TileVelocity {
 }
 
 /// One first-order motion: a unit vector of the non-dimensional state space.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct Motion {
     /// Velocity of every tile (tile 0 is held fixed).
     pub tiles: Vec<TileVelocity>,
@@ -76,7 +76,7 @@ pub struct Motion {
 }
 
 /// The result of a mobility analysis.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct Mobility {
     /// Degrees of freedom: the number of zero eigenvalues.
     pub dof: usize,
