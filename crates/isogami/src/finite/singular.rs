@@ -28,7 +28,7 @@ use serde::Serialize;
 pub const DIP: Real = 1e-3;
 
 /// One singular state of a path.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct SingularState {
     /// Accepted step of the path.
     pub step: usize,
