@@ -168,7 +168,7 @@ impl Region {
         }
         let span = (hi_f[0] - lo_f[0]).max(hi_f[1] - lo_f[1]);
         let most = 4 * MAX_REGION_CELLS;
-        if !(span <= most as Real) {
+        if span.is_nan() || span > most as Real {
             return Err(FiniteError::BadRegion(format!(
                 "the region spans {} cells; at most {most} fit",
                 crate::settings_error::short_real(span)

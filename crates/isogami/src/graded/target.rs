@@ -49,7 +49,7 @@ impl Outline {
                     )));
                 }
                 let elongation = a.max(b) / a.min(b);
-                if !(elongation <= MAX_ELONGATION) {
+                if elongation.is_nan() || elongation > MAX_ELONGATION {
                     return Err(GradedError::BadTarget(format!(
                         "an ellipse of semi-axes {}, {} is {} times longer than wide; \
                          at most {MAX_ELONGATION} is taken",
@@ -79,7 +79,7 @@ impl Outline {
                     ));
                 }
                 let elongation = diag.powi(2) / area.abs();
-                if !(elongation <= MAX_ELONGATION) {
+                if elongation.is_nan() || elongation > MAX_ELONGATION {
                     return Err(GradedError::BadTarget(format!(
                         "the outline is too thin (bounding-box diagonal² / area = {}; at most \
                          {MAX_ELONGATION} is taken)",
