@@ -49,7 +49,7 @@ pub enum InputError {
         path: String,
     },
     /// The operating system's error (missing, not permitted, …).
-    #[error("{path}: {message}")]
+    #[error("{path}: cannot read it: {message}")]
     Io {
         /// The path, clipped.
         path: String,

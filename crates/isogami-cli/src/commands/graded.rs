@@ -289,6 +289,6 @@ mod tests {
         assert!(parse_target("square").unwrap_err().contains("target"));
         assert!(parse_target("@/nonexistent/outline.svg")
             .unwrap_err()
-            .contains("cannot read the file"));
+            .contains("/nonexistent/outline.svg: cannot read it: "));
     }
 }
