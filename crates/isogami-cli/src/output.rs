@@ -63,12 +63,18 @@ macro_rules! outln {
 /// Writes a finished text to stdout; a closed pipe (`| head`) is not an error. A text
 /// holding a formatted NaN or infinity is refused whole (nothing is printed).
 pub fn emit(text: &str) -> CliResult {
-    if let Some((line, word)) = text::find_non_finite(text) {
-        return Err(format!(
-            "refusing to print a non-finite number ('{word}' in output line {line})"
-        ));
-    }
+    check_text(text)?;
     write_stdout(text)
+}
+
+/// Refuses a text holding a formatted NaN or infinity (the check [`emit`] makes).
+pub fn check_text(text: &str) -> CliResult {
+    match text::find_non_finite(text) {
+        Some((line, word)) => Err(format!(
+            "refusing to print a non-finite number ('{word}' in output line {line})"
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Writes `text` to stdout as it is; a closed pipe (`| head`) is not an error.

@@ -65,11 +65,16 @@ pub struct Args {
     /// `isogami db units` gives the measured figures of a finished run.
     #[arg(long)]
     plan: bool,
+    /// The report goes to stderr (serve's first run: its stdout's first line says where it
+    /// listens).
+    #[arg(skip)]
+    report_on_stderr: bool,
 }
 
 impl Args {
     /// The quick exploration (`explore --quick --db DB`) with every other flag at its
-    /// default: what `isogami serve` runs when its database does not exist yet.
+    /// default and its report on stderr: what `isogami serve` runs when its database does not
+    /// exist yet (or its first run was stopped).
     pub fn quick(db: PathBuf) -> Args {
         let defaults = CatalogSettings::default();
         Args {
@@ -85,6 +90,7 @@ impl Args {
             quick: true,
             json: false,
             plan: false,
+            report_on_stderr: true,
         }
     }
 }
@@ -343,7 +349,12 @@ pub fn run(args: Args) -> CliResult {
             failures.len()
         );
         o.push_str(&crate::commands::db::stats_table(&outcome.stats));
-        emit(&o)?;
+        if args.report_on_stderr {
+            crate::output::check_text(&o)?;
+            eprint!("{o}");
+        } else {
+            emit(&o)?;
+        }
     }
     for f in failures {
         eprintln!("warning: work unit {}: {}", f.unit, f.message);

@@ -105,7 +105,7 @@ fn bad_svg_targets_are_refused_in_one_line() {
         (&two, vec!["two.svg", "2 shapes", "<rect id=\"frame\">"]),
         (&open, vec!["open.svg", "is open"]),
         (&html, vec!["page.svg", "not an SVG document"]),
-        (&missing, vec!["cannot read the file", "missing.svg"]),
+        (&missing, vec!["cannot read it", "missing.svg"]),
     ] {
         let args = [
             "graded",
