@@ -9,7 +9,10 @@
 //! through it can take one of the other branches: it stops following the periodic motion and
 //! parts of it drift off. So every accepted state of the path is counted, and a state whose
 //! lowest non-zero eigenvalue (scaled by λ_max) lies more than [`DIP`] below the path's median
-//! of it is reported, one per run of such states (its lowest).
+//! of it is reported, one per run of such states (its lowest), when the eigenvalue rises
+//! again on both sides of the run: a run at the path's first or last state is where the path
+//! begins (beside the closed tiling, singular as every closed tiling is) or ends, not a state
+//! the sheet is pulled through.
 
 use super::error::FiniteError;
 use super::kernel::sheet_kernel;
@@ -56,17 +59,18 @@ pub fn singular_states(spectra: &[(usize, Real, Vec<Real>)]) -> Vec<SingularStat
     }
     lowest.sort_by(Real::total_cmp);
     let typical = lowest[lowest.len() / 2];
-    let mut found: Vec<SingularState> = Vec::new();
-    let mut previous_flagged = false;
-    for (step, t, values) in spectra {
-        let Some(&low) = values.first() else {
-            previous_flagged = false;
-            continue;
+    // Runs of states below the dip, each as its lowest state and whether it began at the
+    // path's first state.
+    let mut runs: Vec<(SingularState, bool)> = Vec::new();
+    let mut open = false;
+    for (k, (step, t, values)) in spectra.iter().enumerate() {
+        let low = match values.first() {
+            Some(&low) if low < DIP * typical => low,
+            _ => {
+                open = false;
+                continue;
+            }
         };
-        if low >= DIP * typical {
-            previous_flagged = false;
-            continue;
-        }
         let bound = (low.max(0.0) * typical).sqrt();
         let state = SingularState {
             step: *step,
@@ -75,17 +79,26 @@ pub fn singular_states(spectra: &[(usize, Real, Vec<Real>)]) -> Vec<SingularStat
             lowest: low,
             typical,
         };
-        match found.last_mut() {
-            Some(last) if previous_flagged => {
+        match runs.last_mut() {
+            Some((last, _)) if open => {
                 if low < last.lowest {
                     *last = state;
                 }
             }
-            _ => found.push(state),
+            _ => runs.push((state, k == 0)),
         }
-        previous_flagged = true;
+        open = true;
     }
-    found
+    // A run at either end of the path is where the path begins (beside the closed state,
+    // singular as a tiling) or ends (its contact limit), not a state the sheet is pulled
+    // through: only runs with a rise on both sides are singular states of the path.
+    if open {
+        runs.pop();
+    }
+    runs.into_iter()
+        .filter(|(_, at_start)| !at_start)
+        .map(|(state, _)| state)
+        .collect()
 }
 
 /// The singular states of `sheet` along `traj` of `mech` (every accepted state but the
@@ -194,6 +207,36 @@ mod tests {
                     assert_eq!(found.len(), 1, "case {case}: {found:?}");
                     assert_eq!(found[0].step, s, "case {case}");
                     assert_eq!(found[0].extra_motions, m, "case {case}");
+                }
+            }
+        }
+    }
+
+    /// A spectrum falling to zero towards the path's ends — beside the closed tiling, and at
+    /// a contact limit where the tiles close again (rotating squares' completed sheets were
+    /// flagged at t = 0.002 and 0.998) — is no state the sheet passes through: nothing is
+    /// reported there, while an interior dip of the same path still is.
+    #[test]
+    fn falls_at_the_ends_of_the_path_are_not_singular_states() {
+        for interior in [None, Some(0.5)] {
+            let steps = 120;
+            let spectra: Vec<(usize, Real, Vec<Real>)> = (1..steps)
+                .map(|k| {
+                    let t = k as Real / steps as Real;
+                    let mut edge = t.min(1.0 - t);
+                    if let Some(c) = interior {
+                        edge = edge.min((t - c).abs() + 1e-4);
+                    }
+                    let low = 1e-4 * (edge / 0.05).powi(4).min(1.0);
+                    (k, t, vec![low, 2e-4, 3e-4])
+                })
+                .collect();
+            let found = singular_states(&spectra);
+            match interior {
+                None => assert!(found.is_empty(), "{found:?}"),
+                Some(c) => {
+                    assert_eq!(found.len(), 1, "{found:?}");
+                    assert!((found[0].t - c).abs() < 0.01, "{found:?}");
                 }
             }
         }
