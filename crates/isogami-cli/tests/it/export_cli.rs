@@ -4,16 +4,7 @@
 use std::path::Path;
 
 use crate::common;
-use common::{isogami, scratch};
-
-fn entries(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
-}
+use common::{entries, isogami, scratch};
 
 const IH22: &str = "IH22:0.1312,0.2611,0.4191:1x1:aa-a-";
 

@@ -4,7 +4,7 @@
 
 use crate::common;
 
-use common::{isogami, scratch};
+use common::{entries as listing, isogami, scratch};
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -23,16 +23,6 @@ fn refused(args: &[&str], needle: &str, within: Duration) -> String {
     );
     assert!(took < within, "{args:?} took {took:?}");
     err
-}
-
-/// Files in `dir`, sorted.
-fn listing(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
 }
 
 /// `--target @/dev/zero` and `export --sheet /dev/zero` read until memory ran out; a FIFO

@@ -31,3 +31,13 @@ pub fn scratch(name: &str) -> TempDir {
         .tempdir()
         .expect("temp dir")
 }
+
+/// The names of the files in `dir`, sorted.
+pub fn entries(dir: &std::path::Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .expect("folder reads")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
