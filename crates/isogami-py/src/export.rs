@@ -12,6 +12,7 @@ use isogami::export::{
     export_design, ExportError, ExportFiles, ExportOptions, Format, PatchRequest, Scale,
     SettingsGroup, State,
 };
+use isogami::finite::{FiniteError, Region};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
@@ -297,7 +298,9 @@ pub(crate) fn files_to_python(py: Python<'_>, files: ExportFiles) -> PyResult<Bo
 /// contents: ``bytes`` for a single-file format, a dict ``{file name: bytes}`` for a folder of
 /// files (``"kirigami-sim"``). ``export_formats()`` lists the formats.
 ///
-/// Patch: ``patch`` (``"6x6"`` or ``(rows, cols)``, rows along w, 1..40 each); the scale is
+/// Patch: ``patch`` (``"6x6"`` or ``(rows, cols)``, rows along w, 1..40 each), or instead
+/// ``region``, read as ``finite_sheet`` reads it (``"RxC"`` cells, or in mm at ``edge_mm``
+/// ``"rect:W,H"``, ``"disc:R"``, ``"polygon:x,y;x,y;…"`` centred on cell [0, 0]); the scale is
 /// ``edge_mm`` (mean tile edge, default 20 mm) or ``width_mm`` (patch width at the state);
 /// ``t`` is the state (a number in [0, 1], the nearest accepted state; 0 closed) or ``"open"``
 /// (largest area ratio); ``kerf`` is the deployment's cut width relative to the mean edge
@@ -317,7 +320,7 @@ pub(crate) fn files_to_python(py: Python<'_>, files: ExportFiles) -> PyResult<Bo
 /// ``progress`` and ``timeout`` as for ``deploy``; the GIL is released while it runs.
 #[pyfunction]
 #[pyo3(signature = (
-    design, format, *, patch=None, edge_mm=None, width_mm=None, t=None, kerf=None, frames=None,
+    design, format, *, patch=None, region=None, edge_mm=None, width_mm=None, t=None, kerf=None, frames=None,
     complete=true, material=None, hinge_mm=None, kerf_mm=None, thickness_mm=None, margin_mm=None,
     stroke_mm=None, cut_colour=None, score_colour=None, engrave_colour=None, labels=false,
     gap_mm=None, lamella_mm=None, nozzle_mm=None, creator=None, progress=None, timeout=None
@@ -328,6 +331,7 @@ pub fn export<'py>(
     design: &Bound<'py, PyAny>,
     format: &str,
     patch: Option<&Bound<'py, PyAny>>,
+    region: Option<&str>,
     edge_mm: Option<f64>,
     width_mm: Option<f64>,
     t: Option<&Bound<'py, PyAny>>,
@@ -355,9 +359,22 @@ pub fn export<'py>(
         .parse()
         .map_err(|e: ExportError| errors::ExportError::new_err(e.to_string()))?;
     let defaults = PatchRequest::default();
+    let patch = patch.filter(|p| !p.is_none());
     let (rows, cols) = match patch {
-        Some(p) if !p.is_none() => patch_size(p)?,
+        Some(p) => patch_size(p)?,
         _ => (defaults.rows, defaults.cols),
+    };
+    let region = match region {
+        Some(_) if patch.is_some() => {
+            return Err(PyTypeError::new_err(
+                "give patch or region, not both (a region replaces the patch)",
+            ))
+        }
+        Some(text) => Some(
+            text.parse::<Region>()
+                .map_err(|e: FiniteError| errors::library(e.into()))?,
+        ),
+        None => None,
     };
     let scale = scale_of(edge_mm, width_mm, defaults.scale)?;
     let state = match t {
@@ -372,6 +389,7 @@ pub fn export<'py>(
         kerf: kerf.unwrap_or(defaults.kerf),
         frames: crate::convert::count_or("frames", frames, 0, defaults.frames)?,
         complete,
+        region,
     };
     let options = Given::new(
         material,

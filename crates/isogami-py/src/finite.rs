@@ -358,6 +358,7 @@ pub(crate) fn sheet_request(
         t,
         complete,
         min_covered: min_cover,
+        keep_raw_on_refusal: false,
         settings: settings_of(settings, overrides)?,
     })
 }

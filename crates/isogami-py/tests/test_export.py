@@ -145,3 +145,22 @@ def test_the_completed_sheet_is_the_default_and_complete_false_is_raw(cli_raw, t
     with pytest.raises(isogami.FiniteError, match="no one-DOF sheet"):
         isogami.export(isostatic, "obj")
     assert isogami.export(isostatic, "obj", complete=False).startswith(b"#")
+
+
+@pytest.mark.parametrize("region", ["3x5", "disc:70", "polygon:0,0;100,0;0,80"])
+def test_a_region_is_exported_as_the_cli_exports_it(cli_raw, tmp_path, region):
+    for complete, flag in [(True, ()), (False, ("--raw",))]:
+        data = isogami.export(IH44, "tiles-json", region=region, complete=complete)
+        assert data == cli_export(cli_raw, tmp_path, IH44, "tiles-json", "--region", region, *flag)
+        tiles = {(tuple(t["cell"]), t["tile"]) for t in json.loads(data)["tiles"]}
+        sheet = isogami.finite_sheet(IH44, region, complete=complete)
+        assert len(tiles) == len(sheet.tiles)
+
+
+def test_a_region_is_checked_before_any_work():
+    with pytest.raises(TypeError, match="patch or region"):
+        isogami.export(IH44, "obj", patch="4x4", region="4x4")
+    with pytest.raises(isogami.FiniteError, match="radius"):
+        isogami.export(IH44, "obj", region="disc:-1")
+    with pytest.raises(isogami.ExportError, match="edge length"):
+        isogami.export(IH44, "obj", region="disc:40", width_mm=100)

@@ -14,7 +14,7 @@ use isogami::export::{
     export_design, export_graded, read_graded, ExportError, ExportFiles, ExportOptions, Format,
     GradedPatchRequest, PatchRequest, Scale, SettingsGroup, State, MAX_PATCH,
 };
-use isogami::finite::FiniteError;
+use isogami::finite::{FiniteError, Region};
 use isogami::input::{read_text, MAX_SHEET_BYTES};
 use isogami::stop::NEVER;
 use std::path::{Path, PathBuf};
@@ -53,6 +53,11 @@ pub struct Args {
     /// Patch size ROWSxCOLS in cells (rows along w, columns along u), each 1..=40.
     #[arg(long, default_value = "6x6", conflicts_with = "sheet")]
     patch: String,
+    /// Another region instead of the patch, read as `isogami sheet --region` reads it: RxC
+    /// cells, or in mm (at --edge-mm) rect:W,H, disc:R, polygon:x,y;x,y;… centred on cell
+    /// [0, 0]. Completed like the patch (or written as it is with --raw).
+    #[arg(long, conflicts_with_all = ["sheet", "patch", "width_mm"])]
+    region: Option<Region>,
     /// Mean tile edge length in mm [default: 20].
     #[arg(long, allow_hyphen_values = true, conflicts_with = "width_mm")]
     edge_mm: Option<f64>,
@@ -141,14 +146,22 @@ pub fn run(args: Args) -> CliResult {
         )
     } else if f.completed {
         format!(
-            "one-DOF completion: {} of {} rectangle tiles kept, {} added, {:.1} % covered",
+            "one-DOF completion: {} of {} requested tiles kept, {} added, {:.1} % covered",
             f.requested_tiles - f.removed_tiles,
             f.requested_tiles,
             f.added_tiles,
             100.0 * f.covered_fraction
         )
     } else {
-        format!("raw rectangle, {} DOF", f.dof)
+        format!(
+            "raw {}, {} DOF",
+            if args.region.is_some() {
+                "region"
+            } else {
+                "rectangle"
+            },
+            f.dof
+        )
     };
     emit(&format!(
         "wrote {} ({} tiles, {} joints, t = {:.4}, {:.1} x {:.1} mm; {sheet})\n",
@@ -244,6 +257,7 @@ fn request(args: &Args) -> Result<PatchRequest, String> {
         kerf: args.kerf,
         frames: args.frames,
         complete: !args.raw,
+        region: args.region.clone(),
     };
     request.validate().map_err(|e| e.to_string())?;
     Ok(request)

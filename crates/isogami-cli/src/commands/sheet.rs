@@ -6,7 +6,7 @@ use isogami::api::{
     deploy_sheet, finite_sheet, pull_sheet, resolve_design, SheetAnalysis, SheetDeployRequest,
     SheetDeployment, SheetPull, SheetPullRequest, SheetRequest,
 };
-use isogami::finite::{FiniteSheet, Region, SheetMobility};
+use isogami::finite::{FiniteError, FiniteSheet, Region, SheetMobility};
 
 /// Arguments of `sheet`.
 #[derive(Debug, clap::Args)]
@@ -55,7 +55,10 @@ pub struct Args {
     json: bool,
 }
 
-/// Runs the finite-sheet analysis of one design.
+/// Runs the finite-sheet analysis of one design. With --json, a refused completion (or a
+/// sheet that cannot deploy or be pulled) still prints the raw region's analysis before the
+/// refusal's one line; the text report refuses at once (counting alone refuses an isostatic
+/// cell's region before any factorisation), and --raw shows the region.
 pub fn run(args: Args) -> CliResult {
     let design = resolve_design(&args.design).map_err(|e| e.to_string())?;
     let request = SheetRequest {
@@ -66,13 +69,18 @@ pub fn run(args: Args) -> CliResult {
         min_covered: args.min_cover / 100.0,
         ..SheetRequest::default()
     };
+    // Why the motion asked for did not run, when the sheet has no one-DOF form.
+    let mut refused: Option<String> = None;
     let deployment = if args.deploy {
         let request = SheetDeployRequest {
             sheet: request.clone(),
             frames: args.frames,
             ..SheetDeployRequest::default()
         };
-        Some(deploy_sheet(&design, &request, &mut |_| true).map_err(|e| e.to_string())?)
+        match deploy_sheet(&design, &request, &mut |_| true) {
+            Ok(d) => Some(d),
+            Err(e) => refusal(e, args.json, &mut refused)?,
+        }
     } else {
         None
     };
@@ -82,7 +90,10 @@ pub fn run(args: Args) -> CliResult {
             grips: args.grips,
             frames: args.frames,
         };
-        Some(pull_sheet(&design, &request, &mut |_| true).map_err(|e| e.to_string())?)
+        match pull_sheet(&design, &request, &mut |_| true) {
+            Ok(p) => Some(p),
+            Err(e) => refusal(e, args.json, &mut refused)?,
+        }
     } else {
         None
     };
@@ -91,10 +102,18 @@ pub fn run(args: Args) -> CliResult {
         (_, Some(p)) if args.json => return print_json(p),
         (Some(d), _) => d.analysis.clone(),
         (_, Some(p)) => p.analysis.clone(),
-        _ => finite_sheet(&design, &request, &mut |_| true).map_err(|e| e.to_string())?,
+        _ => {
+            let request = SheetRequest {
+                keep_raw_on_refusal: args.json,
+                ..request
+            };
+            finite_sheet(&design, &request, &mut |_| true).map_err(|e| e.to_string())?
+        }
     };
+    let refused = refused.or_else(|| out.refusal.clone());
     if args.json {
-        return print_json(&out);
+        print_json(&out)?;
+        return refused.map_or(Ok(()), Err);
     }
     let mut o = String::new();
     outln!(o, "design      {}", out.design);
@@ -142,7 +161,24 @@ pub fn run(args: Args) -> CliResult {
     if let Some(p) = &pull {
         describe_pull(&mut o, p);
     }
-    emit(&o)
+    emit(&o)?;
+    refused.map_or(Ok(()), Err)
+}
+
+/// No result, with the reason kept, when `e` says the sheet has no one-DOF form and the raw
+/// analysis is to be printed (`keep`); else `e`.
+fn refusal<T>(
+    e: isogami::Error,
+    keep: bool,
+    refused: &mut Option<String>,
+) -> Result<Option<T>, String> {
+    match e {
+        isogami::Error::Finite(FiniteError::NoOneDofSheet { .. }) if keep => {
+            *refused = Some(e.to_string());
+            Ok(None)
+        }
+        e => Err(e.to_string()),
+    }
 }
 
 /// `A,B`: two tile indices.

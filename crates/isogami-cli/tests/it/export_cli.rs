@@ -150,6 +150,76 @@ fn export_writes_the_completed_sheet_unless_raw() {
     assert_eq!(o.status.code(), Some(2));
 }
 
+/// `--region` reads every region `sheet --region` reads, and writes the sheet `sheet`
+/// completes (the same tiles), or the same raw region with --raw; where `sheet` refuses the
+/// completion, the export refuses it too and writes nothing.
+#[test]
+fn a_region_exports_the_sheet_that_sheet_makes() {
+    let dir_guard = scratch("region");
+    let dir = dir_guard.path();
+    let out = dir.join("r.json");
+    let out_arg = out.to_string_lossy().into_owned();
+    let keys = |v: &serde_json::Value| -> Vec<(i64, i64, i64)> {
+        let mut k: Vec<_> = v["tiles"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|t| {
+                let c = &t["cell"];
+                (
+                    c[0].as_i64().unwrap(),
+                    c[1].as_i64().unwrap(),
+                    t["tile"].as_i64().unwrap(),
+                )
+            })
+            .collect();
+        k.sort();
+        k
+    };
+    let (mut written, mut refused) = (0, 0);
+    for region in ["3x5", "disc:70", "rect:90,60", "polygon:0,0;100,0;0,80"] {
+        for raw in [false, true] {
+            let flag: &[&str] = if raw { &["--raw"] } else { &[] };
+            let sheet = isogami(
+                &[
+                    &["sheet", "--design", IH44, "--region", region, "--json"][..],
+                    flag,
+                ]
+                .concat(),
+            );
+            let o = isogami(
+                &[
+                    &["export", "--design", IH44, "--format", "tiles-json"][..],
+                    &["--region", region, "--out", &out_arg],
+                    flag,
+                ]
+                .concat(),
+            );
+            let stderr = String::from_utf8_lossy(&o.stderr);
+            if !sheet.status.success() {
+                assert_eq!(o.status.code(), Some(2), "{region}: {stderr}");
+                assert!(stderr.contains("no one-DOF sheet"), "{region}: {stderr}");
+                assert!(!out.exists(), "{region}: a refused export wrote a file");
+                refused += 1;
+                continue;
+            }
+            assert!(o.status.success(), "{region} raw={raw}: {stderr}");
+            let v: serde_json::Value = serde_json::from_slice(&sheet.stdout).unwrap();
+            let sheet = if raw {
+                &v["raw"]
+            } else {
+                &v["completion"]["sheet"]
+            };
+            let file: serde_json::Value =
+                serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+            assert_eq!(keys(&file), keys(sheet), "{region} raw={raw}");
+            std::fs::remove_file(&out).unwrap();
+            written += 1;
+        }
+    }
+    assert!(written >= 6, "{written} regions written, {refused} refused");
+}
+
 #[test]
 fn bad_values_fail_in_one_line_and_write_nothing() {
     let dir_guard = scratch("errors");
@@ -166,6 +236,11 @@ fn bad_values_fail_in_one_line_and_write_nothing() {
         &["--width-mm", "-1"],
         &["--width-mm", "inf"],
         &["--edge-mm", "10", "--width-mm", "100"],
+        &["--region", "disc:40", "--width-mm", "100"],
+        &["--region", "disc:-1"],
+        &["--region", "0x3"],
+        &["--region", "polygon:0,0;1,1"],
+        &["--region", "4x4", "--patch", "4x4"],
         &["--t", "1.5"],
         &["--t", "-0.1"],
         &["--t", "nan"],

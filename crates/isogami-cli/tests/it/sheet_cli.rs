@@ -58,10 +58,6 @@ fn bad_requests_are_one_line_and_exit_2() {
             "covered",
         ),
         (
-            vec!["--region", "4x4", "--raw", "--deploy"],
-            "degrees of freedom",
-        ),
-        (
             vec!["--region", "4x4", "--deploy", "--frames", "1"],
             "frames",
         ),
@@ -94,6 +90,51 @@ fn bad_requests_are_one_line_and_exit_2() {
             || (args.contains(&"--pull") && args.contains(&"--deploy"));
         if !clap_refusal {
             assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+        }
+    }
+}
+
+/// A completion refused — by counting alone for an isostatic cell, by pruning for a design
+/// whose boundary keeps flopping — and a raw region too floppy to deploy still answer --json
+/// with the raw region (and the refusal's reason), then the reason in one line on stderr and
+/// exit code 2; the text report is the one line alone.
+#[test]
+fn a_refusal_still_prints_the_raw_region() {
+    const ISOSTATIC: &str = "IH10::2x2:--a--aa-a-bb";
+    // Its 6×6 completion keeps 79 % of the region.
+    const FLOPPY: &str = "IH9:0.04739750492,0.35,0.225335752741:1x2:--aaabb--aa-";
+    let cases: [(&str, &[&str], &str); 4] = [
+        (ISOSTATIC, &["--region", "4x4"], "counting"),
+        (ISOSTATIC, &["--region", "4x4", "--deploy"], "counting"),
+        (FLOPPY, &["--region", "6x6", "--min-cover", "100"], "100 %"),
+        (
+            IH44,
+            &["--region", "4x4", "--raw", "--deploy"],
+            "degrees of freedom",
+        ),
+    ];
+    for (design, args, needle) in cases {
+        let base = [&["sheet", "--design", design][..], args].concat();
+        for json in [true, false] {
+            let all = [&base[..], if json { &["--json"][..] } else { &[][..] }].concat();
+            let out = isogami(&all);
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(2), "{all:?}: {err}");
+            assert_eq!(err.trim().lines().count(), 1, "{all:?}: {err}");
+            assert!(err.contains(needle), "{all:?}: {err}");
+            let reason = err.trim().trim_start_matches("error: ");
+            if json {
+                let v: serde_json::Value = serde_json::from_slice(&out.stdout)
+                    .unwrap_or_else(|e| panic!("{all:?}: stdout is no JSON ({e})"));
+                assert!(v["raw_mobility"]["dof"].as_u64().unwrap() > 1, "{all:?}");
+                assert!(!v["raw"]["tiles"].as_array().unwrap().is_empty());
+                assert!(v["completion"].is_null(), "{all:?}");
+                if !args.contains(&"--raw") {
+                    assert_eq!(v["refusal"].as_str(), Some(reason), "{all:?}");
+                }
+            } else {
+                assert!(out.stdout.is_empty(), "{all:?}");
+            }
         }
     }
 }

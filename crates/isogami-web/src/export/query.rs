@@ -159,6 +159,7 @@ pub fn parse_export(pairs: &[(String, String)]) -> ApiResult<ExportQuery> {
         kerf,
         frames,
         complete,
+        region: None,
     };
     request
         .validate()

@@ -19,7 +19,7 @@ use isogami::api::{
     deploy_sheet, finite_sheet, resolve_design, sheet_geometry, Design, SheetAnalysis,
     SheetDeployRequest, SheetDeployment, SheetRequest,
 };
-use isogami::deploy::{Progress, TilePose};
+use isogami::deploy::TilePose;
 use isogami::finite::{FiniteError, FiniteSheet};
 use isogami::kinematics::Mechanism;
 use isogami::Error;
@@ -146,20 +146,13 @@ fn run(design: &Design, query: &SheetQuery, deadline: &Deadline) -> Result<Sheet
             },
         }
     }
-    let analysis = if refused.is_some() {
-        raw_analysis(design, &query.request, keep_going)?
-    } else {
-        match finite_sheet(design, &query.request, &mut *keep_going) {
-            Ok(a) => a,
-            Err(e) => match no_one_dof(&e) {
-                Some(reason) if query.request.complete => {
-                    refused = Some(reason);
-                    raw_analysis(design, &query.request, keep_going)?
-                }
-                _ => return Err(e),
-            },
-        }
+    // The analysis answers even when the completion is refused: the raw region, and why.
+    let request = SheetRequest {
+        keep_raw_on_refusal: true,
+        ..query.request.clone()
     };
+    let analysis = finite_sheet(design, &request, &mut *keep_going)?;
+    let refused = refused.or_else(|| analysis.refusal.clone());
     if refused.is_some() && query.deploy.is_some() {
         not_deployed = refused.clone();
     }
@@ -170,19 +163,6 @@ fn run(design: &Design, query: &SheetQuery, deadline: &Deadline) -> Result<Sheet
         deployment: None,
         not_deployed,
     })
-}
-
-/// The raw region's analysis (no completion) of `request`.
-fn raw_analysis(
-    design: &Design,
-    request: &SheetRequest,
-    progress: Progress<'_>,
-) -> Result<SheetAnalysis, Error> {
-    let raw = SheetRequest {
-        complete: false,
-        ..request.clone()
-    };
-    finite_sheet(design, &raw, progress)
 }
 
 /// Runs `query` on the blocking pool holding one `heavy` permit (waited for within

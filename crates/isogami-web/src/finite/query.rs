@@ -121,6 +121,7 @@ pub fn parse_sheet(pairs: &[(String, String)]) -> ApiResult<SheetQuery> {
         t,
         complete: !raw,
         min_covered,
+        keep_raw_on_refusal: false,
         settings,
     };
     request

@@ -153,6 +153,7 @@ async fn every_format_downloads_the_librarys_bytes_with_its_type_and_name() {
         kerf: 0.02,
         frames: 4,
         complete: false,
+        region: None,
     };
     for format in Format::ALL {
         let uri = format!(
@@ -316,28 +317,28 @@ async fn bad_values_are_400_with_the_librarys_message() {
             lib(PatchRequest {
                 rows: 41,
                 cols: 41,
-                ..d
+                ..d.clone()
             }),
         ),
         (
             format!("{base}&format=svg&t=1.5"),
             lib(PatchRequest {
                 state: State::T(1.5),
-                ..d
+                ..d.clone()
             }),
         ),
         (
             format!("{base}&format=fold&edge_mm=-3"),
             lib(PatchRequest {
                 scale: Scale::EdgeMm(-3.0),
-                ..d
+                ..d.clone()
             }),
         ),
         (
             format!("{base}&format=obj&width_mm=0"),
             lib(PatchRequest {
                 scale: Scale::WidthMm(0.0),
-                ..d
+                ..d.clone()
             }),
         ),
         (

@@ -407,7 +407,7 @@ async fn exports_write_the_completed_sheet_unless_raw_is_asked() {
         FLOPPY,
         &PatchRequest {
             complete: true,
-            ..rect
+            ..rect.clone()
         },
     );
     let raw = tiles_csv(FLOPPY, &rect);

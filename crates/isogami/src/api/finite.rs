@@ -6,7 +6,8 @@ use crate::cell::UnitCell;
 use crate::deploy::{DeploySettings, Progress, Trajectory};
 use crate::error::Result;
 use crate::finite::{
-    complete, sheet_kernel, Completion, Context, FiniteError, FiniteSheet, Region, SheetMobility,
+    complete, refusal_by_count, sheet_kernel, Completion, Context, FiniteError, FiniteSheet,
+    Region, SheetMobility,
 };
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
@@ -29,6 +30,9 @@ pub struct SheetRequest {
     pub complete: bool,
     /// Smallest fraction of the region's area a completed sheet must keep, in [0, 1].
     pub min_covered: Real,
+    /// On a refused completion, answer with the raw region's analysis and the refusal's
+    /// reason ([`SheetAnalysis::refusal`]) instead of the error.
+    pub keep_raw_on_refusal: bool,
     /// The periodic deployment's settings (a finite sheet's zeros are decided by its
     /// spectrum's gap, see [`crate::finite::kernel`], not by the mobility tolerance).
     pub settings: DeploySettings,
@@ -67,6 +71,7 @@ impl Default for SheetRequest {
             t: 0.3,
             complete: true,
             min_covered: 0.5,
+            keep_raw_on_refusal: false,
             settings: DeploySettings::default(),
         }
     }
@@ -91,6 +96,10 @@ pub struct SheetAnalysis {
     pub completion: Option<Completion>,
     /// The completed sheet's degrees of freedom in the closed state.
     pub completed_closed_dof: Option<usize>,
+    /// Why there is no completion, when one was asked for and refused (only with
+    /// [`SheetRequest::keep_raw_on_refusal`]; otherwise the refusal is the error).
+    #[serde(default)]
+    pub refusal: Option<String>,
 }
 
 impl SheetAnalysis {
@@ -139,8 +148,14 @@ pub(crate) fn deployed_sheet(
 ) -> Result<(Mechanism, super::DeployedPath, SheetAnalysis)> {
     request.validate()?;
     let (cell, mech) = assemble(design)?;
-    // The region is made and checked before the deployment, which costs more.
+    // The region is made and checked before the deployment, which costs more, and so is a
+    // completion that counting alone refuses.
     let requested = requested_sheet(&cell, &mech, request)?;
+    if request.complete && !request.keep_raw_on_refusal {
+        if let Some(refusal) = refusal_by_count(&cell, &mech, &requested, request.min_covered) {
+            return Err(refusal.into());
+        }
+    }
     let path = deploy_path(design, &request.settings, &mut *progress)?;
     let states = path.trajectory.steps.len();
     let analysis = watched(progress, states, |keep_going| {
@@ -223,10 +238,19 @@ pub(crate) fn sheet_of_trajectory(
         return Err(FiniteError::Cancelled.into());
     }
     let raw_closed_dof = closed_dof(&requested)?;
+    let mut refusal = None;
     let (completion, completed_closed_dof) = if request.complete {
-        let c = complete(&ctx, &requested)?;
-        let dof = closed_dof(&c.sheet)?;
-        (Some(c), Some(dof))
+        match complete(&ctx, &requested) {
+            Ok(c) => {
+                let dof = closed_dof(&c.sheet)?;
+                (Some(c), Some(dof))
+            }
+            Err(e @ FiniteError::NoOneDofSheet { .. }) if request.keep_raw_on_refusal => {
+                refusal = Some(e.to_string());
+                (None, None)
+            }
+            Err(e) => return Err(e.into()),
+        }
     } else {
         (None, None)
     };
@@ -239,5 +263,6 @@ pub(crate) fn sheet_of_trajectory(
         raw_closed_dof,
         completion,
         completed_closed_dof,
+        refusal,
     })
 }

@@ -116,6 +116,12 @@ pub fn deploy_sheet(
         "finite deployment",
         &mut *progress,
     )?;
+    if let Some(reason) = &analysis.refusal {
+        return Err(FiniteError::NoOneDofSheet {
+            reason: reason.clone(),
+        }
+        .into());
+    }
     let settings = &request.sheet.settings;
     let mobility = analysis
         .completion

@@ -34,6 +34,13 @@ pub enum ExportError {
         /// The limit ([`super::MAX_PATCH`]).
         max: usize,
     },
+    /// A region in mm with the patch scaled by its width (the width is what the region's
+    /// sheet comes out as).
+    #[error(
+        "a region in mm needs the tiles' edge length (--edge-mm), not the patch width: the \
+         width is what the region's sheet comes out as"
+    )]
+    RegionNeedsEdge,
     /// A size in mm outside [`super::MIN_SIZE_MM`]..=[`super::MAX_SIZE_MM`] (zero, negative,
     /// not finite, below a micrometre or above a kilometre).
     #[error(

@@ -10,6 +10,9 @@
 //! - **grow, then prune**: first add the ring of tiles pinned to the region from outside
 //!   (they close the linkage loops the region's boundary cut open), then prune.
 //!
+//! A region that counting tiles and pins alone shows to hold no such sheet is refused before
+//! either candidate is tried ([`refusal_by_count`]).
+//!
 //! The covered fraction is the area of the requested tiles kept over the area of all
 //! requested tiles.
 
@@ -83,10 +86,13 @@ pub fn complete(ctx: &Context<'_>, requested: &FiniteSheet) -> Result<Completion
     if requested.is_empty() {
         return Err(FiniteError::EmptySheet);
     }
+    if let Some(refusal) = refusal_by_count(ctx.cell, ctx.mech, requested, ctx.min_covered) {
+        return Err(refusal);
+    }
     // The two candidates are independent: made side by side.
     let (pruned, grown) = rayon::join(
         || prune(ctx, requested, requested.clone()),
-        || prune(ctx, requested, grow(ctx, requested)),
+        || prune(ctx, requested, grow(ctx.cell, ctx.mech, requested)),
     );
     // A stopped candidate stops the whole (the other alone would make the result depend on
     // when the stop came).
@@ -106,13 +112,13 @@ pub fn complete(ctx: &Context<'_>, requested: &FiniteSheet) -> Result<Completion
         }
         (Ok(p), Err(_)) => (p, false),
         (Err(_), Ok(g)) => (g, true),
-        (Err(e), Err(_)) => return Err(explain(ctx, e)),
+        (Err(e), Err(_)) => return Err(explain(ctx.mech, e)),
     };
     let ((sheet, mobility), grown) = chosen;
     let fraction = covered(ctx, requested, &sheet);
     if fraction < ctx.min_covered {
         return Err(explain(
-            ctx,
+            ctx.mech,
             FiniteError::NoOneDofSheet {
                 reason: format!(
                     "the best one-DOF sheet keeps {} of {} tiles ({:.1} % of the region's area, \
@@ -156,11 +162,11 @@ pub fn complete(ctx: &Context<'_>, requested: &FiniteSheet) -> Result<Completion
 /// `e` with the design's bulk count added to a refusal when it explains it: a cell whose
 /// tiles have as many degrees of freedom as its pins remove (3n = 2p) is isostatic, and
 /// every finite sheet of it flops along its boundary.
-fn explain(ctx: &Context<'_>, e: FiniteError) -> FiniteError {
+fn explain(mech: &Mechanism, e: FiniteError) -> FiniteError {
     let FiniteError::NoOneDofSheet { reason } = e else {
         return e;
     };
-    let (n, p) = (ctx.mech.tile_count(), ctx.mech.joints.len());
+    let (n, p) = (mech.tile_count(), mech.joints.len());
     let count = 3 * n as i64 - 2 * p as i64;
     let reason = if count >= 0 {
         format!(
@@ -193,12 +199,12 @@ fn covered(ctx: &Context<'_>, requested: &FiniteSheet, sheet: &FiniteSheet) -> R
 }
 
 /// `sheet` with the ring of tiles pinned to it from outside.
-fn grow(ctx: &Context<'_>, sheet: &FiniteSheet) -> FiniteSheet {
+fn grow(cell: &UnitCell, mech: &Mechanism, sheet: &FiniteSheet) -> FiniteSheet {
     let inside: HashSet<SheetTile> = sheet.tiles.iter().copied().collect();
     let mut ring = Vec::new();
     for t in &sheet.tiles {
-        for joint in &ctx.mech.joints {
-            let o = ctx.cell.edges[joint.edge].offset;
+        for joint in &mech.joints {
+            let o = cell.edges[joint.edge].offset;
             let partner = if joint.tile_a == t.tile {
                 SheetTile {
                     cell: [t.cell[0] + o[0], t.cell[1] + o[1]],
@@ -217,7 +223,47 @@ fn grow(ctx: &Context<'_>, sheet: &FiniteSheet) -> FiniteSheet {
             }
         }
     }
-    FiniteSheet::new(ctx.cell, ctx.mech, sheet.tiles.iter().copied().chain(ring))
+    FiniteSheet::new(cell, mech, sheet.tiles.iter().copied().chain(ring))
+}
+
+/// The refusal of completing `requested` that counting alone proves (no factorisation; see
+/// [`super::counting`]): no set of its tiles and the ring around them that keeps
+/// `min_covered` of its area has few enough degrees of freedom. Tried only for cells
+/// whose bulk has no redundant pin (3n − 2p ≥ 0), where a sheet's free boundary adds
+/// degrees of freedom faster than pruning can take them away; elsewhere a large sheet has
+/// pins to spare and counting refuses nothing that pruning would not refuse as fast.
+pub fn refusal_by_count(
+    cell: &UnitCell,
+    mech: &Mechanism,
+    requested: &FiniteSheet,
+    min_covered: Real,
+) -> Option<FiniteError> {
+    let (n, p) = (mech.tile_count(), mech.joints.len());
+    if 3 * n < 2 * p || requested.is_empty() {
+        return None;
+    }
+    let universe = grow(cell, mech, requested);
+    let inside: HashSet<SheetTile> = requested.tiles.iter().copied().collect();
+    let areas: Vec<Real> = universe
+        .areas(mech)
+        .into_iter()
+        .zip(&universe.tiles)
+        .map(|(a, t)| if inside.contains(t) { a } else { 0.0 })
+        .collect();
+    let total: Real = requested.areas(mech).iter().sum();
+    let pins: Vec<(usize, usize)> = universe.joints.iter().map(|j| (j.a, j.b)).collect();
+    let least = super::counting::least_dof(&areas, &pins, min_covered * total)?;
+    Some(explain(
+        mech,
+        FiniteError::NoOneDofSheet {
+            reason: format!(
+                "no sheet of the region's tiles and the ring around them keeps {:.0} % of its \
+                 area with one DOF: counting 3 degrees of freedom per tile and 2 removed per \
+                 pin, every such sheet has at least {least}",
+                100.0 * min_covered
+            ),
+        },
+    ))
 }
 
 /// Prunes `sheet` until its only motion is the periodic one.

@@ -11,6 +11,7 @@
 //! - [`mobility`]: degrees of freedom and the floppy parts — every motion but the periodic
 //!   one, in a local basis, with the tiles that move in each;
 //! - [`complete`]: boundary completion to a sheet whose one motion is the periodic one;
+//! - [`counting`]: regions where counting tiles and pins alone proves there is none;
 //! - [`deploy`]: a one-DOF sheet opening with contact among its own tiles (the periodic
 //!   deployment with the sheet's contact pairs), its measures and checks;
 //! - [`singular`]: singular (bifurcation) states along a path, periodic or finite;
@@ -22,6 +23,7 @@
 //! no finite motion follows), so front ends report it separately.
 
 pub mod complete;
+pub mod counting;
 pub mod deploy;
 mod error;
 pub mod kernel;
@@ -31,7 +33,7 @@ pub mod region;
 pub mod sheet;
 pub mod singular;
 
-pub use complete::{complete, Completion, CompletionReport, Context};
+pub use complete::{complete, refusal_by_count, Completion, CompletionReport, Context};
 pub use deploy::{
     check_states, periodic_agreement, sheet_pairs, sheet_polygons, state_check, ClosedSheet,
     PeriodicAgreement, SheetMeasures, StateCheck,

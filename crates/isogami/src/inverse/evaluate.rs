@@ -289,6 +289,7 @@ pub fn hinge_problem(
         frames: 2,
         // Every joint of the design's cell, as the periodic sheet has them.
         complete: false,
+        region: None,
     };
     let patch = match patch_at_with(design, &request, &mut |_| !stop.load(Ordering::Relaxed)) {
         Ok(p) => p,

@@ -198,6 +198,49 @@ fn an_isostatic_design_is_refused_with_its_count() {
     let out = finite_sheet(&design, &raw, &mut |_| true).unwrap();
     assert!(out.raw_mobility.dof > 10);
     assert!(!out.raw_mobility.loose_tiles.is_empty());
+    // Asked to keep the raw region on a refusal, the same request answers with it and the
+    // refusal's reason.
+    let kept = SheetRequest {
+        keep_raw_on_refusal: true,
+        ..SheetRequest::default()
+    };
+    let out = finite_sheet(&design, &kept, &mut |_| true).unwrap();
+    assert!(out.completion.is_none());
+    assert_eq!(out.refusal.as_deref(), Some(err.to_string().as_str()));
+}
+
+/// Regions of an isostatic cell, square and long, are refused by counting tiles and pins
+/// alone, before the periodic deployment starts (its progress is never called) and so before
+/// any factorisation; the count named is the least any sheet keeping the share can have.
+#[test]
+fn an_isostatic_region_is_refused_by_counting_before_any_work() {
+    let design = resolve_design("IH10::2x2:--a--aa-a-bb").unwrap();
+    for (rows, cols) in [(4, 4), (10, 10), (20, 20), (2, 30)] {
+        let request = SheetRequest {
+            region: Region::Cells { rows, cols },
+            ..SheetRequest::default()
+        };
+        let mut called = false;
+        let err = finite_sheet(&design, &request, &mut |_| {
+            called = true;
+            true
+        })
+        .unwrap_err();
+        assert!(
+            !called,
+            "{rows}x{cols}: the deployment ran before the refusal"
+        );
+        let Error::Finite(FiniteError::NoOneDofSheet { reason }) = &err else {
+            panic!("{err}");
+        };
+        let count: usize = reason
+            .split("every such sheet has at least ")
+            .nth(1)
+            .and_then(|r| r.split(';').next())
+            .and_then(|n| n.trim().parse().ok())
+            .unwrap_or_else(|| panic!("{rows}x{cols}: no count in {reason}"));
+        assert!(count >= 2, "{reason}");
+    }
 }
 
 #[test]

@@ -5,7 +5,7 @@ use super::PatchRequest;
 use crate::api::{requested_sheet, sheet_of_trajectory, Deployment, SheetRequest};
 use crate::deploy::DeploySettings;
 use crate::export::error::ExportError;
-use crate::finite::{FiniteSheet, Region, SheetMobility};
+use crate::finite::{FiniteSheet, SheetMobility};
 use crate::math::Real;
 use crate::stop::KeepGoing;
 use crate::topology::Design;
@@ -131,10 +131,8 @@ pub(super) fn finite_patch(
     keep_going: KeepGoing<'_>,
 ) -> Result<(FiniteSheet, PatchMobility), ExportError> {
     let sheet_request = SheetRequest {
-        region: Region::Cells {
-            rows: request.rows,
-            cols: request.cols,
-        },
+        region: request.region(),
+        edge_mm: request.region_edge_mm(),
         complete: request.complete,
         settings,
         ..SheetRequest::default()

@@ -35,7 +35,7 @@ use crate::deploy::{
     frame_records_for, frame_report, plan_frames, DeploySettings, FrameReport, Progress,
 };
 use crate::export::error::ExportError;
-use crate::finite::SheetTile;
+use crate::finite::{FiniteSheet, SheetTile};
 use crate::math::Real;
 use crate::topology::Design;
 use serde::Serialize;
@@ -45,9 +45,9 @@ use serde::Serialize;
 pub struct Patch {
     /// The design's spec string.
     pub design: String,
-    /// Cells along w (a graded sheet: the cells its tiles span).
+    /// Cells along w (a region or a graded sheet: the cells its tiles span).
     pub rows: usize,
-    /// Cells along u (a graded sheet: the cells its tiles span).
+    /// Cells along u (a region or a graded sheet: the cells its tiles span).
     pub cols: usize,
     /// Tiles in one cell.
     pub tiles_per_cell: usize,
@@ -233,10 +233,14 @@ pub fn patch_at_with(
         let (what, value) = request.scale_value();
         return Err(ExportError::BadSize { what, value });
     }
+    let [cols, rows] = match request.region {
+        None => [request.cols, request.rows],
+        Some(_) => cells_spanned(&sheet),
+    };
     Ok(Patch {
         design: design.to_string(),
-        rows: request.rows,
-        cols: request.cols,
+        rows,
+        cols,
         tiles_per_cell: n,
         finite,
         kerf: request.kerf,
@@ -251,6 +255,17 @@ pub fn patch_at_with(
         outline_mm,
         outline_vertices,
         states,
+    })
+}
+
+/// Cells along u and along w that `sheet`'s tiles span.
+fn cells_spanned(sheet: &FiniteSheet) -> [usize; 2] {
+    [0, 1].map(|axis| {
+        let along = sheet.tiles.iter().map(|t| i64::from(t.cell[axis]));
+        match (along.clone().min(), along.max()) {
+            (Some(lo), Some(hi)) => (hi - lo + 1) as usize,
+            _ => 0,
+        }
     })
 }
 

@@ -1,8 +1,9 @@
-//! What a patch export asks for — rows and columns, scale, state, completion — and the
-//! limits every request is checked against.
+//! What a patch export asks for — rows and columns or a region, scale, state, completion —
+//! and the limits every request is checked against.
 
 use crate::contact::ContactSettings;
 use crate::export::error::ExportError;
+use crate::finite::Region;
 use crate::math::Real;
 
 /// Most rows and most columns of a patch (40 × 40 cells; a 40×40 patch of a 12-tile cell
@@ -41,7 +42,7 @@ pub enum State {
 }
 
 /// What patch to make.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct PatchRequest {
     /// Cells along w, 1..=[`MAX_PATCH`].
     pub rows: usize,
@@ -61,6 +62,10 @@ pub struct PatchRequest {
     /// the default, refused when there is none; `false` writes the R×C rectangle as it is
     /// (floppy boundary and all, its DOF named by [`PatchMobility::warning`]).
     pub complete: bool,
+    /// Another region instead of the `rows` × `cols` rectangle (cells, or a rectangle, disc
+    /// or polygon in mm centred on cell [0, 0], at the edge length of [`Scale::EdgeMm`]):
+    /// completed, or written raw, as the rectangle would be.
+    pub region: Option<Region>,
 }
 
 impl Default for PatchRequest {
@@ -75,6 +80,7 @@ impl Default for PatchRequest {
             kerf: ContactSettings::default().kerf,
             frames: 11,
             complete: true,
+            region: None,
         }
     }
 }
@@ -85,9 +91,36 @@ impl PatchRequest {
         scale_value(self.scale)
     }
 
-    /// Checks sizes, scale, state and frame count (the kerf is checked by the deployment).
+    /// The region the sheet is cut from: [`PatchRequest::region`], or the rectangle.
+    pub fn region(&self) -> Region {
+        self.region.clone().unwrap_or(Region::Cells {
+            rows: self.rows,
+            cols: self.cols,
+        })
+    }
+
+    /// The mean edge length in mm a region in mm is measured with (the rectangle of cells
+    /// needs none).
+    pub(super) fn region_edge_mm(&self) -> Real {
+        match self.scale {
+            Scale::EdgeMm(mm) => mm,
+            Scale::WidthMm(_) => 1.0,
+        }
+    }
+
+    /// Checks sizes, scale, state and frame count (the kerf is checked by the deployment;
+    /// a region's shape when its tiles are found).
     pub fn validate(&self) -> Result<(), ExportError> {
-        let (rows, cols) = (self.rows, self.cols);
+        let (rows, cols) = match &self.region {
+            None => (self.rows, self.cols),
+            Some(Region::Cells { rows, cols }) => (*rows, *cols),
+            Some(_) => {
+                if let Scale::WidthMm(_) = self.scale {
+                    return Err(ExportError::RegionNeedsEdge);
+                }
+                (1, 1)
+            }
+        };
         if rows == 0 || cols == 0 {
             return Err(ExportError::EmptyPatch { rows, cols });
         }
