@@ -157,8 +157,8 @@ pub fn deploy_sheet(
             ))
     };
     let checks = check_states(&sheet, &mech, &traj, request.checks, settings.mobility)?;
-    let singular = sheet_singular_states(&sheet, &mech, &traj, 1, crate::stop::NEVER)?;
-    let periodic_singular = periodic_singular_states(&mech, periodic, settings.mobility)?;
+    let singular = sheet_singular_states(&sheet, &mech, &traj, 1, settings, crate::stop::NEVER)?;
+    let periodic_singular = periodic_singular_states(&mech, periodic, settings)?;
     let mut max_hull_area_ratio: Real = 0.0;
     for s in &traj.steps {
         max_hull_area_ratio = max_hull_area_ratio.max(measure(&s.q)?.hull_area_ratio);
