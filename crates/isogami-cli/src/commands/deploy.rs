@@ -5,6 +5,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use isogami::api::{deploy, resolve_design, DeployRequest, FrameSelection};
 use isogami::contact::{ContactModel, ContactSettings};
 use isogami::deploy::{DeploySettings, Method};
+use isogami::finite::periodic_singular_states;
 use isogami::kinematics::Mechanism;
 use isogami::measure::expansion_profile;
 use isogami::render::{
@@ -181,6 +182,18 @@ pub fn run(args: Args) -> CliResult {
         report.max_joint_residual,
         report.min_clearance
     );
+    let singular = periodic_singular_states(mech, &run.trajectory, &request.settings)
+        .map_err(|e| e.to_string())?;
+    if singular.is_empty() {
+        outln!(
+            o,
+            "singular     no state of the periodic path (a finite sheet can branch where its \
+             cell does not: `isogami sheet --deploy` checks the sheet you will make)"
+        );
+    }
+    for s in &singular {
+        outln!(o, "{}", super::sheet::singular_warning("periodic", s));
+    }
     emit(&o)
 }
 

@@ -6,7 +6,7 @@ use isogami::api::{
     deploy_sheet, finite_sheet, pull_sheet, resolve_design, SheetAnalysis, SheetDeployRequest,
     SheetDeployment, SheetPull, SheetPullRequest, SheetRequest,
 };
-use isogami::finite::{FiniteError, FiniteSheet, Region, SheetMobility};
+use isogami::finite::{FiniteError, FiniteSheet, Region, SheetMobility, SingularState};
 
 /// Arguments of `sheet`.
 #[derive(Debug, clap::Args)]
@@ -293,19 +293,23 @@ fn describe_deployment(o: &mut String, d: &SheetDeployment) {
     }
     for (what, states) in [("sheet", &d.singular), ("periodic", &d.periodic_singular)] {
         for s in states.iter() {
-            outln!(
-                o,
-                "warning: the {what} path is singular at t = {:.4} ({} extra first-order motion{}, \
-                 lowest eigenvalue {:.1e} against {:.1e} along the path): a sheet pulled through \
-                 it can branch off the periodic motion there; stop short of it or guide the sheet",
-                s.t,
-                s.extra_motions,
-                if s.extra_motions == 1 { "" } else { "s" },
-                s.lowest,
-                s.typical
-            );
+            outln!(o, "{}", singular_warning(what, s));
         }
     }
+}
+
+/// The warning line of a singular state of the `what` path ("sheet", "periodic").
+pub(crate) fn singular_warning(what: &str, s: &SingularState) -> String {
+    format!(
+        "warning: the {what} path is singular at t = {:.4} ({} extra first-order motion{}, \
+         lowest eigenvalue {:.1e} against {:.1e} along the path): a sheet pulled through it \
+         can branch off the periodic motion there; stop short of it or guide the sheet",
+        s.t,
+        s.extra_motions,
+        if s.extra_motions == 1 { "" } else { "s" },
+        s.lowest,
+        s.typical
+    )
 }
 
 /// "1 DOF ✓" or "N DOF: M extra modes, K loose tiles".

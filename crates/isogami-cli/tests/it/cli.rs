@@ -281,3 +281,36 @@ fn linkages_json_and_svg() {
     let out = isogami(&["linkages", "--design", "IH76::2x2:ab"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// `deploy` checks the periodic path for singular states: IH85 and IH86 designs of the quick
+/// exploration pass one (a singular value of the cell vanishing between two accepted states)
+/// and say where; rotating squares passes none and says so, pointing at `sheet --deploy` for
+/// the branches only a finite sheet has.
+#[test]
+fn deploy_reports_the_singular_states_of_the_periodic_path() {
+    for (spec, t) in [
+        ("IH85:0.5,0.196416770201:1x1:aaabbb", 0.4994),
+        ("IH86:0.271416770201:1x1:aaabbb", 0.5874),
+    ] {
+        let out = isogami(&["deploy", "--design", spec]);
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success(), "{spec}");
+        let line = text
+            .lines()
+            .find(|l| l.starts_with("warning: the periodic path is singular at t = "))
+            .unwrap_or_else(|| panic!("{spec}: {text}"));
+        let at: f64 = line["warning: the periodic path is singular at t = ".len()..]
+            .split_whitespace()
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!((at - t).abs() < 0.002, "{spec}: {line}");
+    }
+    let out = isogami(&["deploy", "--design", "rotating-squares"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("singular     no state of the periodic path") && !text.contains("warning"),
+        "{text}"
+    );
+}

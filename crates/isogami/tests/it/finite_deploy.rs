@@ -304,38 +304,3 @@ fn bad_grips_and_frames_are_bad_requests() {
         }
     }
 }
-
-/// The completed 4×4 sheets of IH4 and IH44 that an independent simulation saw branch at
-/// t ≈ 0.4995 of their path (four singular values vanishing linearly, between two accepted
-/// states): the finite deployment reports that state with its four extra motions, and
-/// nothing where the path begins or ends; rotating squares' sheet, whose spectrum falls only
-/// towards its contact limit, has none.
-#[test]
-fn a_singular_state_between_accepted_states_is_reported() {
-    for spec in [
-        "IH4:0.12239750492,0.5,0.315470053838,0.5,0.315470053838,0.5:1x2:--aaab-b-aa-",
-        "IH44:0.5,0.102564102564:1x2:-aaabbaa",
-    ] {
-        let design = resolve_design(spec).unwrap();
-        let d = deploy_sheet(&design, &request(4), &mut |_| true).unwrap();
-        let state = d
-            .singular
-            .iter()
-            .find(|s| (s.t - 0.4995).abs() < 0.003)
-            .unwrap_or_else(|| panic!("{spec}: {:?}", d.singular));
-        assert_eq!(state.extra_motions, 4, "{spec}: {state:?}");
-        assert!(state.lowest < 1e-6 * state.typical, "{spec}: {state:?}");
-        assert!(
-            d.singular.iter().all(|s| s.t > 0.05 && s.t < 0.95),
-            "{spec}: {:?}",
-            d.singular
-        );
-    }
-    let squares = deploy_sheet(
-        &resolve_design("rotating-squares").unwrap(),
-        &request(4),
-        &mut |_| true,
-    )
-    .unwrap();
-    assert!(squares.singular.is_empty(), "{:?}", squares.singular);
-}
