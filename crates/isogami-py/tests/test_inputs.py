@@ -195,6 +195,7 @@ CASES = [
 # matrix stack U, tested in test_measures_take_stacks_of_matrices).
 NOT_PAIRS = {
     ("finite_sheet", "region"), ("deploy_sheet", "region"), ("pull_sheet", "region"),
+    ("export", "region"),
     ("directional_expansion", "u"), ("expansion_profile", "u"), ("principal_direction", "u"),
     ("principal_expansions", "u"), ("Family.sample_params", "params"),
     ("Family.param_ranges", "params"),
