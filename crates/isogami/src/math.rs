@@ -18,6 +18,17 @@ pub type DVec = nalgebra::DVector<Real>;
 /// Iteration cap for symmetric eigen-decompositions (QR sweeps).
 pub const EIGEN_MAX_ITER: usize = 10_000;
 
+/// A seeded xorshift stream of reals in [0, 1): a fixed pseudo-random sequence, so that what
+/// it starts (an iteration's first block, a test's generated cases) repeats run after run.
+pub fn xorshift(mut seed: u64) -> impl FnMut() -> Real {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as Real / (1u64 << 53) as Real
+    }
+}
+
 /// Builds a 2D vector.
 #[inline]
 pub fn vec2(x: Real, y: Real) -> Vec2 {

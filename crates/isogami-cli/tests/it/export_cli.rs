@@ -83,6 +83,11 @@ const IH44: &str = "IH44:0.5,0.027564102564:1x2:-aaabbaa";
 fn tile_keys(path: &Path) -> Vec<(i64, i64, i64)> {
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    keys_of(&json)
+}
+
+/// The `tiles` of a tiles-json file or of a finite sheet's JSON as (cell, tile).
+fn keys_of(json: &serde_json::Value) -> Vec<(i64, i64, i64)> {
     json["tiles"]
         .as_array()
         .unwrap()
@@ -159,20 +164,8 @@ fn a_region_exports_the_sheet_that_sheet_makes() {
     let dir = dir_guard.path();
     let out = dir.join("r.json");
     let out_arg = out.to_string_lossy().into_owned();
-    let keys = |v: &serde_json::Value| -> Vec<(i64, i64, i64)> {
-        let mut k: Vec<_> = v["tiles"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|t| {
-                let c = &t["cell"];
-                (
-                    c[0].as_i64().unwrap(),
-                    c[1].as_i64().unwrap(),
-                    t["tile"].as_i64().unwrap(),
-                )
-            })
-            .collect();
+    let keys = |v: &serde_json::Value| {
+        let mut k = keys_of(v);
         k.sort();
         k
     };

@@ -219,22 +219,13 @@ impl Network {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A seeded generator of reals in [0, 1).
-    fn rng(mut seed: u64) -> impl FnMut() -> Real {
-        move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as Real / (1u64 << 53) as Real
-        }
-    }
+    use crate::math::xorshift;
 
     /// Random small tile/pin graphs (up to 11 tiles, pins drawn with a seeded density,
     /// doubled pins included): the closure's maximum equals brute force over every subset.
     #[test]
     fn the_cut_finds_the_best_closure() {
-        let mut rand = rng(0x9e37_79b9_7f4a_7c15);
+        let mut rand = xorshift(0x9e37_79b9_7f4a_7c15);
         for case in 0..400 {
             let n = 1 + (rand() * 11.0) as usize;
             let areas: Vec<Real> = (0..n)
@@ -267,7 +258,7 @@ mod tests {
     /// relaxation, exact only at the breakpoints of g).
     #[test]
     fn a_refusal_is_never_wrong() {
-        let mut rand = rng(0x2545_f491_4f6c_dd1d);
+        let mut rand = xorshift(0x2545_f491_4f6c_dd1d);
         let (mut impossible, mut refused) = (0, 0);
         for case in 0..600 {
             let n = 2 + (rand() * 10.0) as usize;

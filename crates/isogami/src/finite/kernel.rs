@@ -37,7 +37,7 @@
 use super::error::FiniteError;
 use super::sheet::FiniteSheet;
 use crate::kinematics::Mechanism;
-use crate::math::{perp, rotation, symmetric_eigen, DMat, Real, Vec2};
+use crate::math::{perp, rotation, symmetric_eigen, xorshift, DMat, Real, Vec2};
 use crate::stop::KeepGoing;
 use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
@@ -314,15 +314,10 @@ fn sparse_spectrum(
         y
     };
     let mut block = 16.min(size);
-    let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+    // A fixed pseudo-random start, so that results repeat.
+    let mut random = xorshift(0x2545_f491_4f6c_dd1d);
     loop {
-        // A fixed pseudo-random start, so that results repeat.
-        let mut x = DMat::from_fn(size, block, |_, _| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as Real / (1u64 << 53) as Real - 0.5
-        });
+        let mut x = DMat::from_fn(size, block, |_, _| random() - 0.5);
         for _ in 0..SOLVES {
             if !keep_going() {
                 return Err(FiniteError::Cancelled);
@@ -352,23 +347,13 @@ fn sparse_spectrum(
 mod tests {
     use super::*;
 
-    /// A xorshift stream in [0, 1).
-    fn stream(mut seed: u64) -> impl FnMut() -> Real {
-        move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as Real / (1u64 << 53) as Real
-        }
-    }
-
     /// Spectra made by a rule (seeded): k zeros at rounding (anywhere in ±floor, negative
     /// ones included), then motions from a lowest one 1e-9..1e-2 of λ_max (a sheet's soft
     /// motions at any size) rising by factors up to 30 to λ_max. The count is k every time,
     /// whatever the scale of H.
     #[test]
     fn the_zeros_are_the_cluster_below_the_largest_gap() {
-        let mut rand = stream(0x9e37_79b9_7f4a_7c15);
+        let mut rand = xorshift(0x9e37_79b9_7f4a_7c15);
         for case in 0..2000 {
             let unknowns = 30 + (rand() * 20_000.0) as usize;
             let scale = (10.0 as Real).powf(4.0 * rand() - 2.0);

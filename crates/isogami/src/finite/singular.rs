@@ -269,6 +269,7 @@ pub fn periodic_singular_states(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::xorshift;
 
     /// Paths made by a rule: a smooth spectrum (lowest 1e-4..1e-2, drifting) over 40..200
     /// states, with singular states put at seeded steps in the path's inner 80 % where m
@@ -276,13 +277,7 @@ mod tests {
     /// nothing else is.
     #[test]
     fn a_dip_to_zero_is_found_once_with_its_multiplicity() {
-        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
-        let mut rand = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as Real / (1u64 << 53) as Real
-        };
+        let mut rand = xorshift(0x2545_f491_4f6c_dd1d);
         for case in 0..300 {
             let steps = 40 + (rand() * 160.0) as usize;
             let base = (10.0 as Real).powf(-4.0 + 2.0 * rand());
@@ -333,13 +328,7 @@ mod tests {
     /// probe by neither.
     #[test]
     fn a_zero_between_samples_is_found_by_refinement() {
-        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
-        let mut rand = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as Real / (1u64 << 53) as Real
-        };
+        let mut rand = xorshift(0x9e37_79b9_7f4a_7c15);
         for case in 0..200 {
             let steps = 40 + (rand() * 80.0) as usize;
             let base = (10.0 as Real).powf(-6.0 + 3.0 * rand());
