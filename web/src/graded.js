@@ -8,14 +8,18 @@
 // opened, the tiles placed from each state's poses, the fitted target at the opened end) and
 // the sheet's JSON as `isogami graded --out` writes it; a field's cells in a table (asked and
 // achieved area ratio) and coloured by their error at the opened end; laser and print files of
-// the graded sheet (GET /api/graded/{id}/export, as `isogami export --sheet`). On a static site nothing runs: the
-// page shows the command. Pure logic is in graded-model.js.
+// the graded sheet (GET /api/graded/{id}/export, as `isogami export --sheet`). The polygon's corners are
+// also a text field bound both ways with the pad (the keyboard's way to add, move and remove them). The job
+// is the server's: the URL names it (?job=ID), so a reload or a copied link shows it again, running or
+// finished, with the form and command that started it (echoed by the server); a page opened while a job
+// runs shows that job. On a static site nothing runs: the page shows the command. Pure logic is in
+// graded-model.js.
 
 import { ApiError, openData } from './data.js';
 import { showNotice, clearNotice, debounce } from './dom.js';
 import {
-  DEFAULTS, EXPORTS, aspectProblem, bounds, cliCommand, edgeProblem, emptyForm, errorColour, exportCommand, exportParams,
-  fieldProblem, fieldRows, gradedBody, hullArea, iterationsProblem, outlineAtArea, outlineText, playerStates,
+  DEFAULTS, EXPORTS, aspectProblem, bounds, cliCommand, cornersText, edgeProblem, emptyForm, errorColour, exportCommand, exportParams,
+  fieldProblem, fieldRows, formFromJob, gradedBody, hullArea, iterationsProblem, outlineAtArea, outlineText, parseCorners, playerStates,
   posedPolygons, progressLine, regionProblem, reportLines, starProblem, svgProblem,
 } from './graded-model.js';
 
@@ -36,6 +40,9 @@ let outlineChecked = false; // the library's answer for the drawn points is in (
 let svgFile = null; // { name, text, points } of the chosen SVG file, read by the library
 let svgError = '';
 let svgAsked = 0;
+let cornersError = ''; // the corners field's text is not corners: why
+let extra = { states: '', t: '' }; // a restored job's states and t (the page has no fields for them)
+let restorePending = false; // the attached job's first view fills the form
 let live = null; // { frame, target, count, done }
 let player = null; // { result, states, all, frame, playing, timer }
 
@@ -79,6 +86,8 @@ function form() {
     degrees: $('field-degrees').value,
     svg: svgFile,
     iterations: $('iterations').value,
+    states: extra.states,
+    t: extra.t,
   };
 }
 
@@ -107,6 +116,7 @@ function outlineProblem(f) {
   if (f.outline === 'field') return fieldProblem(f);
   if (f.outline === 'svg') return svgError || svgProblem(f);
   if (f.outline !== 'polygon') return '';
+  if (cornersError) return cornersError;
   if (points.length < 3) return '';
   return serverOutlineError || starProblem(points);
 }
@@ -130,7 +140,12 @@ const askOutline = debounce(async () => {
   }
 }, 120);
 
-function pointsChanged() {
+/** The points changed (`typed`: from the corners field, which then keeps its text). */
+function pointsChanged(typed = false) {
+  if (!typed) {
+    cornersError = '';
+    $('corners').value = cornersText(points);
+  }
   serverOutlineError = '';
   outlineChecked = false;
   outlineAsked += 1;
@@ -220,6 +235,16 @@ async function svgChosen() {
   drawPad();
 }
 
+/** The corners field edited: its corners are the polygon's (choosing the polygon outline), or
+ * the reason it is not corners shown beside the pad. */
+function cornersTyped() {
+  const parsed = parseCorners($('corners').value);
+  document.querySelector('input[name="outline"][value="polygon"]').checked = true;
+  cornersError = parsed.error ?? '';
+  if (!parsed.error) points = parsed.points;
+  pointsChanged(true);
+}
+
 /** Adds a corner where the pad was clicked (choosing the polygon outline). */
 function padClick(event) {
   const pad = $('pad');
@@ -279,7 +304,11 @@ async function main() {
     $('iterations').max = String(limits.iterations);
     $('region-cap').textContent = `This server grades at most ${limits.side} cells each way, ${limits.cells} cells and ${limits.tiles} tiles in all, ${limits.iterations} iterations.`;
   }
-  $('graded-form').addEventListener('input', () => {
+  $('graded-form').addEventListener('input', (e) => {
+    if (e.target.id === 'corners') {
+      cornersTyped();
+      return;
+    }
     check();
     drawPad();
   });
@@ -325,7 +354,28 @@ async function main() {
     $('run-note').textContent = 'The optimiser needs `isogami serve`: run the command below instead, or open this page from `isogami serve`.';
     return;
   }
-  if (settings.running?.length) attach(settings.running[0]);
+  // The job the URL names, else one running: shown with the form that started it.
+  const named = new URLSearchParams(window.location.search).get('job');
+  if (named !== null) attach(named, { restore: true });
+  else if (settings.running?.length) attach(settings.running[0], { restore: true });
+}
+
+/** Fills the form with the request that started a job (its view's echo). */
+function restoreForm(request) {
+  const f = formFromJob(request, settings);
+  for (const key of ['design', 'rows', 'cols', 'iterations', 'aspect']) $(key).value = f[key];
+  $('field-from').value = f.from;
+  $('field-to').value = f.to;
+  $('field-degrees').value = f.degrees;
+  document.querySelector(`input[name="outline"][value="${f.outline}"]`).checked = true;
+  extra = { states: f.states, t: f.t };
+  points = f.points;
+  if (f.outline === 'svg') {
+    svgFile = f.svg;
+    svgError = '';
+  }
+  pointsChanged();
+  if (f.outline === 'svg') $('outline-status').textContent = `${f.svg.name}: choose the file again to grade it again`;
 }
 
 function setRunning(running) {
@@ -343,8 +393,8 @@ async function run() {
     $('outline-error').textContent = 'bad target: an outline needs at least three finite points';
     return;
   }
-  if (f.outline === 'svg' && (!svgFile || svgError)) {
-    $('outline-error').textContent = svgError || svgProblem(f);
+  if (f.outline === 'svg' && (!svgFile?.text || svgError)) {
+    $('outline-error').textContent = svgError || (svgFile ? `choose ${svgFile.name} again: the page has the file's outline, not its text` : svgProblem(f));
     return;
   }
   clearNotice($('notice'));
@@ -362,8 +412,14 @@ async function run() {
   }
 }
 
-function attach(id) {
-  jobId = id;
+function attach(id, { restore = false } = {}) {
+  jobId = String(id);
+  restorePending = restore;
+  // The URL names the run: a reload or a copied link shows it again.
+  const q = new URLSearchParams(window.location.search);
+  q.delete('design');
+  q.set('job', jobId);
+  history.replaceState(null, '', `${window.location.pathname}?${q}`);
   live = null;
   pause();
   player = null;
@@ -390,12 +446,17 @@ async function poll() {
     job = await getJson(`./api/graded/${encodeURIComponent(id)}`);
   } catch (e) {
     if (id !== jobId) return;
+    restorePending = false;
     setRunning(false);
     document.body.dataset.gradedState = 'lost';
     showError(e);
     return;
   }
   if (id !== jobId) return;
+  if (restorePending) {
+    restorePending = false;
+    restoreForm(job.request);
+  }
   render(job);
   if (job.state === 'running') timer = setTimeout(poll, POLL_MS);
   else finish(job);
