@@ -174,11 +174,18 @@ async function run() {
   }
   clearNotice($('notice'));
   $('run').disabled = true;
+  // The server runs one job at a time: while one runs (another tab's, say) it is shown
+  // rather than asked for a second and refused.
+  const busy = await runningJob();
+  if (busy !== null) {
+    attach(busy, { restore: true, notStarted: f });
+    return;
+  }
   try {
     const started = await data.startInverse(inverseBody(f));
     attach(started.id);
   } catch (e) {
-    // The server runs one job at a time: the one running is shown rather than the refusal.
+    // One started in the meantime: shown rather than the refusal.
     const running = e.status === 409 && e.kind === 'busy' ? await runningJob() : null;
     if (running !== null) {
       attach(running, { restore: true, notStarted: f });
