@@ -475,6 +475,23 @@ test('the polygon target from the keyboard: a labelled field of corners bound bo
   const top = await page.$eval('[data-testid="draw-pad"] circle.corner', (c) => Number(c.getAttribute('cy')));
   assert.equal(top, 1.2);
 
+  // The corners themselves take the keyboard: Tab reaches them, the arrows move the focused
+  // one (Shift: finer), Delete removes it; the field follows.
+  const corner = page.locator('[data-testid="draw-pad"] circle.corner');
+  assert.match(await corner.first().getAttribute('aria-label'), /^corner 1 of 3 at 0, 1\.2: arrow keys move it/);
+  await field.focus();
+  for (let k = 0; k < 3; k += 1) await page.keyboard.press('Shift+Tab');
+  assert.equal(await page.evaluate(() => document.activeElement?.dataset.corner), '0', 'Shift+Tab from the field reaches corner 1');
+  await page.keyboard.press('ArrowDown');
+  await page.keyboard.press('ArrowDown');
+  await page.keyboard.press('Shift+ArrowRight');
+  assert.equal(await field.inputValue(), '0.01,1.1; -1,-1; 1,-1');
+  assert.equal(await target(), 'polygon:0.01,1.1;-1,-1;1,-1');
+  assert.equal(await page.evaluate(() => document.activeElement?.dataset.corner), '0', 'the moved corner keeps the focus');
+  await page.keyboard.press('Delete');
+  assert.equal(await field.inputValue(), '-1,-1; 1,-1');
+  assert.equal(await byTestId(page, 'draw-pad').getAttribute('data-points'), '2');
+
   // Text that is not corners: the reason beside the field, and Grade starts nothing.
   await field.fill('0,1; -1');
   assert.match(await byTestId(page, 'outline-error').textContent(), /corner 2/);

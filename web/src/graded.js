@@ -9,7 +9,8 @@
 // the sheet's JSON as `isogami graded --out` writes it; a field's cells in a table (asked and
 // achieved area ratio) and coloured by their error at the opened end; laser and print files of
 // the graded sheet (GET /api/graded/{id}/export, as `isogami export --sheet`). The polygon's corners are
-// also a text field bound both ways with the pad (the keyboard's way to add, move and remove them). The job
+// also a text field bound both ways with the pad, and a corner focused on the pad moves with the arrow keys
+// and goes with Delete (the keyboard's ways to add, move and remove them). The job
 // is the server's: the URL names it (?job=ID), so a reload or a copied link shows it again, running or
 // finished, with the form and command that started it (echoed by the server); a page opened while a job
 // runs shows that job. On a static site nothing runs: the page shows the command. Pure logic is in
@@ -41,6 +42,7 @@ let svgFile = null; // { name, text, points } of the chosen SVG file, read by th
 let svgError = '';
 let svgAsked = 0;
 let cornersError = ''; // the corners field's text is not corners: why
+let focusedCorner = null; // the corner last moved from the keyboard (kept focused when redrawn)
 let extra = { states: '', t: '' }; // a restored job's states and t (the page has no fields for them)
 let restorePending = false; // the attached job's first view fills the form
 let live = null; // { frame, target, count, done }
@@ -187,9 +189,16 @@ function drawPad() {
         class: `outline${bad ? ' bad' : ''}`, points: pointsAttr(points), 'data-outline': 'polygon',
       }));
     }
-    for (const [x, y] of points) g.append(s('circle', { class: 'corner', cx: x, cy: y, r: 0.035 }));
+    // Each corner takes the keyboard (padKey): focused, the arrows move it, Delete removes it.
+    points.forEach(([x, y], k) => g.append(s('circle', {
+      class: 'corner', cx: x, cy: y, r: 0.035, tabindex: 0, 'data-corner': k,
+      'aria-label': `corner ${k + 1} of ${points.length} at ${cornersText([[x, y]]).replace(',', ', ')}: arrow keys move it, Delete removes it`,
+    })));
   }
+  // A corner moved or removed from the keyboard keeps the focus (its element is redrawn).
+  const refocus = pad.contains(document.activeElement) && focusedCorner !== null;
   pad.replaceChildren(g);
+  if (refocus) pad.querySelector(`[data-corner="${Math.min(focusedCorner, points.length - 1)}"]`)?.focus();
   pad.dataset.outline = f.outline;
   pad.dataset.points = String(points.length);
   pad.dataset.bad = String(bad);
@@ -245,6 +254,27 @@ function cornersTyped() {
   pointsChanged(true);
 }
 
+/** A key on a focused corner of the pad: the arrows move it (0.05; with Shift 0.01), Delete
+ * or Backspace removes it. */
+function padKey(event) {
+  const k = Number(event.target.dataset?.corner);
+  if (!Number.isInteger(k) || k >= points.length) return;
+  const step = event.shiftKey ? 0.01 : 0.05;
+  const moves = { ArrowLeft: [-step, 0], ArrowRight: [step, 0], ArrowUp: [0, step], ArrowDown: [0, -step] };
+  if (moves[event.key]) {
+    const [dx, dy] = moves[event.key];
+    const round = (v) => Math.round(v * 1e4) / 1e4;
+    points = points.map((p, i) => (i === k ? [round(p[0] + dx), round(p[1] + dy)] : p));
+  } else if (event.key === 'Delete' || event.key === 'Backspace') {
+    points = points.filter((_, i) => i !== k);
+  } else {
+    return;
+  }
+  event.preventDefault();
+  focusedCorner = points.length ? k : null;
+  pointsChanged();
+}
+
 /** Adds a corner where the pad was clicked (choosing the polygon outline). */
 function padClick(event) {
   const pad = $('pad');
@@ -258,6 +288,7 @@ function padClick(event) {
     points = [];
   }
   points = [...points, [Math.round(p.x * 1e4) / 1e4, Math.round(p.y * 1e4) / 1e4]];
+  focusedCorner = null;
   pointsChanged();
 }
 
@@ -331,6 +362,7 @@ async function main() {
     run();
   });
   $('pad').addEventListener('click', padClick);
+  $('pad').addEventListener('keydown', padKey);
   $('undo-point').addEventListener('click', () => {
     points = points.slice(0, -1);
     pointsChanged();
