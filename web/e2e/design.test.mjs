@@ -90,6 +90,16 @@ test('moving a shape slider brings a new trajectory and the plot changes', async
   assert.ok(done, 'a slider move on one of five designs was deployed');
   assert.ok((await screenshot(browser, page, 'design-live')) > 50);
 
+  // The edited design opened from its URL (a reload, a shared link): it is not stored, so it
+  // is deployed live, and no request of the page fails on the way (the page asked for its
+  // stored view first and logged a 404 for every edited design opened).
+  const edited = await newPage(browser);
+  await edited.goto(page.url());
+  await edited.waitForFunction(() => Number(document.body.dataset.deployments || 0) >= 1);
+  assert.equal(await byTestId(edited, 'spec').textContent(), await byTestId(page, 'spec').textContent());
+  assert.match(await byTestId(edited, 'origin').textContent(), /live/);
+  assert.deepEqual(problems(edited), []);
+
   // The tuned design can be saved, then is stored as a user design and opens from its URL.
   const spec = await byTestId(page, 'spec').textContent();
   await byTestId(page, 'save').click();

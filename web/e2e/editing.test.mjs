@@ -10,7 +10,7 @@
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  byTestId, copyDb, getJson, launchBrowser, newPage, openDesign as openHarnessDesign, problems as allProblems, screenshot, startServer,
+  byTestId, copyDb, getJson, launchBrowser, newPage, openDesign as openHarnessDesign, problems, screenshot, startServer,
 } from './harness.mjs';
 
 // Stored in the quick exploration; one DOF at every nearby shape (generic), two parameters.
@@ -40,8 +40,6 @@ async function pageOf(width, height) {
 }
 
 const openDesign = (page, spec) => openHarnessDesign(page, server.base, spec);
-// Edited designs are not stored: the page asks for the stored one first only on load.
-const problems = (page, expected = []) => allProblems(page, [/^404 GET \S+\/api\/design\?spec=/, ...expected]);
 const deployments = (page) => page.evaluate(() => Number(document.body.dataset.deployments || 0));
 
 /** Whether the element's box lies inside the viewport (at least `share` of its height). */

@@ -431,3 +431,76 @@ test('an uploaded SVG outline: a bad file shows the library’s one-line error, 
   assert.equal(await page.locator('[data-testid="player-sheet"] polygon.target').count(), 1);
   assert.deepEqual(problems(page, [/^400 POST .*\/api\/graded\/svg/]), []);
 });
+
+test('the polygon target from the keyboard: a labelled field of corners bound both ways with the pad', async () => {
+  await stopAll();
+  const page = await newPage(browser);
+  await page.goto(`${server.base}/graded.html`);
+  await page.waitForFunction(() => document.body.dataset.ready === 'true');
+  // The field is found by its label, as a screen reader names it.
+  const field = page.getByLabel(/^polygon corners/);
+  assert.equal(await field.count(), 1);
+  await field.focus();
+  await page.keyboard.type('0,1; -1,-1; 1,-1');
+  assert.equal(await byTestId(page, 'outline-polygon').isChecked(), true, 'typing corners chooses the polygon');
+  await page.waitForFunction(() => {
+    const pad = document.querySelector('[data-testid="draw-pad"]');
+    return pad.dataset.points === '3' && pad.dataset.checked === 'true';
+  });
+  assert.equal(await byTestId(page, 'outline-error').textContent(), '');
+  const target = async () => {
+    const words = shellSplit(await byTestId(page, 'graded-command').textContent());
+    return words[words.indexOf('--target') + 1];
+  };
+  assert.equal(await target(), 'polygon:0,1;-1,-1;1,-1');
+  assert.equal(await page.locator('[data-testid="draw-pad"] circle.corner').count(), 3);
+
+  // A click on the pad adds a corner, and the field says so.
+  await clickPad(page, 0.6, 0.6);
+  await page.waitForFunction(() => document.querySelector('[data-testid="draw-pad"]').dataset.points === '4');
+  const typed = (await field.inputValue()).split(';').map((p) => p.split(',').map(Number));
+  assert.equal(typed.length, 4);
+  assert.deepEqual(typed.slice(0, 3), [[0, 1], [-1, -1], [1, -1]]);
+  assert.ok(Math.hypot(typed[3][0] - 0.6, typed[3][1] - 0.6) < 0.02, `the clicked corner ${typed[3]}`);
+  // Undo (a button, by keyboard) takes it off the field too.
+  await byTestId(page, 'undo-point').focus();
+  await page.keyboard.press('Enter');
+  await page.waitForFunction(() => document.querySelector('[data-testid="draw-pad"]').dataset.points === '3');
+  assert.equal((await field.inputValue()).split(';').length, 3);
+
+  // Moving a corner: edit its numbers.
+  await field.fill('0,1.2; -1,-1; 1,-1');
+  await page.waitForFunction(() => document.querySelector('[data-testid="draw-pad"]').dataset.checked === 'true');
+  assert.equal(await target(), 'polygon:0,1.2;-1,-1;1,-1');
+  const top = await page.$eval('[data-testid="draw-pad"] circle.corner', (c) => Number(c.getAttribute('cy')));
+  assert.equal(top, 1.2);
+
+  // The corners themselves take the keyboard: Tab reaches them, the arrows move the focused
+  // one (Shift: finer), Delete removes it; the field follows.
+  const corner = page.locator('[data-testid="draw-pad"] circle.corner');
+  assert.match(await corner.first().getAttribute('aria-label'), /^corner 1 of 3 at 0, 1\.2: arrow keys move it/);
+  await field.focus();
+  for (let k = 0; k < 3; k += 1) await page.keyboard.press('Shift+Tab');
+  assert.equal(await page.evaluate(() => document.activeElement?.dataset.corner), '0', 'Shift+Tab from the field reaches corner 1');
+  await page.keyboard.press('ArrowDown');
+  await page.keyboard.press('ArrowDown');
+  await page.keyboard.press('Shift+ArrowRight');
+  assert.equal(await field.inputValue(), '0.01,1.1; -1,-1; 1,-1');
+  assert.equal(await target(), 'polygon:0.01,1.1;-1,-1;1,-1');
+  assert.equal(await page.evaluate(() => document.activeElement?.dataset.corner), '0', 'the moved corner keeps the focus');
+  await page.keyboard.press('Delete');
+  assert.equal(await field.inputValue(), '-1,-1; 1,-1');
+  assert.equal(await byTestId(page, 'draw-pad').getAttribute('data-points'), '2');
+
+  // Text that is not corners: the reason beside the field, and Grade starts nothing.
+  await field.fill('0,1; -1');
+  assert.match(await byTestId(page, 'outline-error').textContent(), /corner 2/);
+  let posted = false;
+  page.on('request', (r) => {
+    if (r.url().endsWith('/api/graded') && r.method() === 'POST') posted = true;
+  });
+  await byTestId(page, 'run').click();
+  await page.waitForTimeout(300);
+  assert.equal(posted, false);
+  assert.deepEqual(problems(page), []);
+});

@@ -102,6 +102,15 @@ class ServerData {
     return getJson(`./api/design?spec=${encodeURIComponent(spec)}`);
   }
 
+  /** Any design's view: the stored one, or a live deployment when it is not stored or is
+   * asked at another kerf (`kerf` null: the stored one, else the library's) — one request,
+   * none failing for a design that is not stored (GET /api/design?fallback=live). */
+  designView(spec, kerf = null) {
+    const q = new URLSearchParams({ spec, fallback: 'live' });
+    if (kerf !== null && kerf !== undefined) q.set('kerf', String(kerf));
+    return getJson(`./api/design?${q}`);
+  }
+
   deploy(body, signal) {
     return getJson('./api/deploy', {
       method: 'POST',

@@ -11,7 +11,7 @@
 // kept in the URL. On wide screens the sheet stays in view (sticky) beside the controls. Beside the periodic figures, the finite-sheet panel
 // (finite-panel.js): what a sheet cut to a region does, animated by the same t and Play.
 
-import { openData, ApiError } from './data.js';
+import { openData } from './data.js';
 import { h, fmt, fmtExpansion, showNotice, clearNotice, debounce } from './dom.js';
 import { createLinePlot, createPolarPlot } from './plots.js';
 import {
@@ -107,26 +107,16 @@ let plots;
 let motionPanel;
 let defaultKerf = null;
 
-/** The stored design, or a live deployment when it is not stored or another kerf is asked. */
+/** The stored design, or (on a server) a live deployment when it is not stored or another
+ * kerf is asked: one request, which the server answers either way. */
 async function load() {
   setStatus('loading…');
   let v = null;
   try {
-    v = await data.design(state.spec);
-    if (state.kerf !== null && data.live && Math.abs(state.kerf - v.report.kerf) > 1e-12) v = null;
+    v = data.live ? await data.designView(state.spec, state.kerf) : await data.design(state.spec);
   } catch (e) {
-    if (!(e instanceof ApiError && e.kind === 'not_found' && data.live)) {
-      fail(e);
-      return;
-    }
-  }
-  if (!v) {
-    try {
-      v = await data.deploy(deployBody(state.spec, state.kerf));
-    } catch (e) {
-      fail(e);
-      return;
-    }
+    fail(e);
+    return;
   }
   showView(v, { fromEditor: false });
 }

@@ -9,7 +9,10 @@
 // Form state: { design, rows, cols, outline: 'disc' | 'ellipse' | 'polygon' | 'field' | 'svg',
 // aspect, points: [[x, y], …] (the drawn polygon, y up), from, to, degrees (a field target: the
 // area ratio at the two ends of a ramp and its direction), svg: { name, text } | null (an
-// uploaded SVG file), iterations } where numbers are the text of their fields.
+// uploaded SVG file; `text` null when restored from a job, which names it only), iterations,
+// states, t (the last two '' for the defaults: the page has no fields for them, but a job
+// restored from the server may have other values) } where numbers are the text of their
+// fields.
 
 import { shellWord } from './export-request.js';
 
@@ -39,7 +42,71 @@ export function emptyForm(settings, search = '') {
     degrees: '0',
     svg: null,
     iterations: String(d.iterations),
+    states: '',
+    t: '',
   };
+}
+
+/** The form that started a job, from the request its view echoes (`GET /api/graded/{id}`'s
+ * `request`): what a page attaching to a running or finished job shows, so that its command
+ * line is the job's. `settings` gives the default number of states (left out of the command
+ * when the job used it). An SVG target keeps its name and drawn outline (the file's text stays
+ * with the page that chose it). */
+export function formFromJob(request, settings) {
+  const d = { ...DEFAULTS, ...(settings?.defaults ?? {}) };
+  const f = {
+    ...emptyForm(settings),
+    design: String(request.design ?? d.design),
+    rows: String(request.rows),
+    cols: String(request.cols),
+    iterations: String(request.iterations),
+    states: request.states === undefined || request.states === null || request.states === d.states ? '' : String(request.states),
+    t: request.t === undefined || request.t === null ? '' : String(request.t),
+  };
+  const text = String(request.outline ?? 'disc').trim();
+  const [kind, rest = ''] = text.split(/:(.*)/s);
+  const numbers = rest.split(',').map((v) => v.trim());
+  if (text.startsWith('@')) {
+    f.outline = 'svg';
+    f.svg = { name: text.slice(1), text: null, points: request.outline_points ?? null };
+  } else if (kind === 'ellipse' && numbers.length === 2) {
+    const [a, b] = numbers.map(Number);
+    f.outline = 'ellipse';
+    f.aspect = b === 1 ? numbers[0] : num(a / b);
+  } else if (kind === 'polygon') {
+    const corners = parseCorners(rest.replace(/;/g, '; '));
+    if (!corners.error) {
+      f.outline = 'polygon';
+      f.points = corners.points;
+    }
+  } else if (kind === 'field' && numbers.length >= 2) {
+    f.outline = 'field';
+    [f.from, f.to] = numbers;
+    f.degrees = numbers[2] ?? '0';
+  }
+  return f;
+}
+
+/** The corners of a polygon as the page's text field shows them: `x,y; x,y; …` (y up). */
+export function cornersText(points) {
+  return points.map(([x, y]) => `${num(x)},${num(y)}`).join('; ');
+}
+
+/** The corners typed in the text field (`x,y; x,y; …`, a trailing `;` allowed): `{ points }`,
+ * or `{ error }` naming the first corner that is not two numbers. */
+export function parseCorners(text) {
+  const parts = String(text ?? '').split(';').map((p) => p.trim());
+  if (parts.length && parts.at(-1) === '') parts.pop();
+  const points = [];
+  for (let k = 0; k < parts.length; k += 1) {
+    const xy = parts[k].split(',').map((v) => v.trim());
+    const v = xy.map((t) => (t === '' ? NaN : Number(t)));
+    if (xy.length !== 2 || !v.every(Number.isFinite)) {
+      return { error: `corner ${k + 1}: "${parts[k]}" is not two numbers x,y (corners are x,y; x,y; …)` };
+    }
+    points.push(v);
+  }
+  return { points };
 }
 
 /** A whole number field's problem, or ''. */
@@ -187,6 +254,8 @@ export function gradedBody(form) {
     body.target = outlineText(form);
   }
   body.iterations = Number(form.iterations);
+  if (String(form.states ?? '').trim() !== '') body.states = Number(form.states);
+  if (String(form.t ?? '').trim() !== '') body.t = Number(form.t);
   return body;
 }
 
@@ -194,7 +263,9 @@ export function gradedBody(form) {
 export function cliCommand(form) {
   const b = gradedBody(form);
   return ['isogami', 'graded', '--design', shellWord(b.design), '--region', `${b.rows}x${b.cols}`,
-    '--target', shellWord(outlineText(form)), '--iterations', String(b.iterations), '--out', 'graded.json'].join(' ');
+    '--target', shellWord(outlineText(form)), ...(b.t === undefined ? [] : ['--t', String(b.t)]),
+    ...(b.states === undefined ? [] : ['--states', String(b.states)]), '--iterations', String(b.iterations),
+    '--out', 'graded.json'].join(' ');
 }
 
 /** The export formats the page offers: laser (closed sheet) and print files. */

@@ -8,14 +8,19 @@
 // opened, the tiles placed from each state's poses, the fitted target at the opened end) and
 // the sheet's JSON as `isogami graded --out` writes it; a field's cells in a table (asked and
 // achieved area ratio) and coloured by their error at the opened end; laser and print files of
-// the graded sheet (GET /api/graded/{id}/export, as `isogami export --sheet`). On a static site nothing runs: the
-// page shows the command. Pure logic is in graded-model.js.
+// the graded sheet (GET /api/graded/{id}/export, as `isogami export --sheet`). The polygon's corners are
+// also a text field bound both ways with the pad, and a corner focused on the pad moves with the arrow keys
+// and goes with Delete (the keyboard's ways to add, move and remove them). The job
+// is the server's: the URL names it (?job=ID), so a reload or a copied link shows it again, running or
+// finished, with the form and command that started it (echoed by the server); a page opened while a job
+// runs shows that job. On a static site nothing runs: the page shows the command. Pure logic is in
+// graded-model.js.
 
 import { ApiError, openData } from './data.js';
 import { showNotice, clearNotice, debounce } from './dom.js';
 import {
-  DEFAULTS, EXPORTS, aspectProblem, bounds, cliCommand, edgeProblem, emptyForm, errorColour, exportCommand, exportParams,
-  fieldProblem, fieldRows, gradedBody, hullArea, iterationsProblem, outlineAtArea, outlineText, playerStates,
+  DEFAULTS, EXPORTS, aspectProblem, bounds, cliCommand, cornersText, edgeProblem, emptyForm, errorColour, exportCommand, exportParams,
+  fieldProblem, fieldRows, formFromJob, gradedBody, hullArea, iterationsProblem, outlineAtArea, outlineText, parseCorners, playerStates,
   posedPolygons, progressLine, regionProblem, reportLines, starProblem, svgProblem,
 } from './graded-model.js';
 
@@ -36,6 +41,10 @@ let outlineChecked = false; // the library's answer for the drawn points is in (
 let svgFile = null; // { name, text, points } of the chosen SVG file, read by the library
 let svgError = '';
 let svgAsked = 0;
+let cornersError = ''; // the corners field's text is not corners: why
+let focusedCorner = null; // the corner last moved from the keyboard (kept focused when redrawn)
+let extra = { states: '', t: '' }; // a restored job's states and t (the page has no fields for them)
+let restorePending = false; // the attached job's first view fills the form
 let live = null; // { frame, target, count, done }
 let player = null; // { result, states, all, frame, playing, timer }
 
@@ -79,6 +88,8 @@ function form() {
     degrees: $('field-degrees').value,
     svg: svgFile,
     iterations: $('iterations').value,
+    states: extra.states,
+    t: extra.t,
   };
 }
 
@@ -107,6 +118,7 @@ function outlineProblem(f) {
   if (f.outline === 'field') return fieldProblem(f);
   if (f.outline === 'svg') return svgError || svgProblem(f);
   if (f.outline !== 'polygon') return '';
+  if (cornersError) return cornersError;
   if (points.length < 3) return '';
   return serverOutlineError || starProblem(points);
 }
@@ -130,7 +142,12 @@ const askOutline = debounce(async () => {
   }
 }, 120);
 
-function pointsChanged() {
+/** The points changed (`typed`: from the corners field, which then keeps its text). */
+function pointsChanged(typed = false) {
+  if (!typed) {
+    cornersError = '';
+    $('corners').value = cornersText(points);
+  }
   serverOutlineError = '';
   outlineChecked = false;
   outlineAsked += 1;
@@ -172,9 +189,16 @@ function drawPad() {
         class: `outline${bad ? ' bad' : ''}`, points: pointsAttr(points), 'data-outline': 'polygon',
       }));
     }
-    for (const [x, y] of points) g.append(s('circle', { class: 'corner', cx: x, cy: y, r: 0.035 }));
+    // Each corner takes the keyboard (padKey): focused, the arrows move it, Delete removes it.
+    points.forEach(([x, y], k) => g.append(s('circle', {
+      class: 'corner', cx: x, cy: y, r: 0.035, tabindex: 0, 'data-corner': k,
+      'aria-label': `corner ${k + 1} of ${points.length} at ${cornersText([[x, y]]).replace(',', ', ')}: arrow keys move it, Delete removes it`,
+    })));
   }
+  // A corner moved or removed from the keyboard keeps the focus (its element is redrawn).
+  const refocus = pad.contains(document.activeElement) && focusedCorner !== null;
   pad.replaceChildren(g);
+  if (refocus) pad.querySelector(`[data-corner="${Math.min(focusedCorner, points.length - 1)}"]`)?.focus();
   pad.dataset.outline = f.outline;
   pad.dataset.points = String(points.length);
   pad.dataset.bad = String(bad);
@@ -220,6 +244,37 @@ async function svgChosen() {
   drawPad();
 }
 
+/** The corners field edited: its corners are the polygon's (choosing the polygon outline), or
+ * the reason it is not corners shown beside the pad. */
+function cornersTyped() {
+  const parsed = parseCorners($('corners').value);
+  document.querySelector('input[name="outline"][value="polygon"]').checked = true;
+  cornersError = parsed.error ?? '';
+  if (!parsed.error) points = parsed.points;
+  pointsChanged(true);
+}
+
+/** A key on a focused corner of the pad: the arrows move it (0.05; with Shift 0.01), Delete
+ * or Backspace removes it. */
+function padKey(event) {
+  const k = Number(event.target.dataset?.corner);
+  if (!Number.isInteger(k) || k >= points.length) return;
+  const step = event.shiftKey ? 0.01 : 0.05;
+  const moves = { ArrowLeft: [-step, 0], ArrowRight: [step, 0], ArrowUp: [0, step], ArrowDown: [0, -step] };
+  if (moves[event.key]) {
+    const [dx, dy] = moves[event.key];
+    const round = (v) => Math.round(v * 1e4) / 1e4;
+    points = points.map((p, i) => (i === k ? [round(p[0] + dx), round(p[1] + dy)] : p));
+  } else if (event.key === 'Delete' || event.key === 'Backspace') {
+    points = points.filter((_, i) => i !== k);
+  } else {
+    return;
+  }
+  event.preventDefault();
+  focusedCorner = points.length ? k : null;
+  pointsChanged();
+}
+
 /** Adds a corner where the pad was clicked (choosing the polygon outline). */
 function padClick(event) {
   const pad = $('pad');
@@ -233,6 +288,7 @@ function padClick(event) {
     points = [];
   }
   points = [...points, [Math.round(p.x * 1e4) / 1e4, Math.round(p.y * 1e4) / 1e4]];
+  focusedCorner = null;
   pointsChanged();
 }
 
@@ -279,7 +335,11 @@ async function main() {
     $('iterations').max = String(limits.iterations);
     $('region-cap').textContent = `This server grades at most ${limits.side} cells each way, ${limits.cells} cells and ${limits.tiles} tiles in all, ${limits.iterations} iterations.`;
   }
-  $('graded-form').addEventListener('input', () => {
+  $('graded-form').addEventListener('input', (e) => {
+    if (e.target.id === 'corners') {
+      cornersTyped();
+      return;
+    }
     check();
     drawPad();
   });
@@ -302,6 +362,7 @@ async function main() {
     run();
   });
   $('pad').addEventListener('click', padClick);
+  $('pad').addEventListener('keydown', padKey);
   $('undo-point').addEventListener('click', () => {
     points = points.slice(0, -1);
     pointsChanged();
@@ -325,7 +386,28 @@ async function main() {
     $('run-note').textContent = 'The optimiser needs `isogami serve`: run the command below instead, or open this page from `isogami serve`.';
     return;
   }
-  if (settings.running?.length) attach(settings.running[0]);
+  // The job the URL names, else one running: shown with the form that started it.
+  const named = new URLSearchParams(window.location.search).get('job');
+  if (named !== null) attach(named, { restore: true });
+  else if (settings.running?.length) attach(settings.running[0], { restore: true });
+}
+
+/** Fills the form with the request that started a job (its view's echo). */
+function restoreForm(request) {
+  const f = formFromJob(request, settings);
+  for (const key of ['design', 'rows', 'cols', 'iterations', 'aspect']) $(key).value = f[key];
+  $('field-from').value = f.from;
+  $('field-to').value = f.to;
+  $('field-degrees').value = f.degrees;
+  document.querySelector(`input[name="outline"][value="${f.outline}"]`).checked = true;
+  extra = { states: f.states, t: f.t };
+  points = f.points;
+  if (f.outline === 'svg') {
+    svgFile = f.svg;
+    svgError = '';
+  }
+  pointsChanged();
+  if (f.outline === 'svg') $('outline-status').textContent = `${f.svg.name}: choose the file again to grade it again`;
 }
 
 function setRunning(running) {
@@ -343,8 +425,8 @@ async function run() {
     $('outline-error').textContent = 'bad target: an outline needs at least three finite points';
     return;
   }
-  if (f.outline === 'svg' && (!svgFile || svgError)) {
-    $('outline-error').textContent = svgError || svgProblem(f);
+  if (f.outline === 'svg' && (!svgFile?.text || svgError)) {
+    $('outline-error').textContent = svgError || (svgFile ? `choose ${svgFile.name} again: the page has the file's outline, not its text` : svgProblem(f));
     return;
   }
   clearNotice($('notice'));
@@ -362,8 +444,14 @@ async function run() {
   }
 }
 
-function attach(id) {
-  jobId = id;
+function attach(id, { restore = false } = {}) {
+  jobId = String(id);
+  restorePending = restore;
+  // The URL names the run: a reload or a copied link shows it again.
+  const q = new URLSearchParams(window.location.search);
+  q.delete('design');
+  q.set('job', jobId);
+  history.replaceState(null, '', `${window.location.pathname}?${q}`);
   live = null;
   pause();
   player = null;
@@ -390,12 +478,17 @@ async function poll() {
     job = await getJson(`./api/graded/${encodeURIComponent(id)}`);
   } catch (e) {
     if (id !== jobId) return;
+    restorePending = false;
     setRunning(false);
     document.body.dataset.gradedState = 'lost';
     showError(e);
     return;
   }
   if (id !== jobId) return;
+  if (restorePending) {
+    restorePending = false;
+    restoreForm(job.request);
+  }
   render(job);
   if (job.state === 'running') timer = setTimeout(poll, POLL_MS);
   else finish(job);

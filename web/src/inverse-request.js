@@ -198,3 +198,23 @@ export function formSearch(f) {
   const s = q.toString();
   return s ? `?${s}` : '';
 }
+
+/** The form that started a job, from the request its view echoes (`GET /api/inverse/{id}`'s
+ * `request.body`: the body as posted, a field left out null): what a page attaching to a
+ * running or finished job shows, so that its command line is the job's. A job without the
+ * echo of its body (an older server) gives the resolved request's target. */
+export function formFromJob(request, settings) {
+  const f = emptyForm(settings);
+  const b = request?.body ?? {};
+  const target = b.target ?? request?.target ?? '';
+  f.target = typeof target === 'string' ? target : JSON.stringify(target);
+  for (const { key } of NUMBER_FIELDS) if (b[key] !== null && b[key] !== undefined) f[key] = String(b[key]);
+  if (b.kerf !== null && b.kerf !== undefined) f.kerf = String(b.kerf);
+  f.refineKerf = b.refine_kerf === true;
+  return f;
+}
+
+/** Whether two forms ask for the same search (the same body of POST /api/inverse). */
+export function sameSearch(a, b) {
+  return JSON.stringify(inverseBody(a)) === JSON.stringify(inverseBody(b));
+}

@@ -4,7 +4,11 @@
 // best design so far) and the best objective over evaluations, polled from the server; at
 // the end the results (screened → refined objective, spec, measures) with a link opening each
 // refined design on the design page, and "save all". Errors are the server's one-line
-// messages. On a static site nothing runs: the page composes the `isogami inverse …` command.
+// messages. The job is the server's: the URL names it (?job=ID, with the form), so a reload or
+// a copied link shows it again, running or finished, with the form and command that started it
+// (echoed by the server); a page opened while a job runs shows that job, and Run while the one
+// job of the server runs shows it too instead of an error. On a static site nothing runs: the
+// page composes the `isogami inverse …` command.
 // Request building and table rows are in inverse-request.js.
 
 import { openData } from './data.js';
@@ -12,8 +16,8 @@ import { h, fmt, showNotice, clearNotice } from './dom.js';
 import { createLinePlot } from './plots.js';
 import { designHref } from './url.js';
 import {
-  EXAMPLES, NUMBER_FIELDS, cliCommand, emptyForm, formFromSearch, formProblem, formSearch, historyPoints, inverseBody, leaderRows,
-  progressLine, resultRows,
+  EXAMPLES, NUMBER_FIELDS, cliCommand, emptyForm, formFromJob, formFromSearch, formProblem, formSearch, historyPoints, inverseBody,
+  leaderRows, progressLine, resultRows, sameSearch,
 } from './inverse-request.js';
 
 const $ = (id) => document.getElementById(id);
@@ -34,6 +38,10 @@ let timer = null;
 let plot = null;
 let lastStage = '';
 let lastLeaders = '';
+/** What the first view of the attached job does to the form: `restore` it from the job's
+ * request, then `overlay` the URL's own fields (edits made after the job, kept by a reload);
+ * `notStarted`: the form whose Run was refused because this job runs. */
+let pending = null;
 
 function form() {
   return {
@@ -57,19 +65,31 @@ function showError(e) {
 function updateCommand(keep = true) {
   const f = form();
   $('command').textContent = String(f.target).trim() ? cliCommand(f, settings?.database) : '';
-  // The form lives in the URL: a reload or a shared link keeps the target and the command.
+  // The form lives in the URL, and the job shown: a reload or a shared link keeps the target,
+  // the command and the run.
   if (!keep) return;
-  const search = formSearch(f);
+  keepUrl(f);
+}
+
+/** Writes form `f` and the job shown to the URL. */
+function keepUrl(f = form()) {
+  const q = new URLSearchParams(formSearch(f));
+  if (jobId !== null) q.set('job', String(jobId));
+  const search = q.toString() ? `?${q}` : '';
   if (search !== location.search) history.replaceState(null, '', `${location.pathname}${search}`);
+}
+
+/** Fills the form with `f`'s fields. */
+function fillForm(f) {
+  for (const [field, value] of Object.entries(f)) {
+    if (field === 'refineKerf') $('refine-kerf').checked = Boolean(value);
+    else $(field).value = value;
+  }
 }
 
 /** Fills the form from the URL's query (`?target=…`, as formSearch writes it). */
 function formFromUrl() {
-  const given = formFromSearch(location.search);
-  for (const [field, value] of Object.entries(given)) {
-    if (field === 'refineKerf') $('refine-kerf').checked = value;
-    else $(field).value = value;
-  }
+  fillForm(formFromSearch(location.search));
 }
 
 async function main() {
@@ -133,7 +153,10 @@ async function main() {
     $('run-note').textContent = 'Running needs `isogami serve`: run the command below instead.';
     return;
   }
-  if (settings.running) attach(settings.running);
+  // The job the URL names, else the one running: shown with the form that started it.
+  const named = new URLSearchParams(location.search).get('job');
+  if (named !== null) attach(named, { restore: true, overlay: true });
+  else if (settings.running) attach(settings.running, { restore: true });
 }
 
 function setRunning(running) {
@@ -151,17 +174,41 @@ async function run() {
   }
   clearNotice($('notice'));
   $('run').disabled = true;
+  // The server runs one job at a time: while one runs (another tab's, say) it is shown
+  // rather than asked for a second and refused.
+  const busy = await runningJob();
+  if (busy !== null) {
+    attach(busy, { restore: true, notStarted: f });
+    return;
+  }
   try {
     const started = await data.startInverse(inverseBody(f));
     attach(started.id);
   } catch (e) {
+    // One started in the meantime: shown rather than the refusal.
+    const running = e.status === 409 && e.kind === 'busy' ? await runningJob() : null;
+    if (running !== null) {
+      attach(running, { restore: true, notStarted: f });
+      return;
+    }
     $('run').disabled = false;
     showError(e);
   }
 }
 
-function attach(id) {
-  jobId = id;
+/** The id of the job running on the server, or null. */
+async function runningJob() {
+  try {
+    return (await data.inverseSettings()).running ?? null;
+  } catch {
+    return null;
+  }
+}
+
+function attach(id, how = {}) {
+  jobId = String(id);
+  pending = how;
+  keepUrl();
   lastStage = '';
   lastLeaders = '';
   document.body.dataset.jobId = String(id);
@@ -182,15 +229,39 @@ async function poll() {
     job = await data.inverseJob(id);
   } catch (e) {
     if (id !== jobId) return;
+    // An unknown or forgotten job (a link kept too long): the server's message says so.
+    pending = null;
     setRunning(false);
+    document.body.dataset.inverseState = 'lost';
     showError(e);
     return;
   }
   if (id !== jobId) return;
   document.body.dataset.polls = String(Number(document.body.dataset.polls || 0) + 1);
+  if (pending) firstView(job);
   render(job);
   if (job.state === 'running') timer = setTimeout(poll, POLL_MS);
   else finish(job);
+}
+
+/** The attached job's first view: the form that started it (and the URL's edits since, on a
+ * reload); a Run refused for it says what was not started. */
+function firstView(job) {
+  const how = pending;
+  pending = null;
+  if (how.restore) {
+    fillForm(formFromJob(job.request, settings));
+    if (how.overlay) formFromUrl();
+    updateCommand();
+  }
+  if (how.notStarted && !sameSearch(how.notStarted, form())) {
+    const target = String(how.notStarted.target).trim();
+    showNotice($('notice'), {
+      message: `This server runs one inverse design at a time: job ${job.id}, shown here, is running. Your search for '${target}' was not started.`,
+      hint: 'run it again once this one ends (or stop this one)',
+      kind: 'busy',
+    });
+  }
 }
 
 function render(job) {

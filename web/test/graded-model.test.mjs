@@ -7,9 +7,9 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  DEFAULTS, EXPORTS, bounds, centroid, cliCommand, closedPolygons, convexHull, edgeProblem, emptyForm, errorColour,
-  exportCommand, exportParams, fieldProblem, fieldRows, gradedBody, hullArea, iterationsProblem, outlineAtArea,
-  outlineText, playerStates, posedPolygons, regionProblem, reportLines, signedArea, starProblem, svgProblem,
+  DEFAULTS, EXPORTS, bounds, centroid, cliCommand, closedPolygons, convexHull, cornersText, edgeProblem, emptyForm, errorColour,
+  exportCommand, exportParams, fieldProblem, fieldRows, formFromJob, gradedBody, hullArea, iterationsProblem, outlineAtArea,
+  outlineText, parseCorners, playerStates, posedPolygons, regionProblem, reportLines, signedArea, starProblem, svgProblem,
 } from '../src/graded-model.js';
 import { shellSplit } from './shell.mjs';
 
@@ -202,4 +202,61 @@ test('a field result: a row per cell, coloured by its error, and the fit line na
     path: { states: [state], closed_spread: 0, reached: true },
   });
   assert.equal(lines[0].text, 'Fit: the area ratio is within 0.0512 of the field in each of 2 cells (max field error 0.0512).');
+});
+
+/** The request a job's view echoes for the body `b` (as the server's graded::job::Echo). */
+function echoOf(b, defaults = DEFAULTS) {
+  return {
+    design: b.design,
+    rows: b.rows,
+    cols: b.cols,
+    outline: b.svg !== undefined ? `@${b.svg_name}` : b.target,
+    outline_points: [[1, 0], [0, 1], [-1, 0]],
+    field: null,
+    t: b.t ?? null,
+    states: b.states ?? defaults.states,
+    iterations: b.iterations,
+  };
+}
+
+test('a job’s echoed request gives back the form and command that started it', () => {
+  const base = emptyForm(null);
+  const forms = [
+    base,
+    { ...base, design: 'IH6:0.5:1x1:bb', rows: '2', cols: '5', iterations: '800' },
+    { ...base, outline: 'ellipse', aspect: '1.35' },
+    { ...base, outline: 'polygon', points: [[0, 1], [-0.9, -0.6], [0.9, -0.6]] },
+    { ...base, outline: 'field', from: '1.2', to: '1.8', degrees: '90' },
+    { ...base, outline: 'field', from: '1.2', to: '1.8', degrees: '0' },
+    { ...base, states: '4', t: '0.5' },
+  ];
+  for (const f of forms) {
+    const restored = formFromJob(echoOf(gradedBody(f)), null);
+    assert.equal(cliCommand(restored), cliCommand(f), JSON.stringify(f));
+    assert.deepEqual(gradedBody(restored), gradedBody(f));
+    assert.equal(restored.outline, f.outline);
+  }
+  // The default number of states is left out of the command; another is in it.
+  assert.doesNotMatch(cliCommand(base), /--states|--t /);
+  assert.deepEqual(shellSplit(cliCommand({ ...base, states: '4', t: '0.5' })).slice(6, 12),
+    ['--target', 'disc', '--t', '0.5', '--states', '4']);
+  // An ellipse given with another minor axis keeps its ratio.
+  assert.equal(formFromJob({ ...echoOf(gradedBody(base)), outline: 'ellipse:3,2' }, null).aspect, '1.5');
+  // An SVG target: its name and outline, not its text (the page that chose the file has it).
+  const svg = { ...base, outline: 'svg', svg: { name: 'star.svg', text: '<svg/>', points: null } };
+  const restored = formFromJob(echoOf(gradedBody(svg)), null);
+  assert.deepEqual(restored.svg, { name: 'star.svg', text: null, points: [[1, 0], [0, 1], [-1, 0]] });
+  assert.equal(cliCommand(restored), cliCommand(svg));
+});
+
+test('the polygon’s corners as text: written as the pad draws them, read back or refused by corner', () => {
+  const points = [[0, 1], [-0.9, -0.6], [0.91234, -0.6]];
+  assert.equal(cornersText(points), '0,1; -0.9,-0.6; 0.9123,-0.6');
+  assert.deepEqual(parseCorners(cornersText(points)).points, [[0, 1], [-0.9, -0.6], [0.9123, -0.6]]);
+  assert.deepEqual(parseCorners(' 0 , 1 ;-1,-1;1,-1; ').points, [[0, 1], [-1, -1], [1, -1]]);
+  assert.deepEqual(parseCorners('').points, []);
+  assert.match(parseCorners('0,1; -1').error, /^corner 2: "-1" is not two numbers/);
+  assert.match(parseCorners('0,1;; 1,1').error, /^corner 2: "" is not/);
+  assert.match(parseCorners('0,1; a,b').error, /^corner 2/);
+  assert.match(parseCorners('0,1,2').error, /^corner 1/);
 });

@@ -6,8 +6,8 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  EXAMPLES, cellText, cliCommand, emptyForm, familyCell, formFromSearch, formProblem, formSearch, historyPoints, inverseBody, leaderRows, pair,
-  progressLine, resultRows,
+  EXAMPLES, cellText, cliCommand, emptyForm, familyCell, formFromJob, formFromSearch, formProblem, formSearch, historyPoints, inverseBody,
+  leaderRows, pair, progressLine, resultRows, sameSearch,
 } from '../src/inverse-request.js';
 import { shellSplit } from './shell.mjs';
 
@@ -151,4 +151,28 @@ test('the form round-trips through the URL: every example target, with and witho
   }
   assert.deepEqual(formFromSearch(''), {});
   assert.equal(formSearch({ target: '  ' }), '');
+});
+
+test('a job’s echoed body gives back the form and command that started it', () => {
+  const settings = { defaults: { top: 3, budget: 80 } };
+  const base = emptyForm(settings);
+  const forms = [
+    { ...base, target: 'area' },
+    { ...base, target: 'isotropic + 0.5*uniform; tiles<=4', top: '5', budget: '200', confirm: '60' },
+    { ...base, target: 'lock(0.1,0.3)', triage: '9', samples: '2', kerf: '0.02', refineKerf: true },
+  ];
+  for (const f of forms) {
+    // The server echoes the body as posted, a field left out null.
+    const b = inverseBody(f);
+    const body = { target: b.target, top: null, budget: null, confirm: null, triage: null, samples: null, kerf: null, refine_kerf: null, ...b };
+    const restored = formFromJob({ target: 'canonical text', body }, settings);
+    assert.equal(cliCommand(restored, 'x.db'), cliCommand(f, 'x.db'));
+    assert.ok(sameSearch(restored, f));
+  }
+  assert.ok(!sameSearch({ ...base, target: 'area' }, { ...base, target: 'area(1.6)' }));
+  // A target posted as JSON comes back as its JSON text; a view without the body, the
+  // resolved target.
+  const json = { terms: [{ goal: { kind: 'area' } }] };
+  assert.equal(formFromJob({ target: '1*area', body: { target: json } }, settings).target, JSON.stringify(json));
+  assert.equal(formFromJob({ target: '1*area' }, settings).target, '1*area');
 });

@@ -9,15 +9,15 @@ use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
 use axum::http::StatusCode;
 use isogami::inverse::{InverseRequest, Target};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 /// Longest target text (or JSON) accepted.
 pub const MAX_TARGET: usize = 16 * 1024;
 
 /// What a client posts: `target` as compact text or as the JSON object of `--target`'s JSON
-/// form, the rest as the CLI's flags.
-#[derive(Debug, Clone, Deserialize)]
+/// form, the rest as the CLI's flags. A job's view echoes it ([`InverseBody::echo`]).
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct InverseBody {
     /// Compact text (`"isotropic + 0.5*uniform; tiles<=4"`) or the target's JSON object.
@@ -68,6 +68,17 @@ impl InverseBody {
                 "request body is not {{\"target\": …, \"top\": …, \"budget\": …}}: {e}"
             ))
         })
+    }
+
+    /// The body as a job's view echoes it: the target text trimmed (an object as it came),
+    /// every other field as given (null when left out: the CLI's default), so that a page
+    /// shows the form and the command that started the job.
+    pub fn echo(&self) -> InverseBody {
+        let mut b = self.clone();
+        if let Value::String(s) = &b.target {
+            b.target = Value::String(s.trim().to_string());
+        }
+        b
     }
 
     /// The target: text as it is, an object as its JSON text; read by the library.

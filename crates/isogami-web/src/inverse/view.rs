@@ -2,6 +2,7 @@
 //! the result in the CLI's `--json` form, and why it failed or stopped (the states and errors
 //! every kind of job shares are [`crate::jobs`]').
 
+use super::body::InverseBody;
 use crate::jobs::{JobError, JobState};
 use isogami::inverse::{InverseProgress, InverseRequest};
 use serde::Serialize;
@@ -26,11 +27,14 @@ pub struct Echo {
     pub kerf: f64,
     /// Whether the kerf is refined too.
     pub refine_kerf: bool,
+    /// The body that started the job, as given (the target text trimmed; a field left out
+    /// null): what a page restores its form and command line from.
+    pub body: InverseBody,
 }
 
 impl Echo {
-    /// The request `r` as it runs (defaults resolved).
-    pub fn of(r: &InverseRequest) -> Echo {
+    /// The request `r` as it runs (defaults resolved), started by `body`.
+    pub fn of(r: &InverseRequest, body: &InverseBody) -> Echo {
         Echo {
             target: r.target.to_string(),
             top: r.top,
@@ -40,6 +44,7 @@ impl Echo {
             samples: r.samples,
             kerf: r.effective_kerf(),
             refine_kerf: r.refine_kerf,
+            body: body.echo(),
         }
     }
 }

@@ -51,13 +51,66 @@ async fn stored_view(state: &AppState, spec: String) -> ApiResult<DesignView> {
     DesignView::stored(stored)
 }
 
-/// `GET /api/design?spec=`.
+/// A finite `kerf` parameter, if given.
+fn kerf_param(raw: Option<&str>) -> ApiResult<Option<f64>> {
+    match param(&pairs(raw), "kerf") {
+        Some(text) => Ok(Some(
+            text.parse::<f64>()
+                .ok()
+                .filter(|k| k.is_finite())
+                .ok_or_else(|| ApiError::bad_parameter("kerf must be a finite number"))?,
+        )),
+        None => Ok(None),
+    }
+}
+
+/// `GET /api/design?spec=[&fallback=live[&kerf=]]`: the stored design's view, or 404. With
+/// `fallback=live`, a design that is not stored — or asked at a `kerf` other than its stored
+/// one — is deployed live instead, as `POST /api/deploy` does (its view has no origin): what
+/// a page opening any design asks, with no failed request for one that is not stored.
 pub async fn stored(
     State(state): State<AppState>,
     RawQuery(raw): RawQuery,
 ) -> ApiResult<Json<DesignView>> {
-    let spec = spec_param(raw.as_deref(), &[])?;
-    Ok(Json(stored_view(&state, spec).await?))
+    let spec = spec_param(raw.as_deref(), &["fallback", "kerf"])?;
+    let live = match param(&pairs(raw.as_deref()), "fallback") {
+        None => false,
+        Some("live") => true,
+        Some(other) => {
+            return Err(ApiError::bad_parameter(format!(
+                "fallback {:?}: the one fallback is live",
+                truncate(other)
+            )))
+        }
+    };
+    let kerf = kerf_param(raw.as_deref())?;
+    if kerf.is_some() && !live {
+        return Err(ApiError::bad_parameter(
+            "kerf goes with fallback=live (a stored design is at its stored kerf)",
+        ));
+    }
+    match stored_view(&state, spec.clone()).await {
+        Ok(view) if kerf.is_none_or(|k| (k - view.report.kerf).abs() <= 1e-12) => Ok(Json(view)),
+        Ok(_) => live_view(&state, spec, kerf).await,
+        Err(e) if live && e.kind == "not_found" => live_view(&state, spec, kerf).await,
+        Err(e) => Err(e),
+    }
+}
+
+/// The view of a live deployment of `spec` at `kerf`, as `POST /api/deploy` answers it.
+async fn live_view(
+    state: &AppState,
+    spec: String,
+    kerf: Option<f64>,
+) -> ApiResult<Json<DesignView>> {
+    let live = LiveRequest {
+        design: spec,
+        kerf,
+        frames: None,
+    };
+    let (design, request) = live.resolve()?;
+    let run = deploy_bounded(design.clone(), request, state.settings().sim_timeout).await?;
+    Ok(Json(DesignView::live(&design, run)?))
 }
 
 /// `GET /api/motion?spec=`: the class of topologies (in other cells and families) that move
@@ -104,13 +157,8 @@ const GIF_WIDTH: u32 = 360;
 /// of any design (at `kerf` or the default), as an animated GIF.
 pub async fn gif(State(state): State<AppState>, RawQuery(raw): RawQuery) -> ApiResult<Response> {
     let spec = spec_param(raw.as_deref(), &["kerf"])?;
-    let kerf = match param(&pairs(raw.as_deref()), "kerf") {
-        Some(text) => Some(
-            text.parse::<f64>()
-                .ok()
-                .filter(|k| k.is_finite())
-                .ok_or_else(|| ApiError::bad_parameter("kerf must be a finite number"))?,
-        ),
+    let kerf = match kerf_param(raw.as_deref())? {
+        Some(k) => Some(k),
         None => match stored_view(&state, spec.clone()).await {
             Ok(view) => Some(view.report.kerf),
             Err(e) if e.kind == "not_found" => None,

@@ -40,7 +40,7 @@ pub async fn start(
     let body = InverseBody::from_request(body)?;
     let limits = state.settings().inverse;
     let request = body.request(&limits)?;
-    let job = state.jobs().start(Echo::of(&request), &limits)?;
+    let job = state.jobs().start(Echo::of(&request, &body), &limits)?;
     let id = job.id();
     let runner = state.clone();
     tokio::task::spawn_blocking(move || job.run(&runner, &request));

@@ -8,7 +8,7 @@
 //! | `GET /api/designs?filters` | a filtered, sorted page of catalogue rows |
 //! | `GET /api/facets?filters` | counts per value of every facet |
 //! | `GET /api/scatter?x=&y=&filters` | two measures of every matching design |
-//! | `GET /api/design?spec=` | the design view of a stored design |
+//! | `GET /api/design?spec=[&fallback=live&kerf=]` | the design view of a stored design (`fallback=live`: any design, deployed live when not stored) |
 //! | `GET /api/thumbnail?spec=` | its thumbnail (SVG) |
 //! | `GET /api/motions?filters` | the matching designs grouped by distinct motion (mechanisms view) |
 //! | `GET /api/motion?spec=` | the same motion in other cells and families (its class) |
@@ -23,14 +23,14 @@
 //! | `GET /api/shape/ranges?design=[&kerf=]` | each shape parameter's valid range, the others fixed |
 //! | `GET /api/inverse` | inverse design's defaults, caps, saving allowed, running job |
 //! | `POST /api/inverse` | start an inverse-design job (202 `{id}`; 409 while one runs) |
-//! | `GET /api/inverse/{id}` | its state, progress, leaders, result |
+//! | `GET /api/inverse/{id}` | its state, the request that started it, progress, leaders, result |
 //! | `DELETE /api/inverse/{id}` | stop it |
 //! | `POST /api/inverse/{id}/save` | save its refined designs as user designs |
 //! | `GET /api/graded` | graded sheets' defaults, caps, running jobs |
 //! | `GET /api/graded/outline?outline=` | a target outline read by the library, or its one-line error |
 //! | `POST /api/graded/svg?name=` | an SVG file's outline read by the library, or its one-line error |
 //! | `POST /api/graded` | start a graded-sheet job (202 `{id}`; 409 over the running cap) |
-//! | `GET /api/graded/{id}` | its state, progress, snapshot of the sheet as it stands, result |
+//! | `GET /api/graded/{id}` | its state, the request that started it, progress, snapshot of the sheet as it stands, result |
 //! | `DELETE /api/graded/{id}` | stop it |
 //! | `GET /api/graded/{id}/sheet` | its graded sheet as `isogami graded --out` writes it |
 //! | `GET /api/graded/{id}/export?format=&…` | its graded sheet exported (laser, print, …) as `isogami export --sheet` |

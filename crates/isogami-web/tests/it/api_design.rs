@@ -456,3 +456,88 @@ async fn a_stored_design_has_its_motion_class_and_a_live_one_none() {
         "no spec",
     );
 }
+
+#[tokio::test]
+async fn with_fallback_live_any_design_has_a_view_and_a_stored_one_is_the_stored_view() {
+    let app = app();
+    let s = &summaries(&catalogue().db)[0];
+    // A stored design: its stored view, whatever the fallback.
+    let stored = get(&app, &format!("/api/design?spec={}", enc(&s.spec)))
+        .await
+        .ok();
+    let fallback = get(
+        &app,
+        &format!("/api/design?spec={}&fallback=live", enc(&s.spec)),
+    )
+    .await
+    .ok();
+    assert_eq!(fallback, stored);
+    assert!(!fallback["origin"].is_null());
+    // Asked at its own kerf: still stored; at another: deployed live there.
+    let kerf = stored["report"]["kerf"].as_f64().unwrap();
+    let same = get(
+        &app,
+        &format!(
+            "/api/design?spec={}&fallback=live&kerf={kerf}",
+            enc(&s.spec)
+        ),
+    )
+    .await
+    .ok();
+    assert_eq!(same, stored);
+    let other = get(
+        &app,
+        &format!(
+            "/api/design?spec={}&fallback=live&kerf={}",
+            enc(&s.spec),
+            2.0 * kerf
+        ),
+    )
+    .await
+    .ok();
+    assert!(other["origin"].is_null());
+    assert_eq!(other["report"]["kerf"].as_f64(), Some(2.0 * kerf));
+    // A design that is not stored: 404 without the fallback, with it the view POST
+    // /api/deploy answers.
+    let spec = nudged(s, 0.01);
+    let reply = get(&app, &format!("/api/design?spec={}", enc(&spec))).await;
+    assert_eq!(
+        assert_error(&reply, StatusCode::NOT_FOUND, &spec),
+        "not_found"
+    );
+    let live = get(
+        &app,
+        &format!("/api/design?spec={}&fallback=live", enc(&spec)),
+    )
+    .await
+    .ok();
+    check_view(&live, &spec);
+    assert!(live["origin"].is_null() && live["summary"].is_null());
+    let deployed = post_design(&app, "/api/deploy", &spec, json!({}))
+        .await
+        .ok();
+    assert_eq!(live, deployed);
+    // What cannot be deployed is refused as POST /api/deploy refuses it; bad parameters
+    // are 400s.
+    let reply = get(&app, "/api/design?spec=no%20such%20thing&fallback=live").await;
+    let deployed = post_design(&app, "/api/deploy", "no such thing", json!({})).await;
+    assert_eq!(
+        (reply.status, reply.json()),
+        (deployed.status, deployed.json())
+    );
+    assert_eq!(
+        assert_error(&reply, StatusCode::UNPROCESSABLE_ENTITY, "no such thing"),
+        "bad_design"
+    );
+    for query in [
+        format!("spec={}&fallback=maybe", enc(&spec)),
+        format!("spec={}&kerf=0.01", enc(&spec)),
+        format!("spec={}&fallback=live&kerf=nan", enc(&spec)),
+    ] {
+        let reply = get(&app, &format!("/api/design?{query}")).await;
+        assert_eq!(
+            assert_error(&reply, StatusCode::BAD_REQUEST, &query),
+            "bad_parameter"
+        );
+    }
+}

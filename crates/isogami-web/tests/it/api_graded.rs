@@ -16,7 +16,7 @@ use isogami::graded::{parse_outline, GradedRequest, Outline};
 use isogami::stop::NEVER;
 use isogami_web::graded::GradedLimits;
 use isogami_web::ServerSettings;
-use serde_json::Value;
+use serde_json::{json, Value};
 use std::time::{Duration, Instant};
 
 /// A run of a second or so: 2×2 cells of rotating squares, 60 iterations.
@@ -111,6 +111,25 @@ async fn a_small_job_runs_to_the_end_with_snapshots_and_the_librarys_result() {
     assert_eq!(
         end["request"]["outline_points"].as_array().unwrap().len(),
         128
+    );
+    // Every parameter of the request is echoed (a page restores its form and command from
+    // it): as given, the ones left out at their defaults.
+    let echo = &end["request"];
+    assert_eq!(
+        (
+            &echo["design"],
+            &echo["cols"],
+            &echo["iterations"],
+            &echo["t"],
+            &echo["states"]
+        ),
+        (
+            &json!("rotating-squares"),
+            &json!(2),
+            &json!(60),
+            &Value::Null,
+            &json!(GradedRequest::default().states)
+        )
     );
 
     // The same request through the library, as the CLI runs it.

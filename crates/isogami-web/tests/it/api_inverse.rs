@@ -154,12 +154,21 @@ async fn bad_targets_and_values_are_400s_with_the_librarys_message_and_start_not
 #[tokio::test]
 async fn a_small_run_ends_done_with_the_librarys_result_and_its_best_design_deploys() {
     let app = app();
-    let id = start(&app, r#"{"target": "area", "top": 2, "budget": 6}"#).await;
+    let id = start(&app, r#"{"target": " area ", "top": 2, "budget": 6}"#).await;
     let views = until_ended(&app, id).await;
     let end = views.last().unwrap();
     assert_eq!(end["state"], "done", "{end}");
     assert_eq!(end["error"], Value::Null);
     assert_eq!(end["request"]["target"], "1*area");
+    // The body that started it, as given (the target trimmed, the rest null: defaults), in
+    // every view: what a page restores its form and command from.
+    let body = json!({
+        "target": "area", "top": 2, "budget": 6, "confirm": null, "triage": null,
+        "samples": null, "kerf": null, "refine_kerf": null
+    });
+    for v in &views {
+        assert_eq!(v["request"]["body"], body, "{}", v["state"]);
+    }
     let mut result = end["result"].clone();
     let results = result["results"].as_array().unwrap().clone();
     assert!(!results.is_empty() && results.len() <= 2);
