@@ -3,8 +3,8 @@
 // and completed and its finite deployment moves with the page's t and Play; a design whose raw
 // region flops names its DOF and highlights exactly the tiles of the API's extra modes, and its
 // completion draws the API's sheet with the removed tiles ghosted; a region without a one-DOF
-// sheet shows the library's reason; the panel is on screen at 1440×900 beside the periodic
-// sheet, and the page logs no errors.
+// sheet shows the library's reason; a sheet whose path passes a singular state says where; the
+// panel is on screen at 1440×900 beside the periodic sheet, and the page logs no errors.
 
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -218,6 +218,25 @@ test('a region without a one-DOF sheet shows the library’s reason and the raw 
   assert.equal(await data(page, 'view'), 'raw');
   assert.equal(Number(await data(page, 'floppy')), apiFloppyTiles(answer.analysis.raw_mobility).size);
   assert.deepEqual(problems(page), []);
+});
+
+test('a sheet whose path passes a singular state says where; one that passes none says nothing', async () => {
+  // IH44's completed 4×4 sheet branches at t ≈ 0.4995 of its path (four extra motions).
+  const page = await newPage(browser);
+  const answer = await openDesign(page, 'IH44:0.5,0.102564102564:1x2:-aaabbaa');
+  const states = [...answer.deployment.singular, ...answer.deployment.periodic_singular];
+  assert.ok(answer.deployment.singular.some((s) => Math.abs(s.t - 0.4995) < 0.003 && s.extra_motions === 4), JSON.stringify(states));
+  const notice = byTestId(page, 'finite-singular');
+  await notice.waitFor({ state: 'visible' });
+  const text = await notice.textContent();
+  for (const s of states) assert.ok(text.includes(`t = ${s.t.toFixed(3)}`), text);
+  assert.match(text, /4 extra first-order motions/);
+  assert.deepEqual(problems(page), []);
+  const squares = await newPage(browser);
+  const plain = await openDesign(squares, 'rotating-squares');
+  assert.equal(plain.deployment.singular.length + plain.deployment.periodic_singular.length, 0);
+  assert.ok(await byTestId(squares, 'finite-singular').isHidden());
+  assert.deepEqual(problems(squares), []);
 });
 
 test('a region in mm asks for that region, and a bad size asks nothing', async () => {

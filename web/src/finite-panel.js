@@ -81,6 +81,7 @@ export function createFinitePanel(container, { data, current, defaultKerf = () =
     el.badge = h('span', { class: 'dof-badge', testid: 'finite-dof', 'aria-live': 'polite' });
     el.summary = h('p', { class: 'finite-summary', testid: 'finite-summary' });
     el.refusal = h('p', { class: 'notice notice-refused', testid: 'finite-refusal', hidden: true });
+    el.singular = h('p', { class: 'notice notice-refused', testid: 'finite-singular', hidden: true });
     el.error = h('div', { class: 'notice notice-error', role: 'alert', testid: 'finite-error', hidden: true });
     el.canvas = h('canvas', { id: 'finite-canvas', testid: 'finite-canvas', role: 'img', 'aria-label': 'the finite sheet' });
     attachZoom(el.canvas, () => zoom, (z) => {
@@ -103,6 +104,7 @@ export function createFinitePanel(container, { data, current, defaultKerf = () =
       h('div', { class: 'controls' }, h('fieldset', { class: 'finite-view' }, h('legend', {}, 'show'), radio('completed', 'completed sheet'), radio('raw', 'raw region')), el.badge),
       el.summary,
       el.refusal,
+      el.singular,
       el.error,
       el.canvas,
       el.motion,
@@ -187,11 +189,25 @@ export function createFinitePanel(container, { data, current, defaultKerf = () =
     completed.disabled = !a.completion;
     el.refusal.hidden = !answer.refused;
     el.refusal.textContent = answer.refused ? `${answer.refused}. The raw region is shown; the export can still write it (raw rectangle).` : '';
+    const states = singularStates(answer.deployment);
+    el.singular.hidden = states.length === 0;
+    el.singular.textContent = states.length
+      ? `Singular states: ${states.join('; ')}. A sheet pulled through one can branch off the periodic motion there and parts of it drift away: stop short of it or guide the sheet.`
+      : '';
     const raw = `${a.raw.tiles.length} tiles, ${a.raw.joints.length} pins; raw ${a.raw_mobility.dof} DOF opened (t = ${a.t.toFixed(3)}), ${a.raw_closed_dof} closed`;
     if (a.completion) {
       const r = a.completion.report;
       el.summary.textContent = `${raw}. Completed: ${r.kept} of ${r.requested} tiles kept, ${r.removed.length} removed, ${r.added.length} added, ${(100 * r.covered_fraction).toFixed(1)} % of the region covered.`;
     } else el.summary.textContent = `${raw}.`;
+  }
+
+  /** The singular states of a finite deployment's paths (the sheet's, the periodic sheet's),
+   * in words: where, and how many extra first-order motions. */
+  function singularStates(d) {
+    if (!d) return [];
+    const words = (what) => (s) =>
+      `t = ${s.t.toFixed(3)} of ${what} path (${s.extra_motions} extra first-order motion${s.extra_motions === 1 ? '' : 's'})`;
+    return [...(d.singular ?? []).map(words('this sheet’s')), ...(d.periodic_singular ?? []).map(words('the periodic sheet’s'))];
   }
 
   function view() {
