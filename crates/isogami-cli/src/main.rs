@@ -37,7 +37,7 @@ enum Command {
     Explore(commands::explore::Args),
     /// Export a patch of a design in mm: laser SVG/DXF, 3D-print STL/3MF, FOLD, OBJ, tile
     /// tables, kirigami_sim.
-    Export(commands::export::Args),
+    Export(Box<commands::export::Args>),
     /// Inverse design: screen the database for a target behaviour and refine the best
     /// designs' tile shapes.
     Inverse(commands::inverse::Args),
@@ -81,7 +81,7 @@ fn main() -> ExitCode {
         Command::Compare(a) => commands::compare::run(a),
         Command::Explore(a) => commands::explore::run(a),
         Command::Linkages(a) => commands::linkages::run(a),
-        Command::Export(a) => commands::export::run(a),
+        Command::Export(a) => commands::export::run(*a),
         Command::Inverse(a) => commands::inverse::run(a),
         Command::Shape(a) => commands::shape::run(a),
         Command::Sheet(a) => commands::sheet::run(a),
