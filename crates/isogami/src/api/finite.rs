@@ -6,8 +6,8 @@ use crate::cell::UnitCell;
 use crate::deploy::{DeploySettings, Progress, Trajectory};
 use crate::error::Result;
 use crate::finite::{
-    complete, refusal_by_count, sheet_kernel, Completion, Context, FiniteError, FiniteSheet,
-    Region, SheetMobility,
+    complete_counted, refusal_by_count, sheet_kernel, Completion, Context, FiniteError,
+    FiniteSheet, Region, SheetMobility,
 };
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
@@ -240,9 +240,13 @@ pub(crate) fn sheet_of_trajectory(
     let raw_closed_dof = closed_dof(&requested)?;
     let mut refusal = None;
     let (completion, completed_closed_dof) = if request.complete {
-        match complete(&ctx, &requested) {
+        match complete_counted(&ctx, &requested, &raw_mobility) {
             Ok(c) => {
-                let dof = closed_dof(&c.sheet)?;
+                let dof = if c.sheet == requested {
+                    raw_closed_dof
+                } else {
+                    closed_dof(&c.sheet)?
+                };
                 (Some(c), Some(dof))
             }
             Err(e @ FiniteError::NoOneDofSheet { .. }) if request.keep_raw_on_refusal => {

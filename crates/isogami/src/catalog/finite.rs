@@ -13,7 +13,7 @@ use crate::api::{opened_step, requested_sheet, SheetRequest};
 use crate::cell::UnitCell;
 use crate::deploy::Trajectory;
 use crate::error::{Error, Result};
-use crate::finite::{complete, Context, FiniteError, Region};
+use crate::finite::{complete_counted, Context, FiniteError, Region};
 use crate::kinematics::Mechanism;
 use crate::math::{DVec, Real};
 use crate::topology::Design;
@@ -82,8 +82,9 @@ pub(crate) fn figures_of_trajectory(
         min_covered: request.min_covered,
         keep_going: crate::stop::NEVER,
     };
-    let raw_dof = ctx.mobility(&requested)?.dof;
-    let covered = match complete(&ctx, &requested) {
+    let raw = ctx.mobility(&requested)?;
+    let raw_dof = raw.dof;
+    let covered = match complete_counted(&ctx, &requested, &raw) {
         Ok(c) => Some(c.report.covered_fraction),
         Err(FiniteError::NoOneDofSheet { .. }) => None,
         Err(e) => return Err(Error::from(e)),

@@ -159,6 +159,39 @@ pub fn complete(ctx: &Context<'_>, requested: &FiniteSheet) -> Result<Completion
     })
 }
 
+/// [`complete`] given the region's own mobility at the context's state: a region that already
+/// is a one-DOF sheet moving with the periodic sheet (one piece, every tile held by two pins)
+/// is its own completion — what [`complete`] would keep, since its pruned candidate covers all
+/// of the region and the grown one can only tie — without counting it, or its grown ring,
+/// again.
+pub fn complete_counted(
+    ctx: &Context<'_>,
+    requested: &FiniteSheet,
+    mobility: &SheetMobility,
+) -> Result<Completion, FiniteError> {
+    let whole = mobility.dof == 1
+        && mobility.follows_periodic
+        && mobility.floppy.is_empty()
+        && mobility.loose_tiles.is_empty()
+        && mobility.pieces == 1
+        && !requested.is_empty();
+    if !whole {
+        return complete(ctx, requested);
+    }
+    Ok(Completion {
+        sheet: requested.clone(),
+        mobility: mobility.clone(),
+        report: CompletionReport {
+            requested: requested.len(),
+            kept: requested.len(),
+            removed: Vec::new(),
+            added: Vec::new(),
+            covered_fraction: 1.0,
+            grown: false,
+        },
+    })
+}
+
 /// `e` with the design's bulk count added to a refusal when it explains it: a cell whose
 /// tiles have as many degrees of freedom as its pins remove (3n = 2p) is isostatic, and
 /// every finite sheet of it flops along its boundary.

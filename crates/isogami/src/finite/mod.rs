@@ -33,7 +33,9 @@ pub mod region;
 pub mod sheet;
 pub mod singular;
 
-pub use complete::{complete, refusal_by_count, Completion, CompletionReport, Context};
+pub use complete::{
+    complete, complete_counted, refusal_by_count, Completion, CompletionReport, Context,
+};
 pub use deploy::{
     check_states, periodic_agreement, sheet_pairs, sheet_polygons, state_check, ClosedSheet,
     PeriodicAgreement, SheetMeasures, StateCheck,
