@@ -290,9 +290,8 @@ pub fn refusal_by_count(
         mech,
         FiniteError::NoOneDofSheet {
             reason: format!(
-                "no sheet of the region's tiles and the ring around them keeps {:.0} % of its \
-                 area with one DOF: counting 3 degrees of freedom per tile and 2 removed per \
-                 pin, every such sheet has at least {least}",
+                "counting tiles and pins, every sheet of the region and its ring keeping {:.0} % of \
+                 it has at least {least} DOF",
                 100.0 * min_covered
             ),
         },
