@@ -12,6 +12,7 @@ import { tmpdir } from 'node:os';
 import { dirname, extname, join, normalize, resolve, sep } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { promisify } from 'node:util';
+import { after, before } from 'node:test';
 import { chromium } from 'playwright-core';
 
 const here = dirname(fileURLToPath(import.meta.url));
@@ -94,6 +95,22 @@ const TYPES = {
   '.png': 'image/png',
   '.csv': 'text/csv',
 };
+
+/** Registers a test file's hooks for a read-only `isogami serve` and a browser: `use(server,
+ * browser)` is called once both are up; both are stopped after the file's tests. */
+export function readOnlySession(use) {
+  let server;
+  let browser;
+  before(async () => {
+    server = await startServer({ args: ['--read-only'] });
+    browser = await launchBrowser();
+    use(server, browser);
+  });
+  after(async () => {
+    await browser?.close();
+    await server?.stop();
+  });
+}
 
 /** A plain static file server over `root` on a free port (GET only, no listing). */
 export async function serveFolder(root, prefix = '') {

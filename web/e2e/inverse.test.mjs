@@ -7,28 +7,22 @@
 // reads; Stop ends a run; "save all" stores the refined designs on a writable server. On the
 // static site nothing runs and the page shows the command.
 
-import { after, before, test } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFile } from 'node:child_process';
 import { basename, dirname } from 'node:path';
 import { promisify } from 'node:util';
 import {
-  buildSite, byTestId, canvasColours, canvasPixels, copyDb, env, getJson, launchBrowser, newPage, nextAnswer, problems, screenshot, serveFolder, startServer,
+  buildSite, byTestId, canvasColours, canvasPixels, copyDb, env, getJson, newPage, nextAnswer, problems, readOnlySession, screenshot, serveFolder, startServer,
 } from './harness.mjs';
 import { EXAMPLES } from '../src/inverse-request.js';
 import { shellSplit } from '../test/shell.mjs';
 
 let server;
 let browser;
-
-before(async () => {
-  server = await startServer({ args: ['--read-only'] });
-  browser = await launchBrowser();
-});
-
-after(async () => {
-  await browser?.close();
-  await server?.stop();
+readOnlySession((s, b) => {
+  server = s;
+  browser = b;
 });
 
 async function openPanel(page) {

@@ -8,27 +8,20 @@
 // has ε = ±2.2e-16) print 0, and a sheet that ends smaller than it started (IH90::1x1:aaa opens
 // to ε = 1, then closes past its start to ε = −0.004 at the contact limit) says so in words.
 
-import { after, before, test } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { DOMParser } from '@xmldom/xmldom';
 import {
-  allApiRows, byTestId, downloadText, getJson, launchBrowser, newPage, openDesign as openHarnessDesign, problems,
-  screenshot, startServer,
+  allApiRows, byTestId, downloadText, getJson, newPage, openDesign as openHarnessDesign, problems, readOnlySession, screenshot,
 } from './harness.mjs';
 
 const IH16 = 'IH16:0.21650635094600001:1x1:-a-a-aaaa';
 
 let server;
 let browser;
-
-before(async () => {
-  server = await startServer({ args: ['--read-only'] });
-  browser = await launchBrowser();
-});
-
-after(async () => {
-  await browser?.close();
-  await server?.stop();
+readOnlySession((s, b) => {
+  server = s;
+  browser = b;
 });
 
 const openDesign = (page, spec) => openHarnessDesign(page, server.base, spec);

@@ -6,23 +6,17 @@
 // id says so on the page; a second tab that presses Run while the one inverse design runs is
 // shown that run instead of an error.
 
-import { after, before, test } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  byTestId, getJson, launchBrowser, newPage, problems, startServer,
+  byTestId, getJson, newPage, problems, readOnlySession,
 } from './harness.mjs';
 
 let server;
 let browser;
-
-before(async () => {
-  server = await startServer({ args: ['--read-only'] });
-  browser = await launchBrowser();
-});
-
-after(async () => {
-  await browser?.close();
-  await server?.stop();
+readOnlySession((s, b) => {
+  server = s;
+  browser = b;
 });
 
 /** Stops every running job of `kind` (graded or inverse) and waits for it to end. */

@@ -3,10 +3,10 @@
 // with it) and the sheet still deploys, where moving the slider freely makes it rigid; a
 // pinned slider is disabled and says why; a generic design's slider moves alone.
 
-import { after, before, test } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  byTestId, launchBrowser, moveSlider, newPage, openDesign as openHarnessDesign, problems, startServer,
+  byTestId, moveSlider, newPage, openDesign as openHarnessDesign, problems, readOnlySession,
 } from './harness.mjs';
 
 // These designs are not in the database: the page deploys them live.
@@ -20,15 +20,9 @@ const GENERIC = 'IH28:0.588675134594,0.35:1x1:a--a-b-bbb';
 
 let server;
 let browser;
-
-before(async () => {
-  server = await startServer({ args: ['--read-only'] });
-  browser = await launchBrowser();
-});
-
-after(async () => {
-  await browser?.close();
-  await server?.stop();
+readOnlySession((s, b) => {
+  server = s;
+  browser = b;
 });
 
 const openDesign = (page, spec) => openHarnessDesign(page, server.base, spec);
