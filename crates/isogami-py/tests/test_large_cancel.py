@@ -46,7 +46,10 @@ def test_a_timeout_stops_a_large_finite_analysis(name):
 def test_ctrl_c_stops_a_large_finite_analysis():
     code = textwrap.dedent(
         f"""
-        import sys, isogami
+        import signal, sys, isogami
+        # Python installs its Ctrl-C handler only when SIGINT is not ignored at start, and a
+        # shell's background job (a test suite run beside another) starts with it ignored.
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         print("started", flush=True)
         isogami.finite_sheet("rotating-squares", {LARGE!r}, complete=False)
         print("finished", flush=True)
