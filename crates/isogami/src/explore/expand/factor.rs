@@ -107,18 +107,28 @@ impl Expander<'_> {
     /// σ_min(R) ≥ 1/‖R⁻¹‖_F.
     pub(super) fn certified_with(&self, s: &mut Search<'_>, size: usize, threshold: f64) -> bool {
         let n = self.cols;
-        // Rows of R⁻¹ by forward substitution, column by column within a row: entry (i, c)
-        // is (δ_ic − Σ_{j=c}^{i−1} r[i][j] · l[j][c]) / r[i][i], the same operations in the
-        // same order as solving R x = e_c, so the values do not depend on when they are made.
+        // Rows of R⁻¹ by forward substitution: row i is (e_i − Σ_{j<i} r[i][j] · row j) / r[i][i].
+        // Entry (i, c) subtracts r[i][j] · l[j][c] for j = c, c + 1, …, i − 1 in that order, the
+        // same operations in the same order as solving R x = e_c, so the values do not depend on
+        // when they are made. Row by row, the updates of a row's entries are independent of
+        // each other and run over contiguous memory.
         for i in s.l_valid..size {
-            for c in 0..=i {
-                let mut acc = if i == c { 1.0 } else { 0.0 };
-                for j in c..i {
-                    acc -= s.r[i * n + j] * s.l[j * n + c];
+            let (done, rest) = s.l.split_at_mut(i * n);
+            let row = &mut rest[..=i];
+            row.fill(0.0);
+            row[i] = 1.0;
+            let ri = &s.r[i * n..i * n + i];
+            for (j, &rij) in ri.iter().enumerate() {
+                let lj = &done[j * n..=j * n + j];
+                for (x, y) in row[..=j].iter_mut().zip(lj) {
+                    *x -= rij * y;
                 }
-                s.l[i * n + c] = acc / s.r[i * n + i];
             }
-            s.l_sq[i] = s.l[i * n..=i * n + i].iter().map(|x| x * x).sum();
+            let d = s.r[i * n + i];
+            for x in row.iter_mut() {
+                *x /= d;
+            }
+            s.l_sq[i] = row.iter().map(|x| x * x).sum();
         }
         s.l_valid = s.l_valid.max(size);
         let inv_sq: f64 = s.l_sq[..size].iter().sum();
