@@ -15,8 +15,9 @@
 //!   so adding a joint there costs O(N) instead of the O(N · rank) of Gram–Schmidt;
 //! - the orthonormal basis Q of the rows' span, one vector per independent row (the Householder
 //!   step gives it), and the triangular factor R with selected row i = Σ_j r[i][j] q_j (its
-//!   entries are the sparse products q_j · row);
-//! - R⁻¹ row by row, for the certificates below.
+//!   entries are the sparse products q_j · row, made only when a certificate needs them);
+//! - R⁻¹ row by row, for the certificates below (the last joint's rows are first bounded in
+//!   O(N), and solved only when the bound does not decide, see `certified_with`).
 //!
 //! Backtracking truncates Q and R and restores C from a copy kept per depth.
 //!
@@ -136,6 +137,14 @@ pub struct Expander<'a> {
 /// The non-zero entries (column, value) of one Jacobian row.
 type SparseRow = Vec<(usize, f64)>;
 
+/// Which Jacobian row: row `index` (0 or 1) of the joint at end `end` (0 = A, 1 = B) of `edge`.
+#[derive(Debug, Clone, Copy, Default)]
+struct RowId {
+    edge: usize,
+    end: usize,
+    index: usize,
+}
+
 /// Working state of one depth-first expansion.
 struct Search<'s> {
     edges: Vec<usize>,
@@ -149,8 +158,13 @@ struct Search<'s> {
     /// Scratch vectors (N long): a row's coordinates in the complement, and C · v.
     coords: Vec<f64>,
     image: Vec<f64>,
-    /// Lower-triangular factor: selected row i = Σ_j r[i][j] q_j (N × N, row-major).
+    /// Lower-triangular factor: selected row i = Σ_j r[i][j] q_j (N × N, row-major). Its
+    /// diagonal is made when a row is added; the entries before it are valid in the leading
+    /// `r_valid` rows.
     r: Vec<f64>,
+    r_valid: usize,
+    /// The Jacobian row in each slot of the basis.
+    slot_rows: Vec<RowId>,
     /// R⁻¹ (lower triangular, N × N, row-major); its leading `l_valid` rows are up to date.
     /// Row i depends only on R's rows 0..=i, so backtracking keeps the rows before it.
     l: Vec<f64>,
@@ -294,6 +308,8 @@ impl<'a> Expander<'a> {
             coords: vec![0.0; n],
             image: vec![0.0; n],
             r: vec![0.0; n * n],
+            r_valid: 0,
+            slot_rows: vec![RowId::default(); n],
             l: vec![0.0; n * n],
             l_sq: vec![0.0; n],
             l_valid: 0,
@@ -399,12 +415,16 @@ impl<'a> Expander<'a> {
         }
     }
 
+    /// The sparse row `id`.
+    fn row(&self, id: RowId) -> &[(usize, f64)] {
+        &self.rows[id.edge][id.end][id.index]
+    }
+
     /// Adds the two rows of a joint at end `end` (0 = A, 1 = B) of `edge`.
     fn add_joint(&self, s: &mut Search<'_>, edge: usize, end: usize) {
-        let pair = &self.rows[edge][end];
-        let norms = self.row_norm[edge][end];
-        self.add_row(s, &pair[0], norms[0]);
-        self.add_row(s, &pair[1], norms[1]);
+        for index in 0..2 {
+            self.add_row(s, RowId { edge, end, index });
+        }
     }
 }
 

@@ -93,3 +93,38 @@ fn certified_motion_equals_analysed_motion() {
         assert!(checked > 0, "IH{n}");
     }
 }
+
+/// The rigidity and dof = 1 certificates that the O(N) bound decides are the ones solving R⁻¹
+/// decides (`factor::tests::check_bounded` solves every one afresh), on every family's 1×1
+/// cell of at most 10 edges: its full mask and six masks drawn with a fixed seed.
+#[test]
+fn bounded_certificates_are_the_solved_ones() {
+    let before = factor::tests::BOUNDED.with(|b| b.get());
+    let mut seed = 17u64;
+    let mut draw = |m: usize| {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 33) as u32 & ((1u32 << m) - 1)
+    };
+    let mut cells = 0;
+    for f in Family::all() {
+        let Ok(cell) = UnitCell::new(&Tiling::default_for(f), CellDims::new(1, 1).unwrap()) else {
+            continue;
+        };
+        let m = cell.edges.len();
+        if m > 10 {
+            continue;
+        }
+        let ex = Expander::new(&cell, MobilitySettings::default()).unwrap();
+        let full = (1u32 << m) - 1;
+        for mask in std::iter::once(full).chain((0..6).map(|_| draw(m))) {
+            let (found, stats) = ex.expand_collect(mask);
+            assert_eq!(stats.mobility_one as usize, found.len());
+        }
+        cells += 1;
+    }
+    assert!(cells > 20, "{cells} cells");
+    let bounded = factor::tests::BOUNDED.with(|b| b.get()) - before;
+    assert!(bounded > 100, "the bound decided {bounded} certificates");
+}
