@@ -31,5 +31,5 @@ pub mod symmetry;
 pub use across::duplicates_across;
 pub use motion::{motion_invariant, MotionIndex, MotionInvariant, MOTION_TOL};
 pub use orbits::{dedup_orbits, DedupResult, Kept};
-pub use repeats::{is_repeat, repeat_translations};
+pub use repeats::{is_repeat, repeat_translations, RepeatTest};
 pub use symmetry::{joint_string, sheet_symmetries, Symmetry, SymmetryGroup};

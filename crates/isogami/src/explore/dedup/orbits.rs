@@ -4,13 +4,13 @@
 //! pin joints (ties: the smaller spec).
 
 use super::motion::{motion_invariant, MotionIndex, MotionInvariant, MOTION_TOL};
-use super::repeats::{is_repeat, repeat_translations};
+use super::repeats::{repeat_translations, RepeatTest};
 use super::symmetry::SymmetryGroup;
 use crate::cell::UnitCell;
 use crate::explore::expand::Expander;
 use crate::explore::separate::{closing_rates, edge_rates, separation, Separation};
 use crate::kinematics::Mechanism;
-use crate::math::{DVec, Vec2};
+use crate::math::DVec;
 use crate::mobility::{analyze, MobilitySettings};
 use crate::topology::JointChoice;
 use rayon::prelude::*;
@@ -119,7 +119,7 @@ fn motion(
 
 fn analyse(
     scope: &Scope<'_>,
-    translations: &[Vec2],
+    repeats: &[RepeatTest],
     key: u64,
     settings: MobilitySettings,
 ) -> Analysed {
@@ -127,10 +127,7 @@ fn analyse(
     let Some(v) = motion(scope.cell, scope.expander, &joints, settings) else {
         return Analysed::Unconfirmed;
     };
-    if translations
-        .iter()
-        .any(|&t| is_repeat(scope.cell, scope.mech, &joints, &v, t))
-    {
+    if repeats.iter().any(|r| r.holds(scope.mech, &joints, &v)) {
         return Analysed::Repeat;
     }
     let invariant = motion_invariant(scope.cell, scope.mech, &v);
@@ -215,7 +212,10 @@ pub fn dedup_orbits(
         group,
         expander,
     };
-    let translations = repeat_translations(cell, &group.symmetries);
+    let repeats: Vec<RepeatTest> = repeat_translations(cell, &group.symmetries)
+        .into_iter()
+        .map(|t| RepeatTest::new(cell, t))
+        .collect();
     let mut out = DedupResult {
         symmetry_classes: canonical_keys.len(),
         unconfirmed: 0,
@@ -231,7 +231,7 @@ pub fn dedup_orbits(
             .par_iter()
             .map(|&key| {
                 let t = Instant::now();
-                let a = analyse(&scope, &translations, key, settings);
+                let a = analyse(&scope, &repeats, key, settings);
                 (a, t.elapsed())
             })
             .collect();

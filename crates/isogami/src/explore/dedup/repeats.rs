@@ -16,6 +16,7 @@ use crate::topology::JointChoice;
 
 /// True when `joints` and the motion `v` are both invariant under the translation by `t`
 /// (world units of the cell; a symmetry of the sheet): the design repeats a smaller one.
+/// Testing many designs of one cell, prepare the translation once ([`RepeatTest`]).
 pub fn is_repeat(
     cell: &UnitCell,
     mech: &Mechanism,
@@ -23,46 +24,78 @@ pub fn is_repeat(
     v: &DVec,
     t: Vec2,
 ) -> bool {
-    let lat = Lattice::new(cell);
-    let ends = edge_ends(cell);
-    let Some(sym) = try_symmetry(&lat, &ends, &Mat2::identity(), &t, true) else {
-        return false;
-    };
-    if sym.apply(joints) != joints {
-        return false;
-    }
-    // Motion periodicity: v_π(i) + k·(u̇, ẇ) = v_i + L̇ t and ω_π(i) = ω_i for every tile.
-    let l = mech.layout;
-    let scale = mech.length_scale;
-    let (u, w) = mech.lattice(&mech.rest);
-    let basis = Mat2::new(u.x, w.x, u.y, w.y);
-    let du = Vec2::new(v[l.u()], v[l.u() + 1]);
-    let dw = Vec2::new(v[l.w()], v[l.w() + 1]);
-    let Some(inv) = basis.try_inverse() else {
-        return false;
-    };
-    let grad = Mat2::new(du.x, dw.x, du.y, dw.y) * inv;
-    let lt = grad * (t / scale);
-    for (i, tile) in cell.tiles.iter().enumerate() {
-        let target = tile.centroid + t;
-        let Some((j, k)) = cell
+    RepeatTest::new(cell, t).holds(mech, joints, v)
+}
+
+/// One translation of [`repeat_translations`] prepared for the designs of one cell: what it
+/// does to the cell's edges and to its tiles depends on the cell alone.
+#[derive(Debug, Clone)]
+pub struct RepeatTest {
+    t: Vec2,
+    /// The symmetry the translation induces on the edges; `None`: it is not a symmetry of
+    /// the sheet, and no design repeats under it.
+    symmetry: Option<Symmetry>,
+    /// Per tile i, the tile j and cell offset k with centroid_i + t = centroid_j + k·(u, w);
+    /// `None` when some tile has no such image.
+    images: Option<Vec<(usize, [i32; 2])>>,
+}
+
+impl RepeatTest {
+    /// Prepares the translation by `t` on `cell`.
+    pub fn new(cell: &UnitCell, t: Vec2) -> RepeatTest {
+        let lat = Lattice::new(cell);
+        let ends = edge_ends(cell);
+        let symmetry = try_symmetry(&lat, &ends, &Mat2::identity(), &t, true);
+        let images = cell
             .tiles
             .iter()
-            .enumerate()
-            .find_map(|(j, o)| lat.coords(&(target - o.centroid)).map(|k| (j, k)))
-        else {
-            return false;
-        };
-        let vi = Vec2::new(v[l.tile(i)], v[l.tile(i) + 1]);
-        let vj = Vec2::new(v[l.tile(j)], v[l.tile(j) + 1]);
-        let lhs = vj + du * f64::from(k[0]) + dw * f64::from(k[1]);
-        if (lhs - vi - lt).norm() > MOTION_TOL
-            || (v[l.tile(j) + 2] - v[l.tile(i) + 2]).abs() > MOTION_TOL
-        {
-            return false;
+            .map(|tile| {
+                let target = tile.centroid + t;
+                cell.tiles
+                    .iter()
+                    .enumerate()
+                    .find_map(|(j, o)| lat.coords(&(target - o.centroid)).map(|k| (j, k)))
+            })
+            .collect();
+        RepeatTest {
+            t,
+            symmetry,
+            images,
         }
     }
-    true
+
+    /// True when `joints` and the motion `v` (of a design on the prepared cell; `mech`: any
+    /// mechanism of it) are both invariant under the translation.
+    pub fn holds(&self, mech: &Mechanism, joints: &[JointChoice], v: &DVec) -> bool {
+        let Some(sym) = &self.symmetry else {
+            return false;
+        };
+        if !sym.fixes(joints) {
+            return false;
+        }
+        // Motion periodicity: v_π(i) + k·(u̇, ẇ) = v_i + L̇ t and ω_π(i) = ω_i for every tile.
+        let l = mech.layout;
+        let scale = mech.length_scale;
+        let (u, w) = mech.lattice(&mech.rest);
+        let basis = Mat2::new(u.x, w.x, u.y, w.y);
+        let du = Vec2::new(v[l.u()], v[l.u() + 1]);
+        let dw = Vec2::new(v[l.w()], v[l.w() + 1]);
+        let Some(inv) = basis.try_inverse() else {
+            return false;
+        };
+        let grad = Mat2::new(du.x, dw.x, du.y, dw.y) * inv;
+        let lt = grad * (self.t / scale);
+        let Some(images) = &self.images else {
+            return false;
+        };
+        images.iter().enumerate().all(|(i, &(j, k))| {
+            let vi = Vec2::new(v[l.tile(i)], v[l.tile(i) + 1]);
+            let vj = Vec2::new(v[l.tile(j)], v[l.tile(j) + 1]);
+            let lhs = vj + du * f64::from(k[0]) + dw * f64::from(k[1]);
+            (lhs - vi - lt).norm() <= MOTION_TOL
+                && (v[l.tile(j) + 2] - v[l.tile(i) + 2]).abs() <= MOTION_TOL
+        })
+    }
 }
 
 /// The translations whose invariance makes a design a repeat of a smaller explored cell: i·t1

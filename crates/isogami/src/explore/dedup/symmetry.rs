@@ -38,6 +38,16 @@ impl Symmetry {
         }
         out
     }
+
+    /// True when the symmetry maps `joints` onto itself (`apply(joints) == joints`, without
+    /// building the image).
+    pub fn fixes(&self, joints: &[JointChoice]) -> bool {
+        joints.len() == self.edge_map.len()
+            && joints.iter().enumerate().all(|(e, &j)| {
+                let image = if self.swap[e] { swapped(j) } else { j };
+                joints[self.edge_map[e]] == image
+            })
+    }
 }
 
 fn swapped(j: JointChoice) -> JointChoice {
