@@ -35,17 +35,22 @@ impl MotionInvariant {
     }
 }
 
-/// Width of the buckets of [`MotionIndex`] on the sum of an invariant's entries. Entries that
-/// agree to `tol` give sums that agree to `len · tol` ≤ 1e-4 for `tol` ≤ 1e-6 and up to 100
-/// entries, less than a bucket, so neighbouring buckets hold every possible match.
+/// Width of the buckets of [`MotionIndex`] on two sums of an invariant's entries (plain, and
+/// with alternating signs). Entries that agree to `tol` give sums that agree to `len · tol`
+/// ≤ 1e-4 for `tol` ≤ 1e-6 and up to 100 entries, less than a bucket, so the neighbouring
+/// buckets of both sums hold every possible match.
 const BUCKET: f64 = 1e-3;
 
-/// Motion invariants indexed for matching: buckets on (length, sum of entries), so a lookup
-/// compares against a few candidates instead of all.
+/// Where an invariant is filed: its length and the buckets of its two sums.
+type BucketKey = (usize, i64, i64);
+
+/// Motion invariants indexed for matching: buckets on (length, sum of entries, alternating
+/// sum of entries), so a lookup compares against a few candidates instead of all (the plain
+/// sum alone left thousands of cap-20 invariants in one bucket).
 #[derive(Debug, Clone, Default)]
 pub struct MotionIndex {
     items: Vec<MotionInvariant>,
-    buckets: std::collections::HashMap<(usize, i64), Vec<usize>>,
+    buckets: std::collections::HashMap<BucketKey, Vec<usize>>,
 }
 
 impl MotionIndex {
@@ -54,16 +59,24 @@ impl MotionIndex {
         MotionIndex::default()
     }
 
-    fn bucket(inv: &MotionInvariant) -> i64 {
-        (inv.values.iter().sum::<f64>() / BUCKET).floor() as i64
+    fn bucket(inv: &MotionInvariant) -> BucketKey {
+        let sum: f64 = inv.values.iter().sum();
+        let alternating: f64 = inv
+            .values
+            .iter()
+            .enumerate()
+            .map(|(i, x)| if i % 2 == 0 { *x } else { -x })
+            .sum();
+        let cut = |x: f64| (x / BUCKET).floor() as i64;
+        (inv.values.len(), cut(sum), cut(alternating))
     }
 
     /// The smallest id of a stored invariant that matches `inv` to `tol` (≤ 1e-6).
     pub fn find(&self, inv: &MotionInvariant, tol: f64) -> Option<usize> {
-        let b = Self::bucket(inv);
-        let len = inv.values.len();
+        let (len, b, c) = Self::bucket(inv);
         (b - 1..=b + 1)
-            .filter_map(|k| self.buckets.get(&(len, k)))
+            .flat_map(|i| (c - 1..=c + 1).map(move |j| (len, i, j)))
+            .filter_map(|k| self.buckets.get(&k))
             .flatten()
             .copied()
             .filter(|&i| self.items[i].matches(inv, tol))
@@ -88,10 +101,7 @@ impl MotionIndex {
     /// Stores `inv` and returns its id (ids count up from 0).
     pub fn insert(&mut self, inv: MotionInvariant) -> usize {
         let id = self.items.len();
-        self.buckets
-            .entry((inv.values.len(), Self::bucket(&inv)))
-            .or_default()
-            .push(id);
+        self.buckets.entry(Self::bucket(&inv)).or_default().push(id);
         self.items.push(inv);
         id
     }
