@@ -149,3 +149,57 @@ fn strain_rate(mech: &Mechanism, v: &DVec) -> Mat2 {
     let grad = rates * basis.try_inverse().unwrap_or_else(Mat2::zeros);
     (grad + grad.transpose()) * 0.5
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `find` returns what a scan of every stored invariant returns: the smallest id that
+    /// matches, or none. Invariants drawn with a fixed seed, small entries so that the sums
+    /// cross bucket edges often; queries are stored invariants moved by up to ±tol per entry
+    /// (the edges included), and unrelated ones.
+    #[test]
+    fn find_is_the_smallest_matching_id_of_a_full_scan() {
+        let mut seed = 11u64;
+        let mut unit = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let tol = MOTION_TOL;
+        let mut index = MotionIndex::new();
+        let mut stored = Vec::new();
+        for k in 0..3000 {
+            let len = 5 + k % 4;
+            let values: Vec<f64> = (0..len).map(|_| (unit() * 2000.0).round() * 2e-6).collect();
+            let inv = MotionInvariant { values };
+            index.insert(inv.clone());
+            stored.push(inv);
+        }
+        let scan = |q: &MotionInvariant| stored.iter().position(|s| s.matches(q, tol));
+        let mut found = 0;
+        for k in 0..6000 {
+            let q = if k % 3 == 2 {
+                MotionInvariant {
+                    values: (0..5 + k % 4).map(|_| unit() * 4e-3).collect(),
+                }
+            } else {
+                let base = &stored[k % stored.len()];
+                let values = base
+                    .values
+                    .iter()
+                    .map(|x| match k % 3 {
+                        0 => x + tol * (2.0 * unit() - 1.0),
+                        _ => x + if unit() < 0.5 { -tol } else { tol } * 0.999_999,
+                    })
+                    .collect();
+                MotionInvariant { values }
+            };
+            let want = scan(&q);
+            assert_eq!(index.find(&q, tol), want, "query {k}");
+            found += usize::from(want.is_some());
+        }
+        assert!(found >= 3990, "{found} queries matched");
+    }
+}
