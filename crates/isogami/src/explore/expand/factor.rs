@@ -4,15 +4,15 @@
 //! dof = 1 from σ_min(R) without an eigen-decomposition, and the motion of a certified leaf.
 
 use super::{Expander, RowId, Search, DEPENDENT_REL_TOL, RIGID_MARGIN};
+use crate::math::DVec;
+use crate::mobility::area_rate;
+use crate::topology::JointChoice;
 
 /// At most this many trailing rows of R are bounded instead of solved (one joint's two rows).
 const BOUNDED_ROWS: usize = 2;
 
 /// The bound of ‖R⁻¹‖_F² certifies only when it clears the threshold by this factor.
 const BOUND_SLACK: f64 = 1.0 + 1e-6;
-use crate::math::DVec;
-use crate::mobility::area_rate;
-use crate::topology::JointChoice;
 
 impl Expander<'_> {
     /// ‖J‖_F² of the current choice (every edge decided): a bound on λ_max of H.
