@@ -9,6 +9,10 @@
 # Samples at $PERF_HZ Hz (default 29: a cap-20 run stays under 1 GB of samples) with DWARF call
 # stacks, into a temporary folder removed on exit.
 set -euo pipefail
+if [ $# -lt 2 ]; then
+    echo "usage: scripts/profile/flamegraph.sh OUT.svg TITLE [EXPLORE ARGS...]" >&2
+    exit 2
+fi
 out=$1
 title=$2
 shift 2
@@ -28,6 +32,7 @@ perf script -i "$work/perf.data" 2> /dev/null | inferno-collapse-perf > "$work/s
 python3 "$root/scripts/profile/fold.py" "$work/stacks.folded" > "$work/stages.folded"
 inferno-flamegraph --title "$title" \
     --subtitle "perf at $hz Hz, DWARF stacks; rayon and std frames folded away; width = CPU time summed over threads" \
-    --minwidth 0.2 --width 1400 --colors rust "$work/stages.folded" > "$out"
+    --minwidth 0.2 --width 1400 --colors rust "$work/stages.folded" > "$work/flamegraph.svg"
+mv "$work/flamegraph.svg" "$out"
 awk '{n = $NF; sub(/ [0-9]+$/, ""); split($0, f, ";"); s[f[1]] += n; t += n}
      END {for (k in s) printf "%5.1f %%  %s\n", 100 * s[k] / t, k}' "$work/stages.folded" | sort -rn

@@ -60,12 +60,24 @@ def stage_stack(stack):
     return ";".join(kept)
 
 
+def fail(message):
+    print(message, file=sys.stderr)
+    sys.exit(2)
+
+
 def main():
+    if len(sys.argv) != 2:
+        fail("usage: fold.py STACKS.folded > STAGES.folded")
     totals = collections.Counter()
-    with open(sys.argv[1]) as lines:
-        for line in lines:
-            stack, _, count = line.rstrip("\n").rpartition(" ")
-            totals[stage_stack(stack)] += int(count)
+    try:
+        with open(sys.argv[1]) as lines:
+            for number, line in enumerate(lines, 1):
+                stack, _, count = line.rstrip("\n").rpartition(" ")
+                if not count.isdigit():
+                    fail(f"fold.py: {sys.argv[1]}:{number}: not a folded stack (STACK COUNT)")
+                totals[stage_stack(stack)] += int(count)
+    except OSError as e:
+        fail(f"fold.py: cannot read {sys.argv[1]}: {e.strerror}")
     for stack, count in sorted(totals.items()):
         print(stack, count)
 
