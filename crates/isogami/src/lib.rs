@@ -35,6 +35,8 @@ pub mod render;
 pub mod settings_error;
 pub mod shape_space;
 pub mod stop;
+#[cfg(test)]
+mod test_rng;
 pub mod tiling;
 pub mod topology;
 

@@ -160,13 +160,8 @@ mod tests {
     /// (the edges included), and unrelated ones.
     #[test]
     fn find_is_the_smallest_matching_id_of_a_full_scan() {
-        let mut seed = 11u64;
-        let mut unit = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::test_rng::TestRng::new(11);
+        let mut unit = || rng.unit();
         let tol = MOTION_TOL;
         let mut index = MotionIndex::new();
         let mut stored = Vec::new();

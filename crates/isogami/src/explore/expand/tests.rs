@@ -100,13 +100,8 @@ fn certified_motion_equals_analysed_motion() {
 #[test]
 fn bounded_certificates_are_the_solved_ones() {
     let before = factor::tests::BOUNDED.with(|b| b.get());
-    let mut seed = 17u64;
-    let mut draw = |m: usize| {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 33) as u32 & ((1u32 << m) - 1)
-    };
+    let mut rng = crate::test_rng::TestRng::new(17);
+    let mut draw = |m: usize| (rng.next_u64() >> 33) as u32 & ((1u32 << m) - 1);
     let mut cells = 0;
     for f in Family::all() {
         let Ok(cell) = UnitCell::new(&Tiling::default_for(f), CellDims::new(1, 1).unwrap()) else {
