@@ -1,6 +1,6 @@
 //! `isogami site`: the catalogue as a static site that works from any static file host.
 //!
-//! The embedded front end plus `data/site.json` (stats, families, dictionary, export formats
+//! The embedded front end plus `data/site.json` (stats, families, dictionary, measures, export formats
 //! for the CLI command the design page composes, inverse design's defaults and the database's
 //! file name for the command the inverse-design page composes; its presence
 //! switches the pages to static mode), `data/designs.json` (every catalogue row),
@@ -172,6 +172,8 @@ pub fn write_site(
                 "stats": stats_json,
                 "families": families,
                 "dictionary": DICTIONARY,
+                // The measures the pages range, sort and plot by, as GET /api/measures.
+                "measures": crate::routes::catalogue::measure_docs(),
                 "export": crate::export::catalog(),
                 // For the `isogami inverse` command the inverse-design page shows.
                 "inverse": crate::inverse::InverseLimits::default().describe(false, &db_name),

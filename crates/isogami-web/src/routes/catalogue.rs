@@ -7,7 +7,8 @@ use axum::extract::{RawQuery, State};
 use axum::Json;
 use isogami::tiling::{Family, FamilyInfo};
 use isogami_store::query::ScatterPoint;
-use isogami_store::{FieldDoc, Page, DICTIONARY};
+use isogami_store::{FieldDoc, Measure, Page, DICTIONARY};
+use serde::Serialize;
 use serde_json::{Map, Value};
 
 /// `GET /api/stats`: the database summary with its settings as a JSON object.
@@ -29,6 +30,61 @@ pub async fn families() -> Json<Vec<FamilyInfo>> {
 /// `GET /api/dictionary`.
 pub async fn dictionary() -> Json<&'static [FieldDoc]> {
     Json(DICTIONARY)
+}
+
+/// One measure the catalogue ranges, sorts and plots by: its name as `range=`, `sort=`, `x=`
+/// and `y=` take it, with its dictionary entry (type, unit, meaning).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct MeasureDoc {
+    /// Name in the query string (a row's field; `v0`…`v5` for `params[k]`).
+    pub name: String,
+    /// JSON type of its value in a row; `|null` when a design may lack it.
+    #[serde(rename = "type")]
+    pub kind: &'static str,
+    /// Unit, or "".
+    pub unit: &'static str,
+    /// What it means.
+    pub meaning: String,
+}
+
+/// Every measure of the store ([`Measure::all`]), in its order, each with its dictionary
+/// entry: the browser's list of range filters, sort keys, scatter axes and table columns, so a
+/// measure added to the store reaches the pages without a change there.
+pub fn measure_docs() -> Vec<MeasureDoc> {
+    Measure::all()
+        .map(|m| {
+            let name = m.to_string();
+            if let Measure::Param(k) = m {
+                return MeasureDoc {
+                    meaning: format!(
+                        "Shape parameter v{k} of the family (params[{k}]); null for families with fewer"
+                    ),
+                    name,
+                    kind: "number|null",
+                    unit: "",
+                };
+            }
+            match DICTIONARY.iter().find(|d| d.field == name) {
+                Some(d) => MeasureDoc {
+                    name,
+                    kind: d.kind,
+                    unit: d.unit,
+                    meaning: d.meaning.to_string(),
+                },
+                None => MeasureDoc {
+                    name,
+                    kind: "number|null",
+                    unit: "",
+                    meaning: String::new(),
+                },
+            }
+        })
+        .collect()
+}
+
+/// `GET /api/measures`.
+pub async fn measures() -> Json<Vec<MeasureDoc>> {
+    Json(measure_docs())
 }
 
 /// `GET /api/designs?filters`.

@@ -5,6 +5,7 @@
 //! | `GET /api/stats` | database summary, tool version and settings |
 //! | `GET /api/families` | the 81 families with parameter counts and defaults |
 //! | `GET /api/dictionary` | the meaning of every catalogue field |
+//! | `GET /api/measures` | the measures ranges, sorts and scatter axes take, with their dictionary entries |
 //! | `GET /api/designs?filters` | a filtered, sorted page of catalogue rows |
 //! | `GET /api/facets?filters` | counts per value of every facet |
 //! | `GET /api/scatter?x=&y=&filters` | two measures of every matching design |
@@ -37,7 +38,7 @@
 //! | `GET /data/site.json` | `{"mode": "server"}`: what a page asks first (a static site's file says `static`) |
 
 mod assets;
-mod catalogue;
+pub(crate) mod catalogue;
 mod design;
 mod export;
 mod graded;
@@ -68,6 +69,7 @@ pub fn router(state: AppState) -> Router {
         .route("/stats", get(catalogue::stats))
         .route("/families", get(catalogue::families))
         .route("/dictionary", get(catalogue::dictionary))
+        .route("/measures", get(catalogue::measures))
         .route("/designs", get(catalogue::designs).post(design::save))
         .route("/facets", get(catalogue::facets))
         .route("/scatter", get(catalogue::scatter))

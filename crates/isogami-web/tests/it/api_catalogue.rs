@@ -424,3 +424,65 @@ async fn scatter_points_are_the_filtered_rows_measures() {
         }
     }
 }
+
+/// `GET /api/measures` names exactly the numeric fields of a row the API ranges and sorts by
+/// (each with its dictionary entry), the parameter slots v0…v5 after them: a range on each
+/// passes exactly the rows that have it, and every other numeric field of the dictionary is
+/// refused as a measure. The browser builds its range filters, sort keys, scatter axes and
+/// table columns from this list.
+#[tokio::test]
+async fn measures_are_exactly_what_ranges_and_sorts_take() {
+    let app = app();
+    let measures = get(&app, "/api/measures").await.ok();
+    let dictionary = get(&app, "/api/dictionary").await.ok();
+    let all = summaries(&catalogue().db);
+    let rows: Vec<Value> = all
+        .iter()
+        .map(|s| serde_json::to_value(s).unwrap())
+        .collect();
+    let names: Vec<&str> = measures
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m["name"].as_str().unwrap())
+        .collect();
+    assert!(names.contains(&"finite_raw_dof") && names.contains(&"finite_covered"));
+    assert_eq!(&names[names.len() - 6..], ["v0", "v1", "v2", "v3", "v4", "v5"]);
+    for m in measures.as_array().unwrap() {
+        let name = m["name"].as_str().unwrap();
+        assert!(!m["meaning"].as_str().unwrap().is_empty(), "{name}");
+        let value = |row: &Value| -> Value {
+            match name.strip_prefix('v').and_then(|k| k.parse::<usize>().ok()) {
+                Some(k) => row["params"].get(k).cloned().unwrap_or(Value::Null),
+                None => row[name].clone(),
+            }
+        };
+        if !name.starts_with('v') {
+            let entry = dictionary
+                .as_array()
+                .unwrap()
+                .iter()
+                .find(|d| d["field"] == name)
+                .unwrap_or_else(|| panic!("{name} is not in the dictionary"));
+            assert_eq!(m["type"], entry["type"], "{name}");
+            assert_eq!(m["unit"], entry["unit"], "{name}");
+            assert_eq!(m["meaning"], entry["meaning"], "{name}");
+        }
+        let having = rows.iter().filter(|r| !value(r).is_null()).count();
+        let page = get(
+            &app,
+            &format!("/api/designs?range={name}:-1e300:&sort=-{name}&limit=1"),
+        )
+        .await
+        .ok();
+        assert_eq!(page["total"].as_u64(), Some(having as u64), "{name}");
+    }
+    for d in dictionary.as_array().unwrap() {
+        let (field, kind) = (d["field"].as_str().unwrap(), d["type"].as_str().unwrap());
+        let numeric = kind.split('|').any(|k| k == "number" || k == "integer");
+        if numeric && !names.contains(&field) {
+            let reply = get(&app, &format!("/api/designs?range={field}:0:")).await;
+            assert_eq!(reply.status.as_u16(), 400, "{field} is a measure the list lacks");
+        }
+    }
+}

@@ -78,6 +78,7 @@ async fn the_site_holds_what_the_api_serves() {
     assert_eq!(site["stats"]["designs"].as_u64(), Some(all.len() as u64));
     assert_eq!(site["families"], get(&app, "/api/families").await.ok());
     assert_eq!(site["dictionary"], get(&app, "/api/dictionary").await.ok());
+    assert_eq!(site["measures"], get(&app, "/api/measures").await.ok());
 
     let stems: BTreeSet<String> = all.iter().map(|s| slug(&s.spec)).collect();
     assert_eq!(stems.len(), all.len(), "slugs are distinct");
