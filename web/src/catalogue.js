@@ -14,26 +14,32 @@ import { openData } from './data.js';
 import { h, fmt, showNotice, clearNotice, debounce } from './dom.js';
 import { createScatter } from './scatter.js';
 import {
-  FACETS, MEASURES, MAIN_MEASURES, TEXT_SORT_KEYS, facetLabel, facetText, measureLabel,
+  FACETS, MEASURES, MAIN_MEASURES, TEXT_SORT_KEYS, facetLabel, facetText, measureHelp, measureLabel, setMeasures,
 } from './schema.js';
+import { HAS_SHEET_RANGE, sheetStatus } from './buildable.js';
 import {
   PAGE_SIZES, catalogueSearch, designHref, filterParams, parseCatalogueState, rememberCatalogue,
 } from './url.js';
 import { allRows, catalogueCsv, catalogueJson, dictionaryCsv, download } from './export.js';
-import { revealedScroll, specBreaks } from './table-model.js';
+import { revealedScroll, specBreaks, tableColumns } from './table-model.js';
 
 const $ = (id) => document.getElementById(id);
 
 /** A spec as text that may break after its commas and colons (a narrow sticky column). */
 const specText = (spec) => specBreaks(spec).flatMap((piece, k) => (k ? [h('wbr'), piece] : [piece]));
 
-const TABLE_COLUMNS = [
-  ['spec', 'spec'], ['family', 'family'], ['cell', 'cell'], ['tile_count', 'tiles'],
-  ['behaviour', 'behaviour'], ['linkage_signature', 'linkages'], ['end_reason', 'end'],
-  ['max_expansion', 'max ε'], ['min_expansion', 'min ε'], ['max_area_ratio', 'area ratio'],
-  ['max_tile_rotation', 'max rotation'], ['poisson_min', 'ν min'], ['poisson_max', 'ν max'],
-  ['steps', 'steps'], ['kerf', 'kerf'], ['origin', 'origin'],
-];
+/** The badge of a design's finite sheet (buildable.js): "no one-DOF sheet", or the fraction
+ * its one-DOF sheet keeps; the explanation on hover and, on a card, for screen readers in the
+ * text (a table cell is "none" or "92 %" under its column's heading, explained on hover). */
+function sheetBadge(row, { short = false } = {}) {
+  const s = sheetStatus(row);
+  return h(
+    'span',
+    { class: 'sheet-badge', 'data-sheet': s.kind, title: s.title, testid: 'sheet-badge' },
+    short ? s.short : s.text,
+    short ? null : h('span', { class: 'visually-hidden' }, `: ${s.title}`),
+  );
+}
 
 let data;
 let state;
@@ -43,6 +49,13 @@ let lastScatterKey = null;
 
 async function main() {
   data = await openData();
+  // The server's measures (a static site's list), before the URL is read: a range on a measure
+  // this page does not know by name is kept.
+  try {
+    setMeasures(await data.measures());
+  } catch {
+    // The page's own list of measures stays.
+  }
   state = parseCatalogueState(location.search);
   document.body.dataset.mode = data.mode;
   $('mode').textContent = data.mode === 'static' ? 'static site (read-only)' : 'live server';
@@ -267,8 +280,26 @@ function setupRanges() {
   };
   const main = MAIN_MEASURES.map(row);
   const more = MEASURES.filter((m) => !MAIN_MEASURES.includes(m.name)).map((m) => row(m.name));
+  // Buildability: only the designs with a one-DOF finite sheet (a range on finite_covered).
+  const buildable = h(
+    'label',
+    { class: 'buildable-only', title: measureHelp('finite_covered') },
+    h('input', {
+      type: 'checkbox',
+      id: 'buildable-only',
+      testid: 'buildable-only',
+      onchange: (e) =>
+        change(() => {
+          state.ranges = state.ranges.filter((r) => r.measure !== HAS_SHEET_RANGE.measure);
+          if (e.target.checked) state.ranges.push({ ...HAS_SHEET_RANGE });
+          state.offset = 0;
+        }),
+    }),
+    ' only designs with a one-DOF finite sheet (buildable)',
+  );
   $('ranges').replaceChildren(
     h('h2', {}, 'Ranges'),
+    buildable,
     ...main,
     h('details', {}, h('summary', {}, 'more measures'), ...more),
   );
@@ -296,7 +327,10 @@ function syncControls() {
       if (el && document.activeElement !== el) el.value = r && r[bound] !== null ? String(r[bound]) : '';
     }
   }
-  if (state.ranges.some((r) => !MAIN_MEASURES.includes(r.measure))) $('ranges').querySelector('details').open = true;
+  $('buildable-only').checked = state.ranges.some((r) => r.measure === HAS_SHEET_RANGE.measure);
+  if (state.ranges.some((r) => !MAIN_MEASURES.includes(r.measure) && r.measure !== HAS_SHEET_RANGE.measure)) {
+    $('ranges').querySelector('details').open = true;
+  }
 }
 
 /** Values a long facet list shows until opened; the facets opened by the user. */
@@ -542,6 +576,7 @@ function grid(rows) {
             { class: 'facts' },
             `${facetLabel('behaviour', r.behaviour ?? null)} · max ε ${fmt(r.max_expansion)} · area ${fmt(r.max_area_ratio)}`,
           ),
+          sheetBadge(r),
         ),
       ),
     ),
@@ -549,7 +584,8 @@ function grid(rows) {
 }
 
 function table(rows) {
-  const head = TABLE_COLUMNS.map(([key, label]) => {
+  const columns = tableColumns(MEASURES);
+  const head = columns.map(([key, label]) => {
     const active = state.sort?.key === key || (!state.sort && key === 'spec');
     const desc = active && state.sort?.desc;
     return h(
@@ -558,6 +594,7 @@ function table(rows) {
         scope: 'col',
         class: active ? 'sorted' : '',
         'aria-sort': active ? (desc ? 'descending' : 'ascending') : 'none',
+        title: measureHelp(key) || null,
       },
       h(
         'button',
@@ -579,8 +616,9 @@ function table(rows) {
     h(
       'tr',
       { testid: 'design-row', 'data-spec': r.spec },
-      TABLE_COLUMNS.map(([key]) => {
+      columns.map(([key]) => {
         const sorted = state.sort?.key === key ? ' sorted' : '';
+        if (key === 'finite_covered') return h('td', { class: `num${sorted}` }, sheetBadge(r, { short: true }));
         if (key === 'spec') return h('td', { class: sorted.trim() }, h('a', { href: designHref(r.spec) }, h('code', {}, specText(r.spec))));
         if (key === 'cell') return h('td', { class: sorted.trim() }, facetLabel('cell', r.cell));
         const v = r[key];

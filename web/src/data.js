@@ -83,6 +83,12 @@ class ServerData {
     return (this._dictionary ??= getJson('./api/dictionary'));
   }
 
+  /** The measures ranges, sorts and scatter axes take, with their dictionary entries
+   * (GET /api/measures): schema.js's setMeasures makes them the page's. */
+  measures() {
+    return (this._measures ??= getJson('./api/measures'));
+  }
+
   designs(state) {
     return getJson(`./api/designs?${pageParams(state)}`);
   }
@@ -234,6 +240,11 @@ class StaticData {
 
   async dictionary() {
     return this.site.dictionary;
+  }
+
+  /** site.json's `measures` (a site written before it has none: the page's own list stays). */
+  async measures() {
+    return this.site.measures ?? null;
   }
 
   rows() {

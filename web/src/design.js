@@ -30,6 +30,7 @@ import { LatestThrottle } from './live-queue.js';
 import { catalogueHref, designSearch, parseDesignState } from './url.js';
 import { download, fileStem, frameSvg, trajectoryCsv } from './export.js';
 import { facetLabel } from './schema.js';
+import { sheetStatus } from './buildable.js';
 import { createExportPanel } from './export-panel.js';
 import { createMotionPanel } from './motion-panel.js';
 import { createFinitePanel } from './finite-panel.js';
@@ -82,7 +83,9 @@ async function main() {
   }
   exportPanel = createExportPanel($('export-panel'), {
     data,
-    current: () => (view ? { spec: view.spec, kerf: view.report.kerf, t: state.t, tiles: view.geometry.tiles.length } : null),
+    current: () => (view
+      ? { spec: view.spec, kerf: view.report.kerf, t: state.t, tiles: view.geometry.tiles.length, family: view.geometry.family, summary: view.summary ?? null }
+      : null),
     initial: { rows: state.rows, cols: state.cols },
   });
   finitePanel = createFinitePanel($('finite-panel'), {
@@ -279,6 +282,7 @@ function showView(v, { fromEditor, source = null }) {
   const origin = v.origin ?? 'live';
   $('origin').textContent = origin === 'live' ? 'live (not in the database)' : `${origin} design`;
   $('origin').dataset.origin = origin;
+  showSheetBadge(v);
   updateSave();
   const dragging = fromEditor && live && live.busy();
   if (dragging) followUps = true;
@@ -304,6 +308,17 @@ function showView(v, { fromEditor, source = null }) {
   document.body.dataset.deployments = String(Number(document.body.dataset.deployments || 0) + 1);
   if (!dragging) finitePanel.show();
   renderFrame();
+}
+
+/** The badge of the design's finite sheet (buildable.js) from its catalogue row: "no one-DOF
+ * sheet" or the fraction its sheet keeps; a live design (no row) has none. */
+function showSheetBadge(v) {
+  const badge = $('sheet-badge');
+  const s = sheetStatus(v.summary);
+  badge.hidden = !v.summary;
+  badge.dataset.sheet = s.kind;
+  badge.title = s.title;
+  badge.replaceChildren(s.text, Object.assign(document.createElement('span'), { className: 'visually-hidden', textContent: `: ${s.title}` }));
 }
 
 function renderFrame() {

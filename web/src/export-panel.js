@@ -8,9 +8,14 @@
 // is saved. Under the form, the `isogami export …` command that writes the same file; on a
 // static site that command is the way to make the file. Rows × columns are checked against the
 // catalogue's limits as they are typed (the message beside them, Download disabled); the state
-// is disabled, with the reason, for formats that do not use it (laser: the closed sheet).
+// is disabled, with the reason, for formats that do not use it (laser: the closed sheet). A
+// design whose catalogue row says it has no one-DOF sheet (buildable.js) gets the raw rectangle
+// chosen before any click, with the reason and what to do instead (another region, or a design
+// of the same family that has a sheet, named by the catalogue) beside the choice.
 
 import { h } from './dom.js';
+import { findNeighbour, neighbourHref, percentText, sheetStatus } from './buildable.js';
+import { designHref } from './url.js';
 import {
   attachmentName, cliCommand, exportFileName, exportParams, formatOf, patchProblem, usesState,
 } from './export-request.js';
@@ -22,14 +27,17 @@ function size(n) {
   return `${(n / 1e6).toFixed(1)} MB`;
 }
 
-/** Draws the panel into `container`. `current()` gives {spec, kerf, t, tiles} of what is on
- * screen (tiles: the cell's tile count; null before a design is shown); `initial` the rows and
- * columns to start with. */
+/** Draws the panel into `container`. `current()` gives {spec, kerf, t, tiles, family, summary}
+ * of what is on screen (tiles: the cell's tile count; summary: its catalogue row, null for a
+ * live design; null before a design is shown); `initial` the rows and columns to start with. */
 export function createExportPanel(container, { data, current, initial }) {
   let catalog = null;
   let inflight = null;
   const settings = {}; // group → field name → text (or boolean for flags) the user set
   const el = {};
+  let sheetTouched = false; // the user chose the sheet: advice no longer changes the choice
+  let advisedFor = null; // the spec the sheet advice was last made for
+  let neighbourAsked = 0;
 
   const form = () => {
     const now = current();
@@ -49,8 +57,59 @@ export function createExportPanel(container, { data, current, initial }) {
     };
   };
 
+  function sheetChoice(value) {
+    const radio = container.querySelector(`input[name="export-sheet"][value="${value}"]`);
+    if (radio) radio.checked = true;
+  }
+
+  /** The design's finite sheet as its catalogue row says: for a design without a one-DOF
+   * sheet the raw rectangle is chosen (unless the user chose; the completed sheet for one with a
+   * sheet) and the note says why and what to do; the choice is made again only when the design
+   * changes. */
+  function adviseSheet(now) {
+    const status = sheetStatus(now?.summary);
+    if (now && now.spec !== advisedFor) {
+      advisedFor = now.spec;
+      // A live edit (no catalogue row: unknown) keeps the choice the design it came from had.
+      if (!sheetTouched && status.kind !== 'unknown') sheetChoice(status.kind === 'none' ? 'raw' : 'completed');
+      el.neighbour.replaceChildren();
+      if (status.kind === 'none') findSheetNeighbour(now);
+    }
+    const none = status.kind === 'none';
+    el.sheetNote.hidden = !none;
+    el.sheetNote.dataset.sheet = status.kind;
+    el.completedNone.hidden = !none;
+    if (!none) return;
+    const chosen = container.querySelector('input[name="export-sheet"]:checked')?.value;
+    el.sheetReason.textContent = `This design has no one-DOF sheet: its 6×6-cell patch as cut has ${status.rawDof} DOF (its boundary tiles flop) and no completion of it reaches one DOF, so the completed sheet is refused. `;
+    el.sheetChosen.textContent = chosen === 'raw'
+      ? 'The raw rectangle is chosen: it is written as it is, floppy boundary included. '
+      : 'Choose the raw rectangle to export it as it is (floppy boundary included). ';
+  }
+
+  /** The design of the same family with the largest one-DOF sheet, as a link (else the
+   * catalogue's list of designs with one). */
+  async function findSheetNeighbour(now) {
+    const asked = ++neighbourAsked;
+    let found = null;
+    try {
+      found = await findNeighbour(data, now.family, now.spec);
+    } catch {
+      found = null;
+    }
+    if (asked !== neighbourAsked) return;
+    const all = h('a', { href: neighbourHref(null), testid: 'export-sheet-all' }, 'the designs that have one');
+    el.neighbour.replaceChildren(
+      found
+        ? h('span', {}, 'a design of the same family that has one: ', h('a', { href: designHref(found.spec), testid: 'export-sheet-neighbour', 'data-spec': found.spec }, h('code', {}, found.spec)), ` (keeps ${percentText(found.finite_covered)} %), or `, all)
+        : h('span', {}, `no design of ${now.family || 'its family'} in this catalogue has one; see `, all),
+      '.',
+    );
+  }
+
   function update() {
     if (!catalog) return;
+    adviseSheet(current());
     const f = form();
     const format = formatOf(catalog, el.format.value);
     el.description.textContent = format.description;
@@ -198,10 +257,28 @@ export function createExportPanel(container, { data, current, initial }) {
       h(
         'label',
         { class: 'radio' },
-        h('input', { type: 'radio', name: 'export-sheet', value, testid: `export-sheet-${value}`, checked: value === 'completed', onchange: update }),
+        h('input', {
+          type: 'radio', name: 'export-sheet', value, testid: `export-sheet-${value}`, checked: value === 'completed', 'aria-describedby': 'export-sheet-note',
+          onchange: () => {
+            sheetTouched = true;
+            update();
+          },
+        }),
         ' ',
         label,
       );
+    el.completedNone = h('span', { class: 'field-error', testid: 'export-sheet-completed-none', hidden: true }, ' — none for this design');
+    el.sheetReason = h('span');
+    el.sheetChosen = h('span');
+    el.neighbour = h('span', { testid: 'export-sheet-neighbours' });
+    el.sheetNote = h(
+      'p',
+      { id: 'export-sheet-note', class: 'sheet-advice', testid: 'export-sheet-note', role: 'status', hidden: true },
+      el.sheetReason,
+      el.sheetChosen,
+      'For a sheet that opens with one motion, try another region in the Finite sheet panel above, or cut ',
+      el.neighbour,
+    );
     el.groups = {};
     const groups = catalog.settings.map((g) => {
       const box = h('fieldset', { class: 'export-group', testid: `export-group-${g.name}` }, h('legend', {}, g.label), g.fields.map((f) => settingInput(g, f)));
@@ -230,8 +307,9 @@ export function createExportPanel(container, { data, current, initial }) {
         'fieldset',
         { class: 'export-sheet' },
         h('legend', {}, 'sheet'),
-        sheetRadio('completed', 'completed sheet (one DOF)'),
+        h('span', {}, sheetRadio('completed', 'completed sheet (one DOF)'), el.completedNone),
         sheetRadio('raw', 'raw rectangle'),
+        el.sheetNote,
         h(
           'p',
           { class: 'help' },

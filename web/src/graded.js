@@ -13,11 +13,16 @@
 // and goes with Delete (the keyboard's ways to add, move and remove them). The job
 // is the server's: the URL names it (?job=ID), so a reload or a copied link shows it again, running or
 // finished, with the form and command that started it (echoed by the server); a page opened while a job
-// runs shows that job. On a static site nothing runs: the page shows the command. Pure logic is in
-// graded-model.js.
+// runs shows that job. On a static site nothing runs: the page shows the command. Before Grade, the
+// design and region are checked for a one-DOF sheet (GET /api/sheet: the same library check the
+// job starts with); when there is none the page says so, why, and what to do instead (a larger
+// region, or a design of the same family that has one). Pure logic is in graded-model.js and
+// buildable.js.
 
 import { ApiError, openData } from './data.js';
 import { showNotice, clearNotice, debounce } from './dom.js';
+import { designHref } from './url.js';
+import { familyOfSpec, findNeighbour, neighbourHref, percentText, refusalReason, sheetCheckQuery } from './buildable.js';
 import {
   DEFAULTS, EXPORTS, aspectProblem, bounds, cliCommand, cornersText, edgeProblem, emptyForm, errorColour, exportCommand, exportParams,
   fieldProblem, fieldRows, formFromJob, gradedBody, hullArea, iterationsProblem, outlineAtArea, outlineText, parseCorners, playerStates,
@@ -47,6 +52,7 @@ let extra = { states: '', t: '' }; // a restored job's states and t (the page ha
 let restorePending = false; // the attached job's first view fills the form
 let live = null; // { frame, target, count, done }
 let player = null; // { result, states, all, frame, playing, timer }
+let sheetAsk = null; // the one-DOF sheet check in flight (AbortController)
 
 /** An SVG element. */
 function s(tag, attrs = {}) {
@@ -110,6 +116,82 @@ function check() {
   $('command').textContent = cliCommand(f);
   return !region && !iterations && !outline;
 }
+
+/** An element with children (graded.js builds few: no dom.js `h` here). */
+function el(tag, attrs = {}, ...children) {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
+  e.append(...children.filter((c) => c !== null && c !== undefined));
+  return e;
+}
+
+/** Whether the design and region have a one-DOF sheet, asked of GET /api/sheet as the form
+ * changes: when not, the line under the design says so before Grade, with the library's reason
+ * and what to do (a larger region; a design of the same family with a sheet; the catalogue's
+ * list of designs with one). `data-sheet` on the line: checking, ok, none or unknown. */
+async function checkSheet() {
+  const box = $('design-sheet');
+  sheetAsk?.abort();
+  sheetAsk = null;
+  const f = form();
+  const query = data?.live ? sheetCheckQuery(f, (x) => regionProblem(x, settings.limits ?? {})) : null;
+  if (!query) {
+    box.hidden = true;
+    box.dataset.sheet = 'unknown';
+    return;
+  }
+  const controller = new AbortController();
+  sheetAsk = controller;
+  box.dataset.sheet = 'checking';
+  let answer = null;
+  try {
+    answer = await getJson(`./api/sheet?${query}`, { signal: controller.signal });
+  } catch {
+    answer = null;
+  }
+  if (sheetAsk !== controller || controller.signal.aborted) return;
+  if (!answer || !answer.refused) {
+    box.hidden = true;
+    box.dataset.sheet = answer ? 'ok' : 'unknown';
+    return;
+  }
+  const design = f.design.trim();
+  const region = `${Number(f.rows)}×${Number(f.cols)}`;
+  const neighbours = el('span', { 'data-testid': 'design-sheet-neighbours' });
+  box.replaceChildren(
+    el('strong', {}, `No one-DOF sheet in this ${region} region, so Grade would fail: `),
+    `${refusalReason(answer.refused)}. Grading starts from the design’s own finite sheet completed to one degree of freedom. `,
+    // An isostatic cell (the library says every finite sheet flops) has none in any region.
+    /every finite sheet flops/.test(answer.refused)
+      ? 'No region of this design has one: grade a design that has one: '
+      : 'Try a larger region, or grade a design that has one: ',
+    neighbours,
+  );
+  box.hidden = false;
+  box.dataset.sheet = 'none';
+  const all = el('a', { href: neighbourHref(null), 'data-testid': 'design-sheet-all' }, 'the catalogue’s designs with a one-DOF sheet');
+  let found = null;
+  try {
+    found = await findNeighbour(data, familyOfSpec(design), design);
+  } catch {
+    found = null;
+  }
+  if (sheetAsk !== controller) return;
+  if (found) {
+    const use = el('button', { type: 'button', 'data-testid': 'design-sheet-neighbour', 'data-spec': found.spec }, `grade ${found.spec} instead`);
+    use.addEventListener('click', () => {
+      $('design').value = found.spec;
+      check();
+      checkSheet();
+    });
+    neighbours.replaceChildren(
+      'the same family’s ', el('a', { href: designHref(found.spec) }, el('code', {}, found.spec)),
+      ` (its 6×6 sheet keeps ${percentText(found.finite_covered)} %) `, use, ', or ', all, '.',
+    );
+  } else neighbours.replaceChildren(all, '.');
+}
+
+const checkSheetSoon = debounce(checkSheet, 300);
 
 /** The outline's problem: the ellipse's ratio, or a drawn polygon's (the server's message
  * when it answered for these points, else the same rule checked here). */
@@ -342,6 +424,7 @@ async function main() {
     }
     check();
     drawPad();
+    if (['design', 'rows', 'cols'].includes(e.target.id)) checkSheetSoon();
   });
   $('graded-form').addEventListener('change', (e) => {
     if (e.target.name === 'outline') pointsChanged();
@@ -386,6 +469,7 @@ async function main() {
     $('run-note').textContent = 'The optimiser needs `isogami serve`: run the command below instead, or open this page from `isogami serve`.';
     return;
   }
+  checkSheet();
   // The job the URL names, else one running: shown with the form that started it.
   const named = new URLSearchParams(window.location.search).get('job');
   if (named !== null) attach(named, { restore: true });
@@ -407,6 +491,7 @@ function restoreForm(request) {
     svgError = '';
   }
   pointsChanged();
+  checkSheetSoon();
   if (f.outline === 'svg') $('outline-status').textContent = `${f.svg.name}: choose the file again to grade it again`;
 }
 

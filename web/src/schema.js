@@ -13,19 +13,40 @@ export const FACETS = [
   { name: 'origin', param: 'origin', label: 'Origin' },
 ];
 
-/** Numeric columns: range filters, sort keys and scatter axes. */
-export const MEASURES = [
-  { name: 'max_expansion', label: 'max expansion', short: 'max ε' },
-  { name: 'min_expansion', label: 'min expansion', short: 'min ε' },
-  { name: 'max_area_ratio', label: 'max area ratio', short: 'area' },
-  { name: 'max_tile_rotation', label: 'max tile rotation (rad)', short: 'rot' },
-  { name: 'poisson_min', label: 'Poisson-like ratio min', short: 'ν min' },
-  { name: 'poisson_max', label: 'Poisson-like ratio max', short: 'ν max' },
-  { name: 'steps', label: 'steps', short: 'steps' },
-  { name: 'tile_count', label: 'tiles in cell', short: 'tiles' },
-  { name: 'kerf', label: 'kerf (× edge length)', short: 'kerf' },
-  ...[0, 1, 2, 3, 4, 5].map((k) => ({ name: `v${k}`, label: `shape parameter v${k}`, short: `v${k}` })),
-];
+/** Labels of the measures this page knows by name; a measure the server adds later gets its
+ * name as label and its dictionary meaning as help (setMeasures). */
+const KNOWN = {
+  max_expansion: { label: 'max expansion', short: 'max ε' },
+  min_expansion: { label: 'min expansion', short: 'min ε' },
+  max_area_ratio: { label: 'max area ratio', short: 'area' },
+  max_tile_rotation: { label: 'max tile rotation (rad)', short: 'rot' },
+  poisson_min: { label: 'Poisson-like ratio min', short: 'ν min' },
+  poisson_max: { label: 'Poisson-like ratio max', short: 'ν max' },
+  steps: { label: 'steps', short: 'steps' },
+  tile_count: { label: 'tiles in cell', short: 'tiles' },
+  kerf: { label: 'kerf (× edge length)', short: 'kerf' },
+  finite_raw_dof: { label: 'raw 6×6 sheet DOF', short: 'raw DOF' },
+  finite_covered: { label: 'one-DOF sheet: fraction kept', short: 'one-DOF sheet' },
+  ...Object.fromEntries([0, 1, 2, 3, 4, 5].map((k) => [`v${k}`, { label: `shape parameter v${k}`, short: `v${k}` }])),
+};
+
+/** A measure of the list GET /api/measures (or a static site's `measures`) as the pages use it:
+ * `{name, label, short, help, unit}`. */
+export function measureEntry(doc) {
+  const known = KNOWN[doc.name];
+  return {
+    name: doc.name,
+    label: known?.label ?? doc.name.replace(/_/g, ' '),
+    short: known?.short ?? doc.name.replace(/_/g, ' '),
+    help: doc.meaning ?? '',
+    unit: doc.unit ?? '',
+  };
+}
+
+/** Numeric columns: range filters, sort keys, scatter axes and table columns. The list is the
+ * server's (setMeasures, from GET /api/measures or a static site's data/site.json); until then,
+ * and where neither has one, the measures this page knows. */
+export const MEASURES = Object.keys(KNOWN).map((name) => measureEntry({ name }));
 
 /** The measures offered as scatter axes and in the main range filters. */
 export const MAIN_MEASURES = MEASURES.slice(0, 7).map((m) => m.name);
@@ -37,9 +58,28 @@ export const TEXT_SORT_KEYS = ['spec', 'family', 'cell', 'behaviour', 'linkage_s
 
 export const SORT_KEYS = new Set([...TEXT_SORT_KEYS, ...MEASURE_NAMES]);
 
+/** Replaces the measures (in place: every importer sees the new list) with the server's list
+ * `docs` ([{name, type, unit, meaning}]); an empty or missing list keeps the current one.
+ * Call it before reading a URL, so that a range on a measure the server added is kept. */
+export function setMeasures(docs) {
+  if (!Array.isArray(docs) || !docs.length) return;
+  const entries = docs.filter((d) => d && typeof d.name === 'string').map(measureEntry);
+  if (!entries.length) return;
+  MEASURES.splice(0, MEASURES.length, ...entries);
+  MEASURE_NAMES.clear();
+  for (const m of entries) MEASURE_NAMES.add(m.name);
+  SORT_KEYS.clear();
+  for (const k of [...TEXT_SORT_KEYS, ...MEASURE_NAMES]) SORT_KEYS.add(k);
+}
+
 export function measureLabel(name) {
   const m = MEASURES.find((x) => x.name === name);
   return m ? m.label : name;
+}
+
+/** The dictionary's meaning of a measure ('' when none is known). */
+export function measureHelp(name) {
+  return MEASURES.find((x) => x.name === name)?.help ?? '';
 }
 
 /** The value of measure `name` of a DesignSummary row, or null when the row lacks it. */

@@ -1,6 +1,31 @@
 // The catalogue table's pure layout helpers, no DOM: where to scroll a table sideways so the
 // sorted column is in view beside the sticky spec column without any column left half under
-// it, and where a spec may break across lines (after its commas and colons).
+// it, where a spec may break across lines (after its commas and colons), and the table's
+// columns (the text columns, then every measure of the server's list but the shape parameters).
+
+/** The text columns before the measures, as [key, heading]. */
+const LEADING = [
+  ['spec', 'spec'], ['family', 'family'], ['cell', 'cell'], ['tile_count', 'tiles'],
+  ['behaviour', 'behaviour'], ['linkage_signature', 'linkages'], ['end_reason', 'end'],
+];
+
+/** Headings of measures shorter than their labels. */
+const HEADINGS = {
+  max_expansion: 'max ε', min_expansion: 'min ε', max_area_ratio: 'area ratio', max_tile_rotation: 'max rotation',
+  poisson_min: 'ν min', poisson_max: 'ν max', finite_raw_dof: 'raw DOF', finite_covered: 'one-DOF sheet',
+};
+
+/** The catalogue table's columns as [key, heading]: the text columns, every measure of
+ * `measures` (schema.js's MEASURES: {name, short}) in its order except the shape parameters
+ * v0…v5 and the tile count (a text column already), then the origin. A measure the server adds
+ * becomes a column. */
+export function tableColumns(measures) {
+  const shown = new Set(LEADING.map(([k]) => k));
+  const middle = measures
+    .filter((m) => !/^v\d+$/.test(m.name) && !shown.has(m.name))
+    .map((m) => [m.name, HEADINGS[m.name] ?? m.short ?? m.name]);
+  return [...LEADING, ...middle, ['origin', 'origin']];
+}
 
 /**
  * The scroll position (px) that shows column `i` whole beside a sticky first column, with
