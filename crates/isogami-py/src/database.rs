@@ -89,6 +89,20 @@ pub struct PyRecord {
     /// has none, and for user designs).
     #[pyo3(get)]
     finite_covered: Option<f64>,
+    /// t of the most open state (largest area ratio) along the path (None for user designs).
+    #[pyo3(get)]
+    open_t: Option<f64>,
+    /// Area ratio where the path ends (None for user designs).
+    #[pyo3(get)]
+    end_area_ratio: Option<f64>,
+    /// Shape tolerance: vertex displacement relative to the mean edge length under which the
+    /// design keeps 95 % of its largest area ratio; 0 for a special design (None: no shape
+    /// parameters, or a user design).
+    #[pyo3(get)]
+    shape_tolerance: Option<f64>,
+    /// Largest area ratio kept at the fabrication tolerance (±0.0025 L), as a fraction.
+    #[pyo3(get)]
+    fabrication_kept: Option<f64>,
 }
 
 impl PyRecord {
@@ -117,6 +131,10 @@ impl PyRecord {
             steps: s.steps,
             finite_raw_dof: s.finite_raw_dof,
             finite_covered: s.finite_covered,
+            open_t: s.open_t,
+            end_area_ratio: s.end_area_ratio,
+            shape_tolerance: s.shape_tolerance,
+            fabrication_kept: s.fabrication_kept,
             inner: s,
         }
     }
@@ -586,6 +604,10 @@ const COLUMNS: &[&str] = &[
     "steps",
     "finite_raw_dof",
     "finite_covered",
+    "open_t",
+    "end_area_ratio",
+    "shape_tolerance",
+    "fabrication_kept",
 ];
 
 /// Opens a design database for reading (see ``Database``).

@@ -54,20 +54,15 @@ fn patch_size(obj: &Bound<'_, PyAny>) -> PyResult<(usize, usize)> {
     }
 }
 
-/// The state: a number t in [0, 1] or "open".
+/// The state: a number t in [0, 1], "open" (the most open state) or "limit" (where the path
+/// ends).
 pub(crate) fn state_of(obj: &Bound<'_, PyAny>) -> PyResult<State> {
     if let Ok(text) = obj.extract::<String>() {
-        return match text.trim() {
-            "open" => Ok(State::Open),
-            other => Err(errors::ExportError::new_err(format!(
-                "t '{}': expected a number in [0, 1] or 'open'",
-                other.escape_debug()
-            ))),
-        };
+        return text.parse().map_err(errors::ExportError::new_err);
     }
     obj.extract::<f64>().map(State::T).map_err(|_| {
         PyTypeError::new_err(format!(
-            "t must be a number in [0, 1] or 'open', got {}",
+            "t must be a number in [0, 1], 'open' or 'limit', got {}",
             type_name(obj)
         ))
     })
@@ -302,8 +297,8 @@ pub(crate) fn files_to_python(py: Python<'_>, files: ExportFiles) -> PyResult<Bo
 /// ``region``, read as ``finite_sheet`` reads it (``"RxC"`` cells, or in mm at ``edge_mm``
 /// ``"rect:W,H"``, ``"disc:R"``, ``"polygon:x,y;x,y;…"`` centred on cell [0, 0]); the scale is
 /// ``edge_mm`` (mean tile edge, default 20 mm) or ``width_mm`` (patch width at the state);
-/// ``t`` is the state (a number in [0, 1], the nearest accepted state; 0 closed) or ``"open"``
-/// (largest area ratio); ``kerf`` is the deployment's cut width relative to the mean edge
+/// ``t`` is the state (a number in [0, 1], the nearest accepted state; 0 closed), ``"open"``
+/// (the most open state, largest area ratio) or ``"limit"`` (where the path ends); ``kerf`` is the deployment's cut width relative to the mean edge
 /// (default 0.01); ``frames`` the states animated formats keep (2..100, default 11);
 /// ``complete`` (default ``True``) writes the rectangle's one-DOF completion (``FiniteError``
 /// when there is none), ``complete=False`` the rectangle as it is (the CLI's ``--raw``).

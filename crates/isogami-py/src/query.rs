@@ -40,7 +40,8 @@ pub const KEYS: &[(&str, Option<Facet>)] = &[
 /// - ``range``: bounds on measures, a dict ``{"max_area_ratio": (1.5, None)}`` or a list
 ///   of ``(measure, min, max)`` or ``"measure:min:max"`` (None or empty: open). Measures:
 ///   max_expansion, min_expansion, max_area_ratio, max_tile_rotation, poisson_min,
-///   poisson_max, steps, tile_count, kerf, finite_raw_dof, finite_covered, v0…v5;
+///   poisson_max, steps, tile_count, kerf, finite_raw_dof, finite_covered, open_t,
+///   end_area_ratio, shape_tolerance, fabrication_kept, v0…v5;
 /// - ``sort``: a measure or ``spec``, ``family``, ``cell``, ``behaviour``,
 ///   ``linkage_signature``, ``end_reason``, ``origin``; ``"-key"`` for descending;
 /// - ``limit`` (None: every matching design) and ``offset``.

@@ -56,6 +56,10 @@ pub const DICTIONARY: &[FieldDoc] = &[
     doc("steps", "integer", "", "Accepted deployment states, the closed one included"),
     doc("finite_raw_dof", "integer|null", "", "Degrees of freedom of the raw 6×6-cell patch as cut (free boundary, at the opened state t = 0.3; 1 = it opens with the design's one motion); null for user designs"),
     doc("finite_covered", "number|null", "1", "Fraction of the 6×6-cell patch's area kept by its completion to a one-DOF sheet (0.5 to 1); null when no such sheet exists (e.g. isostatic cells) or for user designs"),
+    doc("open_t", "number|null", "1", "t of the most open state (largest area ratio) along the path, 0 closed to 1 where the path ends; export's `--t open` writes it; null for user designs"),
+    doc("end_area_ratio", "number|null", "1", "Area ratio where the path ends (the contact limit, export's `--t limit`); below max_area_ratio when the sheet closes again past its most open state; null for user designs"),
+    doc("shape_tolerance", "number|null", "L", "Largest vertex displacement, relative to the mean edge length L, under which shapes moved both ways along a fixed direction of the shape parameters keep 95 % of the largest area ratio (levels 1e-6 to 2.5e-2; 0.0025 = ±0.05 mm at 20 mm edges); 0 for a special design, which opens only at its exact shape; null when the family has no shape parameters, or for user designs"),
+    doc("fabrication_kept", "number|null", "1", "Largest area ratio of the shapes moved by the fabrication tolerance (±0.0025 L, ±0.05 mm at 20 mm edges), as a fraction of the design's (the smaller of the two moves; above 1 when both open further); null like shape_tolerance"),
 ];
 
 #[cfg(test)]
@@ -92,6 +96,10 @@ mod tests {
             steps: 100,
             finite_raw_dof: Some(3),
             finite_covered: None,
+            open_t: Some(0.5),
+            end_area_ratio: Some(1.0),
+            shape_tolerance: Some(0.0),
+            fabrication_kept: Some(0.3),
         };
         let json = serde_json::to_value(&summary).unwrap();
         let object = json.as_object().unwrap();

@@ -49,6 +49,13 @@ pub enum StoreError {
          with `isogami db migrate --db <this file> --into <new file>`"
     )]
     NoFiniteColumns,
+    /// A database of schema version 4, made before the catalogue stored each design's margins
+    /// (shape tolerance and most open state, issue 40).
+    #[error(
+        "made before the catalogue stored shape tolerances and most open states (schema version \
+         4): upgrade it with `isogami db migrate --db <this file> --into <new file>`"
+    )]
+    NoMarginColumns,
     /// The file is damaged: SQLite's integrity check failed, a row fails its checksum, or a
     /// stored value cannot be read.
     #[error("damaged database ({0}); restore it from a copy or re-run explore into a new file")]

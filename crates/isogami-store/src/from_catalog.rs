@@ -6,7 +6,7 @@ use crate::records::{
     DesignRecord, DesignSummary, Origin, StageCount, UnitRecords, WorkUnitRecord,
 };
 use crate::schema::PARAM_SLOTS;
-use isogami::catalog::{CatalogEntry, FiniteFigures, UnitOutcome};
+use isogami::catalog::{CatalogEntry, FiniteFigures, Margins, UnitOutcome};
 use isogami::deploy::DeploymentReport;
 use isogami::linkage::LinkageAnalysis;
 use isogami::topology::Design;
@@ -106,6 +106,10 @@ impl DesignRecord {
             steps: report.steps as u64,
             finite_raw_dof: None,
             finite_covered: None,
+            open_t: None,
+            end_area_ratio: None,
+            shape_tolerance: None,
+            fabrication_kept: None,
         };
         check_finite(&summary)?;
         report
@@ -141,7 +145,33 @@ impl DesignRecord {
             &entry.report,
             Some(&entry.linkages),
         )?
-        .with_finite(entry.finite.as_ref())
+        .with_finite(entry.finite.as_ref())?
+        .with_margins(entry.margins.as_ref())
+    }
+
+    /// The record with its design's margins ([`isogami::catalog::Margins`], e.g. from
+    /// `isogami::catalog::margins`), or without (None); refused when one is not a finite
+    /// number in its range.
+    pub fn with_margins(mut self, margins: Option<&Margins>) -> StoreResult<DesignRecord> {
+        let s = &mut self.summary;
+        s.open_t = margins.map(|m| m.open_t);
+        s.end_area_ratio = margins.map(|m| m.end_area_ratio);
+        s.shape_tolerance = margins.and_then(|m| m.shape_tolerance);
+        s.fabrication_kept = margins.and_then(|m| m.fabrication_kept);
+        let checks = [
+            ("open_t", s.open_t, 0.0, 1.0),
+            ("end_area_ratio", s.end_area_ratio, 0.0, f64::MAX),
+            ("shape_tolerance", s.shape_tolerance, 0.0, 1.0),
+            ("fabrication_kept", s.fabrication_kept, 0.0, f64::MAX),
+        ];
+        for (name, value, low, high) in checks {
+            if let Some(x) = value {
+                if !(x.is_finite() && (low..=high).contains(&x)) {
+                    return Err(invalid(&s.spec, format!("{name} is {x}")));
+                }
+            }
+        }
+        Ok(self)
     }
 
     /// The record with the figures of its design's finite 6×6 patch

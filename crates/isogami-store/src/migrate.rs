@@ -1,6 +1,6 @@
-//! `isogami db migrate`: a database of schema version 2 or 3 carried into a new file of this
-//! version. A version-3 file lacks only the finite-sheet columns: it is copied and they are
-//! filled (`migrate_finite.rs`). A version-2 file:
+//! `isogami db migrate`: a database of schema version 2, 3 or 4 carried into a new file of
+//! this version. A version-3 or version-4 file lacks only columns (the finite-sheet ones, the
+//! margins): it is copied and they are filled (`migrate_columns.rs`). A version-2 file:
 //!
 //! Version 2 files name joints by the edge labels of isogami before issue 21, which depended
 //! on the exact shape, and summarise deployments over their stored frames only; read with
@@ -18,11 +18,12 @@
 use crate::error::{StoreError, StoreResult};
 use crate::exploration::{explore_into, ExploreEvent, ExploreOutcome, ExploreRequest};
 use crate::file::{inspect, FileState};
-use crate::migrate_finite::{fill_finite_columns, FiniteFill};
+use crate::migrate_columns::{fill_columns, ColumnFill};
 use crate::open::{integrity, reader_connection, Check, StoreWriter};
 use crate::records::{DesignRecord, Origin};
 use crate::schema::{
-    APPLICATION_ID, BEFORE_FINITE_COLUMNS, LABELS_BEFORE_ISSUE_21, SCHEMA_VERSION,
+    APPLICATION_ID, BEFORE_FINITE_COLUMNS, BEFORE_MARGIN_COLUMNS, LABELS_BEFORE_ISSUE_21,
+    SCHEMA_VERSION,
 };
 use isogami::api::{deploy, linkages, DeployRequest, FrameSelection};
 use isogami::catalog::CatalogSettings;
@@ -39,12 +40,12 @@ use std::sync::atomic::AtomicBool;
 /// What a migration did.
 #[derive(Debug, Clone, Serialize)]
 pub struct MigrateOutcome {
-    /// The old file's schema version (2 or 3).
+    /// The old file's schema version (2, 3 or 4).
     pub from_version: i64,
     /// The exploration of the new file (the old file's plan); version 2 only.
     pub explored: Option<ExploreOutcome>,
-    /// The finite-sheet columns added and filled; version 3 only.
-    pub finite: Option<FiniteFill>,
+    /// The columns added and filled; versions 3 and 4 only.
+    pub columns: Option<ColumnFill>,
     /// User designs in the old file.
     pub user_designs: usize,
     /// Of these, saved into the new file.
@@ -57,12 +58,12 @@ pub struct MigrateOutcome {
     pub user_failed: Vec<(String, String)>,
 }
 
-/// Migrates the version-2 or version-3 database at `from` into a new database at `into`
+/// Migrates the version-2, 3 or 4 database at `from` into a new database at `into`
 /// (which must not exist yet), with `jobs` worker threads for the exploration or the
-/// finite-sheet figures. `progress` and `cancel` are the exploration's ([`explore_into`]);
+/// figures of the columns a version-3 or 4 file lacks. `progress` and `cancel` are the exploration's ([`explore_into`]);
 /// a cancelled migration of a version-2 file leaves a resumable new file and no user design
-/// copied yet (run it again). A version-3 file is upgraded in one go
-/// ([`fill_finite_columns`]: nothing is left at `into` when it fails).
+/// copied yet (run it again). A version-3 or 4 file is upgraded in one go
+/// ([`fill_columns`]: nothing is left at `into` when it fails).
 pub fn migrate(
     from: &Path,
     into: &Path,
@@ -71,12 +72,12 @@ pub fn migrate(
     cancel: &AtomicBool,
 ) -> StoreResult<MigrateOutcome> {
     let old = OldFile::open(from)?;
-    if old.version == BEFORE_FINITE_COLUMNS {
-        let fill = fill_finite_columns(from, into, old.settings, jobs)?;
+    if matches!(old.version, BEFORE_FINITE_COLUMNS | BEFORE_MARGIN_COLUMNS) {
+        let fill = fill_columns(from, into, old.version, old.settings, jobs)?;
         return Ok(MigrateOutcome {
             from_version: old.version,
             explored: None,
-            finite: Some(fill),
+            columns: Some(fill),
             user_designs: 0,
             user_saved: 0,
             user_merged: 0,
@@ -112,7 +113,7 @@ pub fn migrate(
         user_relabelled: 0,
         user_failed: Vec::new(),
         explored: Some(explored),
-        finite: None,
+        columns: None,
     };
     if cancelled {
         return Ok(outcome);
@@ -198,10 +199,10 @@ impl OldFile {
         let version = match version {
             _ if app_id != APPLICATION_ID => {
                 return Err(StoreError::Damaged(
-                    "not an isogami database of schema version 2 or 3".into(),
+                    "not an isogami database of schema version 2, 3 or 4".into(),
                 ))
             }
-            Some(v @ (LABELS_BEFORE_ISSUE_21 | BEFORE_FINITE_COLUMNS)) => v,
+            Some(v @ (LABELS_BEFORE_ISSUE_21 | BEFORE_FINITE_COLUMNS | BEFORE_MARGIN_COLUMNS)) => v,
             Some(SCHEMA_VERSION) => {
                 return Err(StoreError::AlreadyCurrent {
                     version: SCHEMA_VERSION,
@@ -210,7 +211,7 @@ impl OldFile {
             Some(found) => {
                 return Err(StoreError::SchemaVersion {
                     found,
-                    expected: BEFORE_FINITE_COLUMNS,
+                    expected: BEFORE_MARGIN_COLUMNS,
                 })
             }
             None => {

@@ -18,8 +18,8 @@ use crate::file::{beside, inspect, uri, FileState};
 use crate::lock::WriterLock;
 use crate::rows::meta_values;
 use crate::schema::{
-    APPLICATION_ID, BEFORE_FINITE_COLUMNS, CREATE, FINITE_INDEXES, LABELS_BEFORE_ISSUE_21,
-    SCHEMA_VERSION, TABLES,
+    APPLICATION_ID, BEFORE_FINITE_COLUMNS, BEFORE_MARGIN_COLUMNS, CREATE, FINITE_INDEXES,
+    LABELS_BEFORE_ISSUE_21, MARGIN_INDEXES, SCHEMA_VERSION, TABLES,
 };
 use rusqlite::{params, Connection, OpenFlags, OptionalExtension};
 use std::path::Path;
@@ -164,6 +164,9 @@ fn identify(conn: &Connection) -> StoreResult<()> {
         if found == BEFORE_FINITE_COLUMNS {
             return Err(StoreError::NoFiniteColumns);
         }
+        if found == BEFORE_MARGIN_COLUMNS {
+            return Err(StoreError::NoMarginColumns);
+        }
         if found != SCHEMA_VERSION {
             return Err(StoreError::SchemaVersion {
                 found,
@@ -289,6 +292,7 @@ fn create_schema(conn: &mut Connection) -> StoreResult<()> {
     let tx = conn.transaction_with_behavior(rusqlite::TransactionBehavior::Immediate)?;
     tx.execute_batch(CREATE)?;
     tx.execute_batch(FINITE_INDEXES)?;
+    tx.execute_batch(MARGIN_INDEXES)?;
     tx.pragma_update(None, "application_id", APPLICATION_ID)?;
     put_meta(&tx, "schema_version", &SCHEMA_VERSION.to_string())?;
     tx.commit()?;

@@ -127,6 +127,26 @@ pub struct DesignSummary {
     /// `finite_raw_dof`, was not computed.
     #[serde(default)]
     pub finite_covered: Option<f64>,
+    /// t of the most open state (largest area ratio) of the path; 1 when the sheet is most
+    /// open where the path ends. Computed by the exploration (like the margins below); None
+    /// for user designs.
+    #[serde(default)]
+    pub open_t: Option<f64>,
+    /// Area ratio of the state where the path ends (the contact limit): below
+    /// `max_area_ratio` when the sheet closes again past its most open state.
+    #[serde(default)]
+    pub end_area_ratio: Option<f64>,
+    /// Shape tolerance: the largest vertex displacement (relative to the mean edge length,
+    /// from `isogami::catalog::TOLERANCE_LEVELS`) under which moved shapes keep 95 % of the
+    /// largest area ratio; 0 for a special design (it opens only at its exact shape); None
+    /// for a family without shape parameters, user designs and rows migrated without it.
+    #[serde(default)]
+    pub shape_tolerance: Option<f64>,
+    /// At the fabrication tolerance (`isogami::catalog::FABRICATION_TOLERANCE`, ±0.05 mm at
+    /// 20 mm edges): the smaller largest area ratio of the two moved shapes as a fraction of
+    /// the design's; None like `shape_tolerance`.
+    #[serde(default)]
+    pub fabrication_kept: Option<f64>,
 }
 
 /// One design as written: its summary and the JSON of its full results. Built from typed

@@ -16,10 +16,15 @@ use rusqlite::Row;
 pub(crate) const DESIGN_COLUMNS: &str = "spec, origin, work_unit, family, cell, cell_a, cell_b, \
     tile_count, joints, topology, param_count, p0, p1, p2, p3, p4, p5, behaviour, \
     linkage_signature, end_reason, method, dof, kerf, max_expansion, min_expansion, max_area_ratio, \
-    max_tile_rotation, poisson_min, poisson_max, steps, finite_raw_dof, finite_covered";
+    max_tile_rotation, poisson_min, poisson_max, steps, finite_raw_dof, finite_covered, open_t, \
+    end_area_ratio, shape_tolerance, fabrication_kept";
 
 /// Number of columns in [`DESIGN_COLUMNS`].
-pub(crate) const DESIGN_COLUMN_COUNT: usize = 32;
+pub(crate) const DESIGN_COLUMN_COUNT: usize = 36;
+
+/// The columns of a schema-4 `designs` row (the first [`DESIGN_COLUMNS`], without the
+/// margin ones), which its checksum covers: read by the migration.
+pub(crate) const DESIGN_COLUMN_COUNT_V4: usize = 32;
 
 /// The columns of a schema-3 `designs` row (the first [`DESIGN_COLUMNS`], without the
 /// finite-sheet ones), which its checksum covers: read by the migration.
@@ -70,6 +75,10 @@ pub(crate) fn design_values(s: &DesignSummary, work_unit: Option<&str>) -> Vec<V
         s.finite_raw_dof
             .map_or(Value::Null, |n| Value::Integer(i64::from(n))),
         opt_real(s.finite_covered),
+        opt_real(s.open_t),
+        opt_real(s.end_area_ratio),
+        opt_real(s.shape_tolerance),
+        opt_real(s.fabrication_kept),
     ]);
     debug_assert_eq!(v.len(), DESIGN_COLUMN_COUNT);
     v
@@ -243,6 +252,10 @@ pub(crate) fn design_from_values(
                 .map(|n| small(n, "finite raw dof"))
                 .transpose()?,
             finite_covered: r.opt_real()?,
+            open_t: r.opt_real()?,
+            end_area_ratio: r.opt_real()?,
+            shape_tolerance: r.opt_real()?,
+            fabrication_kept: r.opt_real()?,
         },
         work_unit,
     ))

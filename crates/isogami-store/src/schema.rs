@@ -1,4 +1,4 @@
-//! The schema, version 4: tables, indexes and the marks that identify an isogami file.
+//! The schema, version 5: tables, indexes and the marks that identify an isogami file.
 //!
 //! - `meta`: schema version, tool version and the settings of the run, each row with a
 //!   checksum; a shard database made by `explore --shard` also has the key `shard` (JSON: its
@@ -9,7 +9,8 @@
 //!   and its stage rows) and its per-stage counts.
 //! - `designs`: one row per design with every column a catalogue filters, sorts, facets or
 //!   plots by (since version 4 the finite 6×6 patch's raw DOF and completed covered
-//!   fraction), and a checksum over the row. Explored designs name their work unit; designs
+//!   fraction; since version 5 the margins: most open state, end of the path's area ratio,
+//!   shape tolerance and the opening kept at the fabrication tolerance), and a checksum over the row. Explored designs name their work unit; designs
 //!   saved by a user (live editing) have origin `user` and no work unit.
 //! - `design_data`: the full deployment report and linkage analysis as JSON, one row per
 //!   design, kept apart so that list queries scan a dense table; checksum over the spec and
@@ -38,7 +39,12 @@
 /// stored frames only; `isogami db migrate` carries such a file into the current version.
 /// Version 3 lacked the finite-sheet columns of `designs` (`finite_raw_dof`,
 /// `finite_covered`, issue 22); `isogami db migrate` copies such a file and computes them.
-pub const SCHEMA_VERSION: i64 = 4;
+/// Version 4 lacked the margin columns (`open_t`, `end_area_ratio`, `shape_tolerance`,
+/// `fabrication_kept`, issue 40); `isogami db migrate` copies such a file and computes them.
+pub const SCHEMA_VERSION: i64 = 5;
+
+/// The schema version without the margin columns.
+pub(crate) const BEFORE_MARGIN_COLUMNS: i64 = 4;
 
 /// The schema version without the finite-sheet columns.
 pub(crate) const BEFORE_FINITE_COLUMNS: i64 = 3;
@@ -143,6 +149,10 @@ CREATE TABLE designs (
     steps             INTEGER NOT NULL,
     finite_raw_dof    INTEGER,
     finite_covered    REAL,
+    open_t            REAL,
+    end_area_ratio    REAL,
+    shape_tolerance   REAL,
+    fabrication_kept  REAL,
     checksum          INTEGER NOT NULL,
     CHECK ((origin = 'explored') = (work_unit IS NOT NULL))
 );
@@ -181,4 +191,17 @@ CREATE INDEX designs_finite_raw_dof ON designs(finite_raw_dof);
 CREATE INDEX designs_finite_covered ON designs(finite_covered);
 CREATE INDEX designs_finite_raw_dof_nulls_last ON designs(finite_raw_dof IS NULL, finite_raw_dof);
 CREATE INDEX designs_finite_covered_nulls_last ON designs(finite_covered IS NULL, finite_covered);
+";
+
+/// The margin columns' indexes (schema version 5), made with [`CREATE`] and by the migration
+/// from version 4 or 3.
+pub(crate) const MARGIN_INDEXES: &str = "
+CREATE INDEX designs_open_t ON designs(open_t);
+CREATE INDEX designs_end_area_ratio ON designs(end_area_ratio);
+CREATE INDEX designs_shape_tolerance ON designs(shape_tolerance);
+CREATE INDEX designs_fabrication_kept ON designs(fabrication_kept);
+CREATE INDEX designs_open_t_nulls_last ON designs(open_t IS NULL, open_t);
+CREATE INDEX designs_end_area_ratio_nulls_last ON designs(end_area_ratio IS NULL, end_area_ratio);
+CREATE INDEX designs_shape_tolerance_nulls_last ON designs(shape_tolerance IS NULL, shape_tolerance);
+CREATE INDEX designs_fabrication_kept_nulls_last ON designs(fabrication_kept IS NULL, fabrication_kept);
 ";

@@ -4,6 +4,7 @@ use crate::error::StoreResult;
 use crate::open::Store;
 use crate::records::{StageCount, WorkUnitRecord};
 use crate::shard::ShardStatus;
+use isogami::catalog::FABRICATION_TOLERANCE;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -49,6 +50,24 @@ pub struct FiniteCounts {
     pub min_covered: Option<f64>,
 }
 
+/// The margins of a database's designs (`open_t`, `end_area_ratio`, `shape_tolerance`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MarginCounts {
+    /// Designs with the margins (explored designs).
+    pub measured: u64,
+    /// Of these, designs whose path ends at less than 95 % of their largest area ratio (the
+    /// sheet closes again past its most open state).
+    pub closing_again: u64,
+    /// Of these, designs of families without shape parameters (no tolerance to measure).
+    pub fixed_shape: u64,
+    /// Special designs: they lose their opening at the smallest shape move.
+    pub special: u64,
+    /// Designs that keep their opening at the fabrication tolerance (fixed shapes included).
+    pub tolerance_met: u64,
+    /// Buildable designs: the fabrication tolerance met and a one-DOF finite sheet.
+    pub buildable: u64,
+}
+
 /// Whole-database summary.
 #[derive(Debug, Clone, Serialize)]
 pub struct DbStats {
@@ -74,6 +93,8 @@ pub struct DbStats {
     pub families: BTreeMap<String, FamilyStats>,
     /// The designs' finite 6×6 patches.
     pub finite: FiniteCounts,
+    /// The designs' margins.
+    pub margins: MarginCounts,
     /// Distinct motions across cells and families (None when not computed yet).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub motions: Option<crate::MotionCounts>,
@@ -169,6 +190,28 @@ impl Store {
                 })
             },
         )?;
+        let margins = self.conn.query_row(
+            "SELECT count(open_t),
+                    count(CASE WHEN end_area_ratio < 0.95 * max_area_ratio THEN 1 END),
+                    count(CASE WHEN open_t IS NOT NULL AND shape_tolerance IS NULL THEN 1 END),
+                    count(CASE WHEN shape_tolerance = 0 THEN 1 END),
+                    count(CASE WHEN open_t IS NOT NULL
+                          AND (shape_tolerance IS NULL OR shape_tolerance >= ?1) THEN 1 END),
+                    count(CASE WHEN open_t IS NOT NULL AND finite_covered IS NOT NULL
+                          AND (shape_tolerance IS NULL OR shape_tolerance >= ?1) THEN 1 END)
+             FROM designs",
+            [FABRICATION_TOLERANCE],
+            |r| {
+                Ok(MarginCounts {
+                    measured: r.get::<_, i64>(0)? as u64,
+                    closing_again: r.get::<_, i64>(1)? as u64,
+                    fixed_shape: r.get::<_, i64>(2)? as u64,
+                    special: r.get::<_, i64>(3)? as u64,
+                    tolerance_met: r.get::<_, i64>(4)? as u64,
+                    buildable: r.get::<_, i64>(5)? as u64,
+                })
+            },
+        )?;
         let summaries = self.summaries_of(&units)?;
         let peak_memory = summaries
             .iter()
@@ -191,6 +234,7 @@ impl Store {
             stages,
             families,
             finite,
+            margins,
             peak_memory,
             slowest,
             motions: self.motion_counts()?,

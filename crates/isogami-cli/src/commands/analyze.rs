@@ -1,8 +1,13 @@
 //! `isogami analyze`.
 
 use crate::output::{emit, print_json, CliResult};
-use isogami::api::{analyze, resolve_design};
+use isogami::api::{analyze, resolve_design, Analysis};
+use isogami::catalog::{
+    margins_report, CatalogSettings, MarginsReport, FABRICATION_TOLERANCE, KEPT_FRACTION,
+    TOLERANCE_LEVELS,
+};
 use isogami::mobility::MobilitySettings;
+use serde::Serialize;
 
 /// Arguments of `analyze`.
 #[derive(Debug, clap::Args)]
@@ -17,6 +22,21 @@ pub struct Args {
     /// Print JSON.
     #[arg(long)]
     json: bool,
+    /// Edge length in mm at which the shape tolerance is also given in mm.
+    #[arg(long, default_value_t = 20.0, allow_hyphen_values = true)]
+    edge_mm: f64,
+    /// Skip the margins (shape tolerance, most open state), which deploy the design and
+    /// shapes moved off it; only the closed state's mobility is analysed then.
+    #[arg(long)]
+    no_margins: bool,
+}
+
+/// The JSON of `analyze`: the analysis and, for a one-DOF design, its margins.
+#[derive(Serialize)]
+struct Analyzed<'a> {
+    #[serde(flatten)]
+    analysis: &'a Analysis,
+    margins: Option<MarginsReport>,
 }
 
 /// Runs the mobility analysis of one design.
@@ -25,8 +45,29 @@ pub fn run(args: Args) -> CliResult {
     let out =
         analyze(&design, MobilitySettings { rel_tol: args.tol }).map_err(|e| e.to_string())?;
     let mob = &out.mobility;
+    if !(args.edge_mm.is_finite() && args.edge_mm > 0.0) {
+        return Err(format!(
+            "--edge-mm {}: expected a length in mm above 0",
+            args.edge_mm
+        ));
+    }
+    let margins = if mob.dof == 1 && !args.no_margins {
+        let settings = CatalogSettings {
+            topology: isogami::explore::TopologyOptions {
+                mobility: MobilitySettings { rel_tol: args.tol },
+                ..Default::default()
+            },
+            ..CatalogSettings::default()
+        };
+        Some(margins_report(&design, &settings).map_err(|e| format!("margins: {e}"))?)
+    } else {
+        None
+    };
     if args.json {
-        return print_json(&out);
+        return print_json(&Analyzed {
+            analysis: &out,
+            margins,
+        });
     }
     let mut o = String::new();
     outln!(o, "design      {}", out.design);
@@ -92,5 +133,80 @@ pub fn run(args: Args) -> CliResult {
             m.w[1]
         );
     }
+    if let Some(m) = &margins {
+        margin_lines(&mut o, m, args.edge_mm);
+    }
     emit(&o)
+}
+
+/// The margins in words: the shape tolerance (what a special design opens on and how far off
+/// it locks) and where the path is most open.
+fn margin_lines(o: &mut String, r: &MarginsReport, edge_mm: f64) {
+    let m = &r.margins;
+    let mm = |rel: f64| rel * edge_mm;
+    match m.shape_tolerance {
+        None => outln!(
+            o,
+            "shape       fixed by the family (no shape parameters): no tolerance to measure"
+        ),
+        Some(0.0) => {
+            outln!(
+                o,
+                "shape       SPECIAL: opens only at its exact shape. Moved by {:.0e} L ({:.1e} mm at \
+                 {edge_mm} mm edges) it opens to x{:.4} of x{:.4} (below {:.0} %), and at ±{} L \
+                 (±{:.2} mm) to {:.1} % of its opening",
+                TOLERANCE_LEVELS[0],
+                mm(TOLERANCE_LEVELS[0]),
+                r.opening_off_shape.unwrap_or(1.0),
+                r.max_area_ratio,
+                100.0 * KEPT_FRACTION,
+                FABRICATION_TOLERANCE,
+                mm(FABRICATION_TOLERANCE),
+                100.0 * m.fabrication_kept.unwrap_or(0.0)
+            );
+            for n in &r.constraints {
+                let terms: Vec<String> = n
+                    .iter()
+                    .enumerate()
+                    .map(|(i, c)| format!("{c:+.4}·dv{i}"))
+                    .collect();
+                outln!(o, "  constraint {} = 0 (first order)", terms.join(" "));
+            }
+            outln!(
+                o,
+                "  keep the shape on it: isogami shape --design SPEC --set vK=X moves along it"
+            );
+        }
+        Some(t) => {
+            let verdict = if t >= FABRICATION_TOLERANCE {
+                "buildable"
+            } else {
+                "tighter than ±0.05 mm at 20 mm edges"
+            };
+            let params = r.params_per_displacement.map_or(String::new(), |p| {
+                format!(", {:.2e} in parameter units", p * t)
+            });
+            outln!(
+                o,
+                "shape       keeps {:.0} % of its opening under moves up to {t} L (±{:.3} mm at \
+                 {edge_mm} mm edges{params}): {verdict}; at ±{} L it keeps {:.1} %",
+                100.0 * KEPT_FRACTION,
+                mm(t),
+                FABRICATION_TOLERANCE,
+                100.0 * m.fabrication_kept.unwrap_or(1.0)
+            );
+        }
+    }
+    outln!(
+        o,
+        "open        most open at t = {:.3} (area x{:.4}); the path ends at t = 1 with x{:.4}{}",
+        m.open_t,
+        r.max_area_ratio,
+        m.end_area_ratio,
+        if m.end_area_ratio < KEPT_FRACTION * r.max_area_ratio {
+            " (it closes again: export with --t open, not --t limit)"
+        } else {
+            ""
+        }
+    );
 }

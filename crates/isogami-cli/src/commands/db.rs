@@ -420,6 +420,25 @@ pub fn stats_table(s: &DbStats) -> String {
             f.measured - f.completed
         );
     }
+    let m = &s.margins;
+    if m.measured > 0 {
+        let _ = writeln!(
+            o,
+            "margins: {} of {} designs measured; {} keep their opening at ±{} L (±{:.2} mm at 20 mm \
+             edges; {} of fixed shape), {} special (open only at their exact shape); {} \
+             buildable (that tolerance and a one-DOF sheet); {} close again to under 95 % of \
+             their largest area by the end of the path",
+            m.measured,
+            s.designs,
+            m.tolerance_met,
+            isogami::catalog::FABRICATION_TOLERANCE,
+            isogami::catalog::FABRICATION_TOLERANCE * 20.0,
+            m.fixed_shape,
+            m.special,
+            m.buildable,
+            m.closing_again,
+        );
+    }
     let _ = writeln!(o, "\nbehaviour classes:");
     for (k, v) in &s.by_behaviour {
         let _ = writeln!(o, "  {k:<32} {v}");
@@ -458,18 +477,26 @@ fn migrate(db: &Path, into: &Path, jobs: Option<usize>, json: bool) -> CliResult
         return print_json(&outcome);
     }
     let mut o = String::new();
-    if let Some(fill) = &outcome.finite {
+    if let Some(fill) = &outcome.columns {
+        let finite = if outcome.from_version < 4 {
+            format!(
+                "finite 6x6 figures and margins computed for {} explored designs ({} without a \
+                 one-DOF sheet",
+                fill.computed, fill.no_one_dof_sheet
+            )
+        } else {
+            format!("margins computed for {} explored designs (", fill.computed)
+        };
         let _ = writeln!(
             o,
-            "{}: schema {} upgraded to {}: {} designs, finite 6x6 figures computed for {} \
-             explored designs ({} without a one-DOF sheet), {} user designs left without, {} \
-             failed",
+            "{}: schema {} upgraded to {}: {} designs, {finite}{}{} special), {} user designs \
+             left without, {} failed",
             into.display(),
             outcome.from_version,
             isogami_store::SCHEMA_VERSION,
             fill.designs,
-            fill.computed,
-            fill.no_one_dof_sheet,
+            if outcome.from_version < 4 { ", " } else { "" },
+            fill.special,
             fill.user_designs,
             fill.failed.len()
         );

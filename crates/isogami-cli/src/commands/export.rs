@@ -64,9 +64,10 @@ pub struct Args {
     /// Width of the patch at the exported state in mm (instead of --edge-mm).
     #[arg(long, allow_hyphen_values = true)]
     width_mm: Option<f64>,
-    /// State: t in [0, 1] (the nearest accepted state; 0 closed) or `open` (largest area
-    /// ratio, at the contact limit). With --sheet: the opening in [0, 1] (the state of
-    /// nearest opening; 0 closed) or `open` (the optimised state).
+    /// State: t in [0, 1] (the nearest accepted state; 0 closed), `open` (the most open
+    /// state: largest area ratio, often mid-path) or `limit` (where the path ends, at the
+    /// contact limit). With --sheet: the opening in [0, 1] (the state of nearest opening; 0
+    /// closed) or `open`/`limit` (the optimised state).
     #[arg(long, default_value = "0", allow_hyphen_values = true)]
     t: String,
     /// Cut width relative to the mean edge length, for the deployment's contact model.
@@ -242,13 +243,7 @@ fn request(args: &Args) -> Result<PatchRequest, String> {
         (Some(e), None) => Scale::EdgeMm(e),
         (None, None) => Scale::EdgeMm(20.0),
     };
-    let state = match args.t.trim() {
-        "open" => State::Open,
-        t => State::T(
-            t.parse::<f64>()
-                .map_err(|_| format!("--t '{t}': expected a number in [0, 1] or 'open'"))?,
-        ),
-    };
+    let state: State = args.t.parse().map_err(|e| format!("--{e}"))?;
     let request = PatchRequest {
         rows,
         cols,

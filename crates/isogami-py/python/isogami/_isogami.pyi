@@ -440,7 +440,9 @@ class Deployment:
         self, t: Optional[float] = None, frame: Optional[int] = None, samples: int = 180
     ) -> FloatArray:
         """(samples, 2): theta, epsilon(theta) of one frame."""
-    def classify(self, relative: float = 1e-3, absolute: float = 1e-6) -> Optional[Behaviour]: ...
+    def classify(
+        self, isotropic: float = 0.05, orthotropic: float = 0.02, absolute: float = 1e-6
+    ) -> Optional[Behaviour]: ...
     def report(self) -> Dict[str, Any]:
         """As ``isogami deploy --json`` prints it."""
     def to_json(self) -> str: ...
@@ -642,6 +644,14 @@ class Record:
     def finite_raw_dof(self) -> Optional[int]: ...
     @property
     def finite_covered(self) -> Optional[float]: ...
+    @property
+    def open_t(self) -> Optional[float]: ...
+    @property
+    def end_area_ratio(self) -> Optional[float]: ...
+    @property
+    def shape_tolerance(self) -> Optional[float]: ...
+    @property
+    def fabrication_kept(self) -> Optional[float]: ...
     def design(self) -> Design: ...
     def to_dict(self) -> Dict[str, Any]: ...
 
@@ -693,7 +703,7 @@ def export(
     region: Optional[str] = None,
     edge_mm: Optional[float] = None,
     width_mm: Optional[float] = None,
-    t: Union[float, Literal["open"], None] = None,
+    t: Union[float, Literal["open", "limit"], None] = None,
     kerf: Optional[float] = None,
     frames: Optional[int] = None,
     complete: bool = True,
@@ -723,7 +733,7 @@ def export(
     region: Optional[str] = None,
     edge_mm: Optional[float] = None,
     width_mm: Optional[float] = None,
-    t: Union[float, Literal["open"], None] = None,
+    t: Union[float, Literal["open", "limit"], None] = None,
     kerf: Optional[float] = None,
     frames: Optional[int] = None,
     complete: bool = True,
@@ -753,7 +763,7 @@ def export(
     region: Optional[str] = None,
     edge_mm: Optional[float] = None,
     width_mm: Optional[float] = None,
-    t: Union[float, Literal["open"], None] = None,
+    t: Union[float, Literal["open", "limit"], None] = None,
     kerf: Optional[float] = None,
     frames: Optional[int] = None,
     complete: bool = True,
@@ -1045,7 +1055,7 @@ class GradedRun:
         *,
         edge_mm: Optional[float] = None,
         width_mm: Optional[float] = None,
-        t: Union[float, Literal["open"], None] = None,
+        t: Union[float, Literal["open", "limit"], None] = None,
         frames: Optional[int] = None,
         material: Optional[Literal["card", "felt", "pla"]] = None,
         hinge_mm: Optional[float] = None,
@@ -1070,7 +1080,7 @@ class GradedRun:
         *,
         edge_mm: Optional[float] = None,
         width_mm: Optional[float] = None,
-        t: Union[float, Literal["open"], None] = None,
+        t: Union[float, Literal["open", "limit"], None] = None,
         frames: Optional[int] = None,
         material: Optional[Literal["card", "felt", "pla"]] = None,
         hinge_mm: Optional[float] = None,
@@ -1095,7 +1105,7 @@ class GradedRun:
         *,
         edge_mm: Optional[float] = None,
         width_mm: Optional[float] = None,
-        t: Union[float, Literal["open"], None] = None,
+        t: Union[float, Literal["open", "limit"], None] = None,
         frames: Optional[int] = None,
         material: Optional[Literal["card", "felt", "pla"]] = None,
         hinge_mm: Optional[float] = None,

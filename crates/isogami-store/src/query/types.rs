@@ -39,6 +39,16 @@ pub enum Measure {
     /// Covered fraction of the completed 6×6-cell patch (missing when it has no one-DOF
     /// sheet, and for user designs).
     FiniteCovered,
+    /// t of the most open state (missing for user designs).
+    OpenT,
+    /// Area ratio where the path ends (missing for user designs).
+    EndAreaRatio,
+    /// Shape tolerance: vertex displacement relative to the mean edge length that keeps 95 %
+    /// of the opening (missing for families without shape parameters and user designs).
+    ShapeTolerance,
+    /// Fraction of the largest area ratio kept at the fabrication tolerance (missing like
+    /// the shape tolerance).
+    FabricationKept,
     /// Shape parameter v_k (0 ≤ k < 6; designs of families with fewer parameters have none).
     Param(u8),
 }
@@ -58,6 +68,10 @@ impl Measure {
             Measure::Kerf,
             Measure::FiniteRawDof,
             Measure::FiniteCovered,
+            Measure::OpenT,
+            Measure::EndAreaRatio,
+            Measure::ShapeTolerance,
+            Measure::FabricationKept,
         ]
         .into_iter()
         .chain((0..PARAM_SLOTS as u8).map(Measure::Param))
@@ -77,6 +91,10 @@ impl Measure {
             Measure::Kerf => "kerf",
             Measure::FiniteRawDof => "finite_raw_dof",
             Measure::FiniteCovered => "finite_covered",
+            Measure::OpenT => "open_t",
+            Measure::EndAreaRatio => "end_area_ratio",
+            Measure::ShapeTolerance => "shape_tolerance",
+            Measure::FabricationKept => "fabrication_kept",
             Measure::Param(k) => {
                 const SLOTS: [&str; PARAM_SLOTS] = ["p0", "p1", "p2", "p3", "p4", "p5"];
                 SLOTS
@@ -95,6 +113,10 @@ impl Measure {
                 | Measure::PoissonMax
                 | Measure::FiniteRawDof
                 | Measure::FiniteCovered
+                | Measure::OpenT
+                | Measure::EndAreaRatio
+                | Measure::ShapeTolerance
+                | Measure::FabricationKept
                 | Measure::Param(_)
         )
     }

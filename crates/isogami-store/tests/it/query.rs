@@ -69,6 +69,10 @@ fn measure(s: &DesignSummary, m: Measure) -> Option<f64> {
         Measure::Kerf => Some(s.kerf),
         Measure::FiniteRawDof => s.finite_raw_dof.map(f64::from),
         Measure::FiniteCovered => s.finite_covered,
+        Measure::OpenT => s.open_t,
+        Measure::EndAreaRatio => s.end_area_ratio,
+        Measure::ShapeTolerance => s.shape_tolerance,
+        Measure::FabricationKept => s.fabrication_kept,
         Measure::Param(k) => s.params.get(usize::from(k)).copied(),
     }
 }

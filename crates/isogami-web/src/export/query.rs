@@ -83,18 +83,12 @@ fn scale_of(values: &Values<'_>, default: Scale) -> ApiResult<Scale> {
     )
 }
 
-/// `t`: a number or `open` (`default` when not given).
+/// `t`: a number, `open` or `limit` (`default` when not given).
 fn state_of(values: &Values<'_>, default: State) -> ApiResult<State> {
-    Ok(match values.get("t") {
-        None => default,
-        Some("open") => State::Open,
-        Some(text) => State::T(text.parse::<f64>().map_err(|_| {
-            ApiError::bad_parameter(format!(
-                "t {:?}: expected a number in [0, 1] or 'open'",
-                truncate(text)
-            ))
-        })?),
-    })
+    match values.get("t") {
+        None => Ok(default),
+        Some(text) => text.parse().map_err(ApiError::bad_parameter),
+    }
 }
 
 /// `frames` (`default` when not given).

@@ -447,7 +447,10 @@ async fn measures_are_exactly_what_ranges_and_sorts_take() {
         .map(|m| m["name"].as_str().unwrap())
         .collect();
     assert!(names.contains(&"finite_raw_dof") && names.contains(&"finite_covered"));
-    assert_eq!(&names[names.len() - 6..], ["v0", "v1", "v2", "v3", "v4", "v5"]);
+    assert_eq!(
+        &names[names.len() - 6..],
+        ["v0", "v1", "v2", "v3", "v4", "v5"]
+    );
     for m in measures.as_array().unwrap() {
         let name = m["name"].as_str().unwrap();
         assert!(!m["meaning"].as_str().unwrap().is_empty(), "{name}");
@@ -482,7 +485,11 @@ async fn measures_are_exactly_what_ranges_and_sorts_take() {
         let numeric = kind.split('|').any(|k| k == "number" || k == "integer");
         if numeric && !names.contains(&field) {
             let reply = get(&app, &format!("/api/designs?range={field}:0:")).await;
-            assert_eq!(reply.status.as_u16(), 400, "{field} is a measure the list lacks");
+            assert_eq!(
+                reply.status.as_u16(),
+                400,
+                "{field} is a measure the list lacks"
+            );
         }
     }
 }

@@ -2,6 +2,7 @@
 
 use super::assess::{admit, Admission};
 use super::finite::{figures_of_trajectory, FiniteFigures};
+use super::margins::{margins_of_trajectory, Margins};
 use super::part::{combine_parts, run_unit_part};
 use super::screen::{applies, closing_rates, screens_out};
 use super::settings::CatalogSettings;
@@ -47,6 +48,10 @@ pub struct CatalogEntry {
     /// database, read back).
     #[serde(default)]
     pub finite: Option<FiniteFigures>,
+    /// Its margins: shape tolerance and most open state. None only in entries made before the
+    /// catalogue had them (parts of split units waiting in a database, read back).
+    #[serde(default)]
+    pub margins: Option<Margins>,
 }
 
 /// Everything a work unit produced.
@@ -124,6 +129,12 @@ fn characterise(candidate: &Candidate, settings: &CatalogSettings) -> Result<Opt
     // The finite patch from the same trajectory: no second deployment.
     let cell = design.cell()?;
     let finite = figures_of_trajectory(design, &cell, &run.mechanism, &run.trajectory, settings)?;
+    let margins = margins_of_trajectory(
+        design,
+        &run.mechanism,
+        &run.trajectory,
+        &settings.deploy_request().settings,
+    )?;
     let linkages = api::linkages(design)?;
     Ok(Some(CatalogEntry {
         design: design.clone(),
@@ -131,6 +142,7 @@ fn characterise(candidate: &Candidate, settings: &CatalogSettings) -> Result<Opt
         report: run.report,
         linkages,
         finite: Some(finite),
+        margins: Some(margins),
     }))
 }
 

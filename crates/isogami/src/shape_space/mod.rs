@@ -27,6 +27,7 @@ mod range;
 mod rank_drop;
 mod search;
 
+pub(crate) use classify::halton_point;
 pub use classify::{classify, ShapeClass, ShapeMobility};
 pub use error::ShapeError;
 pub use follow::{follow, Followed};

@@ -23,6 +23,7 @@ mod inverse;
 mod laser_export;
 mod lattice_contact;
 mod linkage;
+mod margins;
 #[cfg(feature = "render")] // plots with plotters
 mod measures_render;
 mod mobility;

@@ -144,7 +144,7 @@ pub fn graded_patch(
                     .total_cmp(&(all[b].opening - t).abs())
             })
             .expect("a sheet has states"),
-        State::Open => all.len() - 1,
+        State::Open | State::Limit => all.len() - 1,
     };
     let at_state = placed(sheet, &all[chosen].poses);
     let closed = placed(sheet, &all[0].poses);

@@ -274,13 +274,14 @@ fn choose_frame(frames: &[FrameReport], state: State) -> usize {
     let key = |k: usize| match state {
         State::T(t) => -(frames[k].t - t).abs(),
         State::Open => frames[k].measures.area_ratio,
+        State::Limit => frames[k].t,
     };
     // The first of equally near states for t, the last of equally open ones.
     let mut best = 0;
     for k in 1..frames.len() {
         let better = match state {
             State::T(_) => key(k) > key(best),
-            State::Open => key(k) >= key(best),
+            State::Open | State::Limit => key(k) >= key(best),
         };
         if better {
             best = k;

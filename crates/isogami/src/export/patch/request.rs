@@ -36,9 +36,30 @@ pub enum State {
     /// The accepted state with t nearest this value, in [0, 1] (0 closed, 1 the contact
     /// limit).
     T(Real),
-    /// The state of largest area ratio: the sheet open as far as contact lets it (the last
-    /// such state on a tie).
+    /// The most open state: the accepted state of largest area ratio (the last such state on
+    /// a tie). Many designs reach it mid-path and close again before contact ends the path.
     Open,
+    /// The state where the path ends (the contact limit, or wherever the deployment stopped).
+    Limit,
+}
+
+impl std::str::FromStr for State {
+    type Err = String;
+
+    /// `open`, `limit` or a number t in [0, 1] (checked with the rest of the request).
+    fn from_str(text: &str) -> Result<State, String> {
+        match text.trim() {
+            "open" => Ok(State::Open),
+            "limit" => Ok(State::Limit),
+            t => t.parse::<Real>().map(State::T).map_err(|_| {
+                format!(
+                    "t '{}': expected a number in [0, 1], 'open' (the most open state) or \
+                     'limit' (where the path ends)",
+                    t.chars().take(60).collect::<String>().escape_debug()
+                )
+            }),
+        }
+    }
 }
 
 /// What patch to make.
