@@ -351,13 +351,21 @@ impl PyDeployment {
         )
     }
 
-    /// The behaviour class of this trajectory under other tolerances than the report's
-    /// (relative 1e-3, absolute 1e-6): see the library's measure::classify for the rule.
-    #[pyo3(signature = (relative=1e-3, absolute=1e-6))]
-    fn classify(&self, relative: f64, absolute: f64) -> PyResult<Option<String>> {
+    /// The behaviour class of this trajectory's frames under other thresholds than the
+    /// report's (isotropic 0.05, orthotropic 0.02, absolute 1e-6; the first two in units of
+    /// the largest expansion): see the library's measure::classify for the rule.
+    #[pyo3(signature = (isotropic=0.05, orthotropic=0.02, absolute=1e-6))]
+    fn classify(
+        &self,
+        isotropic: f64,
+        orthotropic: f64,
+        absolute: f64,
+    ) -> PyResult<Option<String>> {
         let tol = ClassifyTolerances {
-            relative: crate::convert::finite("relative", relative)?,
+            isotropic: crate::convert::finite("isotropic", isotropic)?,
+            orthotropic: crate::convert::finite("orthotropic", orthotropic)?,
             absolute: crate::convert::finite("absolute", absolute)?,
+            ..ClassifyTolerances::default()
         };
         Ok(classify_with(&self.measures(), tol).map(|b| b.to_string()))
     }

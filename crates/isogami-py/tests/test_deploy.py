@@ -134,12 +134,14 @@ def test_profile_and_frame_selection():
 def test_classify_with_other_tolerances():
     run = isogami.deploy(isogami.COMPARISON_DESIGNS[0])
     assert run.classify() == run.behaviour == "orthotropic_positive_poisson"
-    # Tolerances wide enough to call every frame isotropic and never shrinking.
-    assert run.classify(relative=0.0, absolute=10.0) is None or run.classify(relative=0.0, absolute=10.0) != run.behaviour
+    # Thresholds wide enough to call its contraction negligible; a floor above its expansion.
+    assert run.classify(orthotropic=10.0) == "anisotropic_auxetic"
+    assert run.classify(absolute=10.0) is None
     squares = isogami.deploy("rotating-squares")
     assert squares.classify() == "isotropic_auxetic"
+    assert squares.classify(isotropic=-1.0) == "anisotropic_auxetic"
     with pytest.raises(ValueError):
-        squares.classify(relative=float("nan"))
+        squares.classify(isotropic=float("nan"))
 
 
 def test_frame_svgs_and_json():

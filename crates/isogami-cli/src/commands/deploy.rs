@@ -4,7 +4,7 @@ use crate::output::{emit, json_text, print_json, CliResult, Outputs};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami::api::{deploy, resolve_design, DeployRequest, FrameSelection};
 use isogami::contact::{ContactModel, ContactSettings};
-use isogami::deploy::{DeploySettings, Method};
+use isogami::deploy::{DeploySettings, DeploymentReport, Method};
 use isogami::finite::periodic_singular_states;
 use isogami::kinematics::Mechanism;
 use isogami::measure::expansion_profile;
@@ -157,13 +157,7 @@ pub fn run(args: Args) -> CliResult {
         report.steps,
         report.arc_length
     );
-    outln!(
-        o,
-        "behaviour    {}",
-        report
-            .behaviour
-            .map_or("none (does not expand)".to_string(), |b| b.to_string())
-    );
+    outln!(o, "behaviour    {}", behaviour_line(report));
     outln!(
         o,
         "expansion    min {:+.4}  max {:+.4}  area ratio up to {:.4}",
@@ -195,6 +189,29 @@ pub fn run(args: Args) -> CliResult {
         outln!(o, "{}", super::sheet::singular_warning("periodic", s));
     }
     emit(&o)
+}
+
+/// The class, the figures it was decided on (in units of the largest expansion) and, for a
+/// design at a class boundary, the class on the other side.
+fn behaviour_line(report: &DeploymentReport) -> String {
+    let Some(class) = report.behaviour else {
+        return "none (does not expand)".to_string();
+    };
+    let Some(f) = report.behaviour_figures else {
+        return class.to_string();
+    };
+    let figures = format!(
+        "spread {:.3}, contraction {:+.3} of the largest expansion",
+        f.spread, f.contraction
+    );
+    if report.behaviour_boundary {
+        format!(
+            "{class}  (boundary case, {:.3} from {}: {figures})",
+            f.margin, f.across
+        )
+    } else {
+        format!("{class}  ({figures}; margin {:.3})", f.margin)
+    }
 }
 
 /// One SVG per frame in the folder `dir` (made when missing).

@@ -9,7 +9,7 @@ use super::summary::{poisson_range, summarize_steps};
 use super::trajectory::{EndReason, Trajectory};
 use crate::kinematics::Mechanism;
 use crate::math::Real;
-use crate::measure::{BehaviourClass, FrameMeasures};
+use crate::measure::{BehaviourClass, BehaviourFigures, FrameMeasures};
 use serde::{Deserialize, Deserializer, Serialize};
 
 /// Pose of one tile in a frame.
@@ -89,8 +89,21 @@ pub struct DeploymentReport {
     pub max_joint_residual: Real,
     /// Smallest clearance over every accepted state (relative to L).
     pub min_clearance: Real,
-    /// Behaviour class over every accepted state (None when the sheet does not expand).
+    /// Behaviour class over every accepted state (None when the sheet does not expand),
+    /// decided on the states the Poisson-like range is taken over (see
+    /// [`crate::measure::classify_expansions`]).
     pub behaviour: Option<BehaviourClass>,
+    /// True when the design lies at a class boundary: its figures are within
+    /// [`ClassifyTolerances::boundary`](crate::measure::ClassifyTolerances::boundary) of a
+    /// threshold, and a small change of its shape can change its class. Reports written before
+    /// this field existed read false.
+    #[serde(default)]
+    pub behaviour_boundary: bool,
+    /// The figures the class was decided on (spread, contraction, margin, the class across the
+    /// nearest threshold); absent when there is no class, and in reports written before this
+    /// field existed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub behaviour_figures: Option<BehaviourFigures>,
     /// Largest principal expansion reached (over every accepted state).
     pub max_expansion: Real,
     /// Smallest principal expansion reached (over every accepted state).
@@ -174,6 +187,8 @@ pub fn build_report(
         max_joint_residual: summary.max_joint_residual,
         min_clearance: summary.min_clearance,
         behaviour: summary.behaviour,
+        behaviour_boundary: summary.behaviour_boundary,
+        behaviour_figures: summary.behaviour_figures,
         max_expansion: summary.max_expansion,
         min_expansion: summary.min_expansion,
         max_area_ratio: summary.max_area_ratio,

@@ -10,12 +10,16 @@ use super::error::DeployError;
 use super::trajectory::Trajectory;
 use crate::kinematics::Mechanism;
 use crate::math::Real;
-use crate::measure::{classify, effective_poisson_ratio, BehaviourClass, FrameMeasures};
+use crate::measure::{
+    classify_expansions, effective_poisson_ratio, BehaviourClass, BehaviourFigures,
+    ClassifyTolerances, FrameMeasures, OPEN_FRACTION,
+};
 
 /// Measures count as open for the Poisson-like ratio when their largest principal expansion
 /// reaches this fraction of the largest one of the whole deployment: below it both
-/// expansions are so small that their ratio is dominated by solver noise.
-pub const POISSON_OPEN_FRACTION: Real = 0.05;
+/// expansions are so small that their ratio is dominated by solver noise. The behaviour class
+/// is decided on the same states (it is [`OPEN_FRACTION`]).
+pub const POISSON_OPEN_FRACTION: Real = OPEN_FRACTION;
 
 /// The summary measures of a trajectory, each over all its accepted states.
 #[derive(Debug, Clone, PartialEq)]
@@ -32,8 +36,14 @@ pub struct StepSummary {
     pub max_joint_residual: Real,
     /// Smallest clearance (units of L), as the solver measured it on each state.
     pub min_clearance: Real,
-    /// Behaviour class ([`classify`] over all states).
+    /// Behaviour class ([`classify_expansions`] over all states, default tolerances): decided
+    /// on the open states of the Poisson-like range.
     pub behaviour: Option<BehaviourClass>,
+    /// The figures the class was decided on (None when there is no class).
+    pub behaviour_figures: Option<BehaviourFigures>,
+    /// True when the design lies at a class boundary (its margin is at most
+    /// [`ClassifyTolerances::boundary`]).
+    pub behaviour_boundary: bool,
     /// Smallest and largest Poisson-like ratio over the open states (see [`poisson_range`]).
     pub poisson_range: Option<(Real, Real)>,
 }
@@ -64,6 +74,8 @@ pub fn summarize_steps(mech: &Mechanism, traj: &Trajectory) -> Result<StepSummar
         measures.iter().map(pick).fold(init, f)
     };
     let max_expansion = fold(Real::NEG_INFINITY, |m| m.max_expansion, Real::max);
+    let expansions = || measures.iter().map(|m| (m.min_expansion, m.max_expansion));
+    let class = classify_expansions(expansions(), ClassifyTolerances::default());
     Ok(StepSummary {
         max_expansion,
         min_expansion: fold(Real::INFINITY, |m| m.min_expansion, Real::min),
@@ -71,11 +83,10 @@ pub fn summarize_steps(mech: &Mechanism, traj: &Trajectory) -> Result<StepSummar
         max_tile_rotation: fold(0.0, |m| m.max_tile_rotation, Real::max),
         max_joint_residual: traj.max_joint_residual(),
         min_clearance: traj.min_clearance(),
-        behaviour: classify(&measures),
-        poisson_range: poisson_range(
-            measures.iter().map(|m| (m.min_expansion, m.max_expansion)),
-            max_expansion,
-        ),
+        behaviour: class.map(|c| c.class),
+        behaviour_figures: class.map(|c| c.figures),
+        behaviour_boundary: class.is_some_and(|c| c.boundary),
+        poisson_range: poisson_range(expansions(), max_expansion),
     })
 }
 

@@ -17,7 +17,10 @@ mod error;
 mod frame;
 mod strain;
 
-pub use classify::{classify, classify_with, BehaviourClass, ClassifyTolerances};
+pub use classify::{
+    classify, classify_expansions, classify_with, BehaviourClass, BehaviourFigures, Classification,
+    ClassifyTolerances, OPEN_FRACTION,
+};
 pub use error::MeasureError;
 pub use frame::FrameMeasures;
 pub use strain::{

@@ -1,6 +1,7 @@
 //! The integration tests of `isogami`, one test binary: every file here is a module (one
 //! link instead of one per file; `cargo test -p isogami --test it MODULE::` runs one).
 
+mod behaviour_stability;
 mod catalog;
 mod catalog_finite;
 mod catalog_parts;
