@@ -154,7 +154,7 @@ fn margin_lines(o: &mut String, r: &MarginsReport, edge_mm: f64) {
                 o,
                 "shape       SPECIAL: opens only at its exact shape. Moved by {:.0e} L ({:.1e} mm at \
                  {edge_mm} mm edges) it opens to x{:.4} of x{:.4} (below {:.0} %), and at ±{} L \
-                 (±{:.2} mm) to {:.1} % of its opening",
+                 (±{:.2} mm) to {:.1} % of its largest area ratio",
                 TOLERANCE_LEVELS[0],
                 mm(TOLERANCE_LEVELS[0]),
                 r.opening_off_shape.unwrap_or(1.0),
@@ -174,22 +174,23 @@ fn margin_lines(o: &mut String, r: &MarginsReport, edge_mm: f64) {
             }
             outln!(
                 o,
-                "  keep the shape on it: isogami shape --design SPEC --set vK=X moves along it"
+                "  keep the shape on it: `isogami shape --design '{}' --set vK=X` moves along it",
+                r.design
             );
         }
         Some(t) => {
             let verdict = if t >= FABRICATION_TOLERANCE {
-                "buildable"
+                "it can be made at ±0.05 mm at 20 mm edges"
             } else {
-                "tighter than ±0.05 mm at 20 mm edges"
+                "it needs better than ±0.05 mm at 20 mm edges"
             };
             let params = r.params_per_displacement.map_or(String::new(), |p| {
                 format!(", {:.2e} in parameter units", p * t)
             });
             outln!(
                 o,
-                "shape       keeps {:.0} % of its opening under moves up to {t} L (±{:.3} mm at \
-                 {edge_mm} mm edges{params}): {verdict}; at ±{} L it keeps {:.1} %",
+                "shape       keeps {:.0} % of its largest area ratio under moves up to {t} L (±{:.3} \
+                 mm at {edge_mm} mm edges{params}): {verdict}; at ±{} L it keeps {:.1} %",
                 100.0 * KEPT_FRACTION,
                 mm(t),
                 FABRICATION_TOLERANCE,

@@ -18,6 +18,10 @@
 //! family without shape parameters has nothing to move (no tolerance, `None`), and cut errors
 //! that break the tiling itself are not modelled.
 //!
+//! A moved shape is deployed only as far as [`PROBE_ARC_FACTOR`] times the arc length at which
+//! the design is most open (all of it when that is the path's end): it is most open near
+//! there, and the rest of a path that closes again costs time and says nothing.
+//!
 //! The vertex displacement of a parameter move is that of the prototile's vertices about its
 //! centroid (a move that only shifts the tile is no shape error), to first order: a forward
 //! difference of step [`RATE_STEP`] in scaled parameters.
@@ -28,7 +32,8 @@
 
 use super::settings::CatalogSettings;
 use crate::api;
-use crate::deploy::{step_measures, DeploySettings, Trajectory};
+use crate::contact::ContactModel;
+use crate::deploy::{deploy_until, step_measures, summarize_steps, DeploySettings, Trajectory};
 use crate::error::Result;
 use crate::kinematics::Mechanism;
 use crate::math::{Real, Vec2};
@@ -72,8 +77,9 @@ pub struct Margins {
     /// special design); None when the family has no shape parameters.
     pub shape_tolerance: Option<Real>,
     /// At [`FABRICATION_TOLERANCE`]: the smaller largest area ratio of the two moved shapes,
-    /// as a fraction of the design's (above 1 when both open further); None when the family
-    /// has no shape parameters.
+    /// as a fraction of the design's (above 1 when both open further), each measured along its
+    /// path up to [`PROBE_ARC_FACTOR`] times the arc length of the design's most open state;
+    /// None when the family has no shape parameters.
     pub fabrication_kept: Option<Real>,
 }
 
@@ -192,21 +198,49 @@ fn mean_edge(v: &[Vec2]) -> Real {
 /// The largest area ratio of `design` deployed with `settings`; 1 (it does not open) when it
 /// cannot be built or deployed at all (a rigid shape is refused by the deployment).
 pub fn largest_area_ratio(design: &Design, settings: &DeploySettings) -> Real {
-    let opened = api::deploy_path(design, settings, &mut |_| true)
-        .and_then(|path| path.summary())
-        .map(|s| s.max_area_ratio);
-    match opened {
+    largest_area_ratio_until(design, settings, None)
+}
+
+/// [`largest_area_ratio`] over the path up to arc length `arc_limit` (when given).
+fn largest_area_ratio_until(
+    design: &Design,
+    settings: &DeploySettings,
+    arc_limit: Option<Real>,
+) -> Real {
+    let opened = || -> Result<Real> {
+        let cell = design.cell()?;
+        let mech = Mechanism::new(&cell, &design.joints)?;
+        let contact = ContactModel::new(&mech, settings.contact)?;
+        let traj = deploy_until(&mech, &contact, settings, arc_limit, &mut |_| true)?;
+        Ok(summarize_steps(&mech, &traj)?.max_area_ratio)
+    };
+    match opened() {
         Ok(a) if a.is_finite() => a.max(1.0),
         _ => 1.0,
     }
 }
 
-/// The smaller largest area ratio of `design` moved by `delta` both ways along `mv`.
-fn moved_opening(design: &Design, mv: &ShapeMove, delta: Real, settings: &DeploySettings) -> Real {
+/// How far along the path a moved shape is deployed: the nominal path's arc length at its
+/// most open state times this (a slightly moved shape is most open near the same arc
+/// length), or the whole path when the most open state is its end. A moved shape most open
+/// further on is measured short of its largest area ratio: the tolerance errs on the safe
+/// side.
+pub const PROBE_ARC_FACTOR: Real = 1.25;
+
+/// The smaller largest area ratio of `design` moved by `delta` both ways along `mv`, each
+/// deployed up to arc length `arc_limit` (when given).
+fn moved_opening(
+    design: &Design,
+    mv: &ShapeMove,
+    delta: Real,
+    settings: &DeploySettings,
+    arc_limit: Option<Real>,
+) -> Real {
     [1.0, -1.0]
         .iter()
         .map(|&sign| {
-            largest_area_ratio(&design.at_params(&mv.params(design, delta, sign)), settings)
+            let moved = design.at_params(&mv.params(design, delta, sign));
+            largest_area_ratio_until(&moved, settings, arc_limit)
         })
         .fold(Real::INFINITY, Real::min)
 }
@@ -231,7 +265,9 @@ pub(crate) fn margins_of_trajectory(
     let (shape_tolerance, fabrication_kept) = match shape_move(design)? {
         None => (None, None),
         Some(mv) => {
-            let (tolerance, kept) = tolerance(design, &mv, largest, settings);
+            let last = traj.steps.len().saturating_sub(1);
+            let arc_limit = (open < last).then(|| PROBE_ARC_FACTOR * traj.steps[open].arc);
+            let (tolerance, kept) = tolerance(design, &mv, largest, settings, arc_limit);
             (Some(tolerance), Some(kept))
         }
     };
@@ -262,9 +298,11 @@ fn tolerance(
     mv: &ShapeMove,
     largest: Real,
     settings: &DeploySettings,
+    arc_limit: Option<Real>,
 ) -> (Real, Real) {
-    let kept_at =
-        |level: usize| moved_opening(design, mv, TOLERANCE_LEVELS[level], settings) / largest;
+    let kept_at = |level: usize| {
+        moved_opening(design, mv, TOLERANCE_LEVELS[level], settings, arc_limit) / largest
+    };
     let top = TOLERANCE_LEVELS.len() - 1;
     let kept = kept_at(FABRICATION_LEVEL);
     // Bisection over the levels from the fabrication level: `good` keeps the opening (or is
@@ -298,6 +336,8 @@ fn tolerance(
 /// off them by the smallest level opens.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct MarginsReport {
+    /// The design's spec.
+    pub design: String,
     /// The margins, as the catalogue stores them.
     pub margins: Margins,
     /// The design's largest area ratio.
@@ -324,7 +364,7 @@ pub fn margins_report(design: &Design, settings: &CatalogSettings) -> Result<Mar
     let mv = shape_move(design)?;
     let (opening_off_shape, constraints) = match (&mv, margins.is_special()) {
         (Some(mv), true) => {
-            let off = moved_opening(design, mv, TOLERANCE_LEVELS[0], &request.settings);
+            let off = moved_opening(design, mv, TOLERANCE_LEVELS[0], &request.settings, None);
             let shape = crate::shape_space::ShapeSettings {
                 mobility: request.settings.mobility,
                 ..Default::default()
@@ -337,6 +377,7 @@ pub fn margins_report(design: &Design, settings: &CatalogSettings) -> Result<Mar
         _ => (None, Vec::new()),
     };
     Ok(MarginsReport {
+        design: design.to_string(),
         margins,
         max_area_ratio,
         params_per_displacement: mv.map(|m| m.params_per_displacement),

@@ -60,7 +60,7 @@ pub type Progress<'a> = &'a mut dyn FnMut(usize) -> bool;
 
 use crate::contact::ContactModel;
 use crate::kinematics::Mechanism;
-use crate::math::DVec;
+use crate::math::{DVec, Real};
 use crate::mobility::analyze;
 
 /// Deploys `mech` with `settings`. Refuses rigid designs with a clear error; a design whose
@@ -85,6 +85,19 @@ pub fn deploy_with(
     mech: &Mechanism,
     contact: &ContactModel,
     settings: &DeploySettings,
+    progress: Progress<'_>,
+) -> Result<Trajectory, DeployError> {
+    deploy_until(mech, contact, settings, None, progress)
+}
+
+/// [`deploy_with`] stopped once the path's arc length reaches `arc_limit` (when given; the
+/// trajectory then ends with [`EndReason::MaxSteps`]): for probes that only need the path's
+/// beginning.
+pub(crate) fn deploy_until(
+    mech: &Mechanism,
+    contact: &ContactModel,
+    settings: &DeploySettings,
+    arc_limit: Option<Real>,
     progress: Progress<'_>,
 ) -> Result<Trajectory, DeployError> {
     settings.validate()?;
@@ -112,8 +125,9 @@ pub fn deploy_with(
         Method::Ncm => &ncm::Ncm,
         Method::Springs => &springs::Springs,
     };
-    let mut traj =
-        opening::open_and_march(mech, contact, settings, &opening, mob.dof, policy, progress)?;
+    let mut traj = opening::open_and_march(
+        mech, contact, settings, &opening, mob.dof, policy, arc_limit, progress,
+    )?;
     // The springs do not fail a step: they stop moving the sheet.
     if settings.method == Method::Springs && traj.end_reason == EndReason::StepSizeExhausted {
         traj.end_reason = EndReason::Stalled;

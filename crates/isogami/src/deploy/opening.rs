@@ -18,7 +18,9 @@ use crate::math::DVec;
 /// Arc length (in kerfs) a sign must travel to count as opening.
 pub const PROBE_KERFS: f64 = 4.0;
 
-/// Chooses the opening sign and deploys to the end.
+/// Chooses the opening sign and deploys to the end (or until the arc length reaches
+/// `arc_limit`, when given).
+#[allow(clippy::too_many_arguments)]
 pub(super) fn open_and_march(
     mech: &Mechanism,
     contact: &ContactModel,
@@ -26,6 +28,7 @@ pub(super) fn open_and_march(
     v0: &DVec,
     dof: usize,
     policy: &dyn StepPolicy,
+    arc_limit: Option<f64>,
     progress: Progress<'_>,
 ) -> Result<Trajectory, DeployError> {
     let v0 = v0.clone();
@@ -58,7 +61,14 @@ pub(super) fn open_and_march(
         )? {
             MarchEnd::Reached => {
                 let prev = steps.last().expect("has steps").direction.clone();
-                let end = match go(&mut steps, &prev, None, &mut attempts, progress, &mut cache)? {
+                let end = match go(
+                    &mut steps,
+                    &prev,
+                    arc_limit,
+                    &mut attempts,
+                    progress,
+                    &mut cache,
+                )? {
                     MarchEnd::Ended(e) => e,
                     MarchEnd::Reached => EndReason::MaxSteps,
                 };

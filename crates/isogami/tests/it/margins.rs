@@ -276,6 +276,9 @@ fn a_databases_tolerances_agree_with_moves_in_random_directions() {
             generic += 1;
             generic_keep += usize::from(hair >= KEPT_FRACTION);
         }
+        if (tol == 0.0) != (hair < KEPT_FRACTION) {
+            disagreements.push(format!("{spec}: stored {tol}, kept {hair:.4} 1e-6 L off"));
+        }
     }
     println!(
         "{rows} designs with shape parameters: the fabrication verdict agrees for {agree_fab} \
