@@ -15,6 +15,7 @@ import {
   allApiRows, buildSite, byTestId, catalogueTotal, getJson, launchBrowser, newPage, pollUntil, problems, screenshot,
   serveFolder, startServer,
 } from './harness.mjs';
+import { isBuildable } from '../src/buildable.js';
 
 let server;
 let browser;
@@ -61,7 +62,7 @@ async function catalogueKeepsTheRange(base, label) {
   await page.goto(`${base}/index.html?range=finite_covered:0.9:&view=table&limit=200`);
   const total = await catalogueTotal(page);
   // In the page's order (largest area ratio first).
-  const api = await getJson(`${server.base}/api/designs?range=finite_covered:0.9:&sort=-max_area_ratio&limit=200`);
+  const api = await getJson(`${server.base}/api/designs?range=finite_covered:0.9:&sort=-max_area_ratio&lead=buildable&limit=200`);
   assert.equal(total, api.total, `${label}: the range filters (the API's total)`);
   assert.ok(api.total > 0 && api.total < rows.length, `${label}: the range excludes some designs (${api.total} of ${rows.length})`);
   const search = new URLSearchParams(new URL(page.url()).search);
@@ -81,6 +82,43 @@ async function catalogueKeepsTheRange(base, label) {
 
 test('the catalogue keeps ?range=finite_covered:0.9: and shows the measure as a column and badges', async () => {
   await catalogueKeepsTheRange(server.base, 'server');
+});
+
+async function firstPageLeadsWithBuildable(base, label) {
+  const page = await newPage(browser);
+  await page.goto(`${base}/index.html?view=grid&limit=25`);
+  await catalogueTotal(page);
+  await page.waitForSelector('[data-testid="design-card"]');
+  const shown = await page.$$eval('[data-testid="design-card"]', (els) => els.map((e) => e.dataset.spec));
+  const bySpec = new Map(rows.map((r) => [r.spec, r]));
+  const buildable = rows.filter(isBuildable).length;
+  assert.ok(buildable > 0 && buildable < rows.length, `${label}: the database has both kinds (${buildable} of ${rows.length})`);
+  // The default order: every buildable design before any other, largest area ratio first in each.
+  const want = Math.min(buildable, shown.length);
+  shown.forEach((spec, k) => assert.equal(isBuildable(bySpec.get(spec)), k < want, `${label}: card ${k} ${spec}`));
+  const areas = shown.slice(0, want).map((spec) => bySpec.get(spec).max_area_ratio);
+  assert.deepEqual(areas, [...areas].sort((a, b) => b - a), `${label}: largest area ratio first`);
+  // A special design says so on its card.
+  const special = shown.filter((spec) => bySpec.get(spec).shape_tolerance === 0);
+  for (const spec of special) {
+    assert.equal(await badgeOf(page, 'design-card', spec).count(), 1);
+    assert.equal(await page.locator(`[data-testid="design-card"][data-spec="${spec}"] [data-testid="shape-badge"]`).getAttribute('data-shape'), 'special');
+  }
+  // Unticking "buildable designs first" gives the plain order (and says so in the URL).
+  await byTestId(page, 'lead-buildable').uncheck();
+  await page.waitForFunction(() => new URL(location.href).searchParams.get('lead') === 'all');
+  const api = await getJson(`${server.base}/api/designs?sort=-max_area_ratio&limit=25`);
+  await page.waitForFunction(
+    (w) => JSON.stringify([...document.querySelectorAll('[data-testid="design-card"]')].map((e) => e.dataset.spec)) === JSON.stringify(w),
+    api.rows.map((r) => r.spec),
+  );
+  assert.deepEqual(problems(page), []);
+  await page.context().close();
+}
+
+test('the default order leads with buildable designs; special designs say so; the lead can be turned off', async () => {
+  await firstPageLeadsWithBuildable(server.base, 'server');
+  await firstPageLeadsWithBuildable(files.base, 'static site');
 });
 
 test('cards and rows carry the badge; the buildable box filters to the designs with a sheet', async () => {

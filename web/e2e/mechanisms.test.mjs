@@ -13,9 +13,10 @@ import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
 import { join } from 'node:path';
 import {
-  buildSite, byTestId, catalogueTotal, getJson, launchBrowser, newPage, problems, screenshot,
+  allApiRows, buildSite, byTestId, catalogueTotal, getJson, launchBrowser, newPage, problems, screenshot,
   serveFolder, startServer,
 } from './harness.mjs';
+import { isBuildable } from '../src/buildable.js';
 import { motionGroups } from '../src/query.js';
 import { parseCatalogueState } from '../src/url.js';
 
@@ -58,13 +59,20 @@ async function waitCards(page, want) {
 }
 
 test('the default view: one card per distinct motion, largest area ratio first, variants expand in place', async () => {
-  const answer = await getJson(`${server.base}/api/motions?sort=-max_area_ratio`);
+  const answer = await getJson(`${server.base}/api/motions?sort=-max_area_ratio&lead=buildable`);
   const all = await getJson(`${server.base}/api/designs?limit=1`);
   assert.equal(answer.total, all.total, 'every design is in a card');
   assert.ok(answer.groups.length > 1 && answer.groups.length < answer.total, 'grouping merges designs');
-  // The first card holds the catalogue's largest area ratio.
-  const best = (await getJson(`${server.base}/api/designs?sort=-max_area_ratio&limit=1`)).rows[0];
-  assert.equal(answer.groups[0].max_area_ratio.max, best.max_area_ratio);
+  // The first card's example is the buildable design of largest area ratio (buildable designs
+  // lead the default order), and every card's example is buildable when one of its designs is.
+  const best = (await getJson(`${server.base}/api/designs?sort=-max_area_ratio&lead=buildable&limit=1`)).rows[0];
+  assert.equal(answer.groups[0].members[0].spec, best.spec);
+  const rows = new Map((await allApiRows(server.base)).map((r) => [r.spec, r]));
+  assert.ok(isBuildable(best), 'the quick database has buildable designs');
+  for (const g of answer.groups) {
+    const any = g.members.some((m) => isBuildable(rows.get(m.spec)));
+    assert.equal(isBuildable(rows.get(g.members[0].spec)), any, `the example of ${g.representative}`);
+  }
   const page = await newPage(browser);
   await page.goto(`${server.base}/`);
   assert.equal(await catalogueTotal(page), all.total);
@@ -136,12 +144,13 @@ test('the static site groups exactly as the server does, and shows the same card
     const state = parseCatalogueState(search);
     const p = new URLSearchParams(search);
     p.set('sort', `${state.sort.desc ? '-' : ''}${state.sort.key}`);
+    if (state.lead === 'buildable') p.set('lead', 'buildable');
     const server_ = await getJson(`${server.base}/api/motions?${p}`);
     assert.deepEqual(motionGroups(rows, motions, state), server_, search);
   }
   const page = await newPage(browser);
   await page.goto(`${files.base}/`);
-  const answer = await getJson(`${server.base}/api/motions?sort=-max_area_ratio`);
+  const answer = await getJson(`${server.base}/api/motions?sort=-max_area_ratio&lead=buildable`);
   await waitCards(page, expectedCards(answer));
   assert.deepEqual(await cards(page), expectedCards(answer));
   assert.deepEqual(problems(page), []);
@@ -222,7 +231,7 @@ for (const mode of ['server', 'static']) {
 }
 
 test('"same motion elsewhere": honest wording, each linked design\'s own area ratio and thumbnail, sorted by family number', async () => {
-  const answer = await getJson(`${server.base}/api/motions?sort=-max_area_ratio`);
+  const answer = await getJson(`${server.base}/api/motions?sort=-max_area_ratio&lead=buildable`);
   const group = answer.groups.find((g) => g.topologies > 1);
   assert.ok(group, 'a motion shared by several topologies');
   const spec = group.members[0].spec;

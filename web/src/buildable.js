@@ -12,6 +12,55 @@ import { catalogueSearch, emptyCatalogueState } from './url.js';
  * design that lacks the measure, and every kept fraction is positive. */
 export const HAS_SHEET_RANGE = Object.freeze({ measure: 'finite_covered', min: 0, max: null });
 
+/** The fabrication tolerance the catalogue calls buildable (isogami::catalog::FABRICATION_TOLERANCE:
+ * vertex moves of 0.0025 of the mean edge, ±0.05 mm at 20 mm edges). */
+export const FABRICATION_TOLERANCE = 0.0025;
+
+/**
+ * True when a catalogue row is buildable, the rule of the store's DesignSummary::buildable
+ * (which orders the API's lead=buildable): a one-DOF finite sheet, margins measured, and the
+ * shape tolerance at least the fabrication tolerance (or a family without shape parameters).
+ */
+export function isBuildable(row) {
+  const tol = row?.shape_tolerance;
+  return typeof row?.finite_covered === 'number'
+    && typeof row?.open_t === 'number'
+    && (tol === null || tol === undefined || tol >= FABRICATION_TOLERANCE);
+}
+
+/**
+ * What a row says about its shape tolerance: `{kind, text, title}` with kind `special` (it
+ * opens only at its exact shape), `tight` (below the fabrication tolerance), `ok`, `fixed` (no
+ * shape parameters) or `unknown` (not measured).
+ */
+export function shapeStatus(row) {
+  const tol = row?.shape_tolerance;
+  if (typeof row?.open_t !== 'number') return { kind: 'unknown', text: '', title: '' };
+  if (tol === null || tol === undefined) {
+    return { kind: 'fixed', text: '', title: 'The family has no shape parameters: its shape is fixed.' };
+  }
+  const mm = (t) => (t * 20).toFixed(t * 20 < 0.1 ? 2 : 1);
+  if (tol === 0) {
+    return {
+      kind: 'special',
+      text: 'special shape',
+      title: 'Special: it opens only at its exact shape. Moved by 1e-6 of the edge length it loses its opening (locks early), so a cut or printed sheet will not open as shown. `isogami analyze` names the constraint its shape must keep.',
+    };
+  }
+  if (tol < FABRICATION_TOLERANCE) {
+    return {
+      kind: 'tight',
+      text: `±${mm(tol)} mm`,
+      title: `It keeps 95 % of its opening only under shape errors up to ${tol} of the edge length (±${mm(tol)} mm at 20 mm edges): tighter than ±0.05 mm.`,
+    };
+  }
+  return {
+    kind: 'ok',
+    text: `±${mm(tol)} mm`,
+    title: `It keeps 95 % of its opening under shape errors up to ${tol} of the edge length (±${mm(tol)} mm at 20 mm edges).`,
+  };
+}
+
 /** A covered fraction as a whole percentage that says 100 only when it is 1. */
 export function percentText(covered) {
   const p = Math.round(covered * 100);

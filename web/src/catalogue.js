@@ -16,7 +16,7 @@ import { createScatter } from './scatter.js';
 import {
   FACETS, MEASURES, MAIN_MEASURES, TEXT_SORT_KEYS, facetLabel, facetText, measureHelp, measureLabel, setMeasures,
 } from './schema.js';
-import { HAS_SHEET_RANGE, sheetStatus } from './buildable.js';
+import { HAS_SHEET_RANGE, shapeStatus, sheetStatus } from './buildable.js';
 import {
   PAGE_SIZES, catalogueSearch, designHref, filterParams, parseCatalogueState, rememberCatalogue,
 } from './url.js';
@@ -38,6 +38,20 @@ function sheetBadge(row, { short = false } = {}) {
     { class: 'sheet-badge', 'data-sheet': s.kind, title: s.title, testid: 'sheet-badge' },
     short ? s.short : s.text,
     short ? null : h('span', { class: 'visually-hidden' }, `: ${s.title}`),
+  );
+}
+
+/** The badge of a design's shape tolerance (buildable.js): "special shape" for a design that
+ * opens only at its exact shape, the tolerance in mm at 20 mm edges otherwise; none when not
+ * measured or the family's shape is fixed. */
+function shapeBadge(row) {
+  const s = shapeStatus(row);
+  if (!s.text) return null;
+  return h(
+    'span',
+    { class: 'shape-badge', 'data-shape': s.kind, title: s.title, testid: 'shape-badge' },
+    s.text,
+    h('span', { class: 'visually-hidden' }, `: ${s.title}`),
   );
 }
 
@@ -297,9 +311,27 @@ function setupRanges() {
     }),
     ' only designs with a one-DOF finite sheet (buildable)',
   );
+  // Lead with what can be made: buildable designs first (a one-DOF sheet and the shape
+  // tolerance of ±0.05 mm at 20 mm edges), each part in the sort's order.
+  const lead = h(
+    'label',
+    { class: 'buildable-only', title: 'Buildable designs (a one-DOF finite sheet, and they keep 95 % of their opening under shape errors of ±0.05 mm at 20 mm edges) come first, in the chosen order; then the others.' },
+    h('input', {
+      type: 'checkbox',
+      id: 'lead-buildable',
+      testid: 'lead-buildable',
+      onchange: (e) =>
+        change(() => {
+          state.lead = e.target.checked ? 'buildable' : 'all';
+          state.offset = 0;
+        }),
+    }),
+    ' buildable designs first',
+  );
   $('ranges').replaceChildren(
     h('h2', {}, 'Ranges'),
     buildable,
+    lead,
     ...main,
     h('details', {}, h('summary', {}, 'more measures'), ...more),
   );
@@ -328,6 +360,7 @@ function syncControls() {
     }
   }
   $('buildable-only').checked = state.ranges.some((r) => r.measure === HAS_SHEET_RANGE.measure);
+  $('lead-buildable').checked = state.lead === 'buildable';
   if (state.ranges.some((r) => !MAIN_MEASURES.includes(r.measure) && r.measure !== HAS_SHEET_RANGE.measure)) {
     $('ranges').querySelector('details').open = true;
   }
@@ -577,6 +610,7 @@ function grid(rows) {
             `${facetLabel('behaviour', r.behaviour ?? null)} · max ε ${fmt(r.max_expansion)} · area ${fmt(r.max_area_ratio)}`,
           ),
           sheetBadge(r),
+          shapeBadge(r),
         ),
       ),
     ),

@@ -5,7 +5,7 @@
 // under a sub-path). Errors come back as ApiError with the server's kind and hint.
 
 import * as q from './query.js';
-import { filterParams, pageParams } from './url.js';
+import { filterParams, orderParams, pageParams } from './url.js';
 import { slug } from './schema.js';
 
 /** An error with the API's `{error, kind, hint}` shape (or a network/format failure). */
@@ -129,9 +129,7 @@ class ServerData {
   /** The mechanisms view: matching designs grouped by motion class (filters and sort of
    * `state`; GET /api/motions). */
   motions(state) {
-    const p = filterParams(state);
-    if (state.sort) p.set('sort', `${state.sort.desc ? '-' : ''}${state.sort.key}`);
-    return getJson(`./api/motions?${p}`);
+    return getJson(`./api/motions?${orderParams(state, filterParams(state))}`);
   }
 
   /** The class of topologies that move like the stored design `spec` ({class: … | null}). */

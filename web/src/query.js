@@ -5,6 +5,7 @@
 // most frequent first, then by stored value; sorting puts missing values last in both
 // directions and breaks ties by insertion order in the sort's direction. Pure, no DOM.
 
+import { isBuildable } from './buildable.js';
 import { FACETS, facetMatches, facetOf, measureOf } from './schema.js';
 
 /** Does `row` pass every filter of `state`, except the selection of facet `skip`? */
@@ -101,12 +102,15 @@ export function sortRows(rows, sort) {
   return keyed.map((x) => x.row);
 }
 
-/** The filtered rows, sorted. */
+/** The filtered rows, sorted; buildable ones first when `state.lead` is 'buildable' (the API's
+ * lead=buildable: a stable partition of the sorted rows). */
 export function filtered(rows, state) {
-  return sortRows(
+  const sorted = sortRows(
     rows.filter((r) => passes(r, state)),
     state.sort,
   );
+  if (state.lead !== 'buildable') return sorted;
+  return [...sorted.filter(isBuildable), ...sorted.filter((r) => !isBuildable(r))];
 }
 
 /** One page: `{total, offset, rows}` as /api/designs answers. */

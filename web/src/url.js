@@ -23,6 +23,8 @@ export function emptyCatalogueState() {
     filters: Object.fromEntries(FACETS.map((f) => [f.name, []])),
     ranges: [],
     sort: { ...DEFAULT_SORT },
+    // Buildable designs first (the API's lead=buildable), each part in the sort's order.
+    lead: 'buildable',
     limit: DEFAULT_LIMIT,
     offset: 0,
     x: DEFAULT_X,
@@ -60,6 +62,7 @@ export function parseCatalogueState(search) {
     const key = desc ? sort.slice(1) : sort;
     if (SORT_KEYS.has(key)) s.sort = { key, desc };
   }
+  if (p.get('lead') === 'all') s.lead = 'all';
   const limit = Number(p.get('limit'));
   if (Number.isInteger(limit) && limit >= 1 && limit <= 500) s.limit = limit;
   const offset = Number(p.get('offset'));
@@ -83,10 +86,16 @@ export function filterParams(state) {
   return p;
 }
 
+/** The order part of the query string: sort and lead (what /api/designs and /api/motions take). */
+export function orderParams(state, p = new URLSearchParams()) {
+  if (state.sort) p.set('sort', `${state.sort.desc ? '-' : ''}${state.sort.key}`);
+  if (state.lead === 'buildable') p.set('lead', 'buildable');
+  return p;
+}
+
 /** The query string of /api/designs: filters, sort and page. */
 export function pageParams(state) {
-  const p = filterParams(state);
-  if (state.sort) p.set('sort', `${state.sort.desc ? '-' : ''}${state.sort.key}`);
+  const p = orderParams(state, filterParams(state));
   p.set('limit', String(state.limit));
   p.set('offset', String(state.offset));
   return p;
@@ -99,6 +108,7 @@ export function catalogueSearch(state) {
   if (sort.key !== DEFAULT_SORT.key || sort.desc !== DEFAULT_SORT.desc) {
     p.set('sort', `${sort.desc ? '-' : ''}${sort.key}`);
   }
+  if (state.lead === 'all') p.set('lead', 'all');
   if (state.limit !== DEFAULT_LIMIT) p.set('limit', String(state.limit));
   if (state.offset) p.set('offset', String(state.offset));
   if (state.x !== DEFAULT_X) p.set('x', state.x);

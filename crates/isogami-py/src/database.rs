@@ -103,6 +103,10 @@ pub struct PyRecord {
     /// Largest area ratio kept at the fabrication tolerance (±0.0025 L), as a fraction.
     #[pyo3(get)]
     fabrication_kept: Option<f64>,
+    /// True when the design has a one-DOF finite sheet and keeps its opening at the
+    /// fabrication tolerance (a family without shape parameters counts as keeping it).
+    #[pyo3(get)]
+    buildable: bool,
 }
 
 impl PyRecord {
@@ -135,6 +139,7 @@ impl PyRecord {
             end_area_ratio: s.end_area_ratio,
             shape_tolerance: s.shape_tolerance,
             fabrication_kept: s.fabrication_kept,
+            buildable: s.buildable(),
             inner: s,
         }
     }

@@ -23,6 +23,7 @@ pub const KEYS: &[(&str, Option<Facet>)] = &[
     ("origin", Some(Facet::Origin)),
     ("range", None),
     ("sort", None),
+    ("lead", None),
     ("limit", None),
     ("offset", None),
 ];
@@ -44,6 +45,9 @@ pub const KEYS: &[(&str, Option<Facet>)] = &[
 ///   end_area_ratio, shape_tolerance, fabrication_kept, v0…v5;
 /// - ``sort``: a measure or ``spec``, ``family``, ``cell``, ``behaviour``,
 ///   ``linkage_signature``, ``end_reason``, ``origin``; ``"-key"`` for descending;
+/// - ``lead``: ``"buildable"`` puts buildable designs first (a one-DOF finite sheet and the
+///   fabrication tolerance met; ``Record.buildable``), each part in the sort's order; ``"all"``
+///   (the default) does not;
 /// - ``limit`` (None: every matching design) and ``offset``.
 ///
 /// Bad values raise ``QueryError`` naming the key.
@@ -229,6 +233,27 @@ impl PyQuery {
                         .map_err(|e| errors::QueryError::new_err(format!("sort: {e}")))?;
                     q.sort_by(key, descending);
                 }
+                ("lead", _) => {
+                    if value.is_none() {
+                        continue;
+                    }
+                    let text: String = value.extract().map_err(|_| {
+                        PyTypeError::new_err(format!(
+                            "lead must be a str, got {}",
+                            type_name(value)
+                        ))
+                    })?;
+                    q.buildable_first = match text.as_str() {
+                        "buildable" => true,
+                        "all" => false,
+                        other => {
+                            return Err(errors::QueryError::new_err(format!(
+                            "lead '{}': expected 'buildable' (buildable designs first) or 'all'",
+                            other.escape_debug()
+                        )))
+                        }
+                    };
+                }
                 ("limit", _) => {
                     if value.is_none() {
                         limit = None;
@@ -314,6 +339,9 @@ impl PyQuery {
         q.ranges.extend(e.ranges.iter().copied());
         if has("sort") {
             q.sort = e.sort;
+        }
+        if has("lead") {
+            q.buildable_first = e.buildable_first;
         }
         if has("offset") {
             q.offset = e.offset;

@@ -235,3 +235,30 @@ def test_finite_sheet_columns_filter_and_sort_like_the_records(db, every):
     ordered = db.designs(sort="finite_covered")
     missing = [r.finite_covered is None for r in ordered]
     assert missing == sorted(missing)
+
+
+def test_margins_and_buildable_first(db, every):
+    explored = [r for r in every if r.origin == "explored"]
+    assert explored and all(r.open_t is not None and 0.0 <= r.open_t <= 1.0 for r in explored)
+    assert all(r.end_area_ratio <= r.max_area_ratio * (1 + 1e-12) for r in explored)
+    fab = 0.0025  # isogami::catalog::FABRICATION_TOLERANCE
+    for r in every:
+        rule = (
+            r.finite_covered is not None
+            and r.open_t is not None
+            and (r.shape_tolerance is None or r.shape_tolerance >= fab)
+        )
+        assert r.buildable == rule, r.spec
+    assert 0 < sum(r.buildable for r in every) < len(every)
+    got = db.designs(sort="-max_area_ratio", lead="buildable")
+    flags = [r.buildable for r in got]
+    assert flags == sorted(flags, reverse=True), "buildable designs first"
+    for part in (True, False):
+        areas = [r.max_area_ratio for r in got if r.buildable == part]
+        assert areas == sorted(areas, reverse=True)
+    plain = db.designs(sort="-max_area_ratio", lead="all")
+    assert [r.spec for r in plain] == [r.spec for r in db.designs(sort="-max_area_ratio")]
+    special = db.designs(range="shape_tolerance:0:0")
+    assert [r.spec for r in special] == sorted(r.spec for r in every if r.shape_tolerance == 0)
+    with pytest.raises(isogami.QueryError, match="lead"):
+        db.designs(lead="first")

@@ -15,7 +15,7 @@
 
 use crate::error::StoreResult;
 use crate::open::Store;
-use crate::query::filter::{filters, sort_or_default, sorted_order};
+use crate::query::filter::{filters, sorted_order};
 use crate::query::DesignQuery;
 use crate::records::DesignSummary;
 use crate::rows::{motion_class_values, read_design, verify, DESIGN_COLUMNS, DESIGN_COLUMN_COUNT};
@@ -208,7 +208,7 @@ impl Store {
             |r| r.get(0),
         )?;
         let w = filters(query, None)?;
-        let order = sorted_order(sort_or_default(query.sort))?;
+        let order = sorted_order(query)?;
         let class = if computed {
             "(SELECT m.representative FROM motion_classes m WHERE m.topology = designs.topology),
              (SELECT m.checksum FROM motion_classes m WHERE m.topology = designs.topology)"

@@ -149,6 +149,20 @@ pub struct DesignSummary {
     pub fabrication_kept: Option<f64>,
 }
 
+impl DesignSummary {
+    /// True when the design can be made as the catalogue stores it: it has a one-DOF finite
+    /// 6×6 sheet (`finite_covered`) and keeps its opening at the fabrication tolerance
+    /// (`shape_tolerance` at least `isogami::catalog::FABRICATION_TOLERANCE`, or a family
+    /// without shape parameters). False for designs without the figures (user designs).
+    pub fn buildable(&self) -> bool {
+        self.finite_covered.is_some()
+            && self.open_t.is_some()
+            && self
+                .shape_tolerance
+                .is_none_or(|t| t >= isogami::catalog::FABRICATION_TOLERANCE)
+    }
+}
+
 /// One design as written: its summary and the JSON of its full results. Built from typed
 /// library values by [`DesignRecord::from_parts`] or [`DesignRecord::from_entry`], so the
 /// summary always agrees with the report and the JSON always reads back.

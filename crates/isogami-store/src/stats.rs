@@ -191,15 +191,17 @@ impl Store {
             },
         )?;
         let margins = self.conn.query_row(
-            "SELECT count(open_t),
-                    count(CASE WHEN end_area_ratio < 0.95 * max_area_ratio THEN 1 END),
-                    count(CASE WHEN open_t IS NOT NULL AND shape_tolerance IS NULL THEN 1 END),
-                    count(CASE WHEN shape_tolerance = 0 THEN 1 END),
-                    count(CASE WHEN open_t IS NOT NULL
-                          AND (shape_tolerance IS NULL OR shape_tolerance >= ?1) THEN 1 END),
-                    count(CASE WHEN open_t IS NOT NULL AND finite_covered IS NOT NULL
-                          AND (shape_tolerance IS NULL OR shape_tolerance >= ?1) THEN 1 END)
-             FROM designs",
+            &format!(
+                "SELECT count(open_t),
+                        count(CASE WHEN end_area_ratio < 0.95 * max_area_ratio THEN 1 END),
+                        count(CASE WHEN open_t IS NOT NULL AND shape_tolerance IS NULL THEN 1 END),
+                        count(CASE WHEN shape_tolerance = 0 THEN 1 END),
+                        count(CASE WHEN open_t IS NOT NULL
+                              AND (shape_tolerance IS NULL OR shape_tolerance >= ?1) THEN 1 END),
+                        count(CASE WHEN {} THEN 1 END)
+                 FROM designs",
+                crate::query::filter::buildable_sql()
+            ),
             [FABRICATION_TOLERANCE],
             |r| {
                 Ok(MarginCounts {

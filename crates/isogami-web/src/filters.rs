@@ -74,6 +74,18 @@ pub fn parse(pairs: &[(String, String)], extra: &[&str]) -> ApiResult<Request> {
                     .map_err(|e| ApiError::bad_parameter(format!("sort: {e}")))?;
                 query.sort_by(key, descending);
             }
+            "lead" => {
+                query.buildable_first = match value.as_str() {
+                    "buildable" => true,
+                    "all" => false,
+                    other => {
+                        return Err(ApiError::bad_parameter(format!(
+                            "lead {:?}: expected 'buildable' (buildable designs first) or 'all'",
+                            truncate(other)
+                        )))
+                    }
+                };
+            }
             "limit" => {
                 let n: u32 = number(key, value)?;
                 if !(1..=MAX_PAGE.min(MAX_LIMIT)).contains(&n) {
@@ -164,6 +176,13 @@ mod tests {
     }
 
     #[test]
+    fn lead_buildable_puts_buildable_designs_first() {
+        assert!(parsed("lead=buildable").unwrap().query.buildable_first);
+        assert!(!parsed("lead=all").unwrap().query.buildable_first);
+        assert!(!parsed("").unwrap().query.buildable_first);
+    }
+
+    #[test]
     fn repeated_keys_select_several_values() {
         let r = parsed("family=IH1&family=IH28&cell=2x1&range=max_area_ratio:1.5:&sort=-steps&limit=20&offset=40").unwrap();
         assert_eq!(r.query.families.len(), 2);
@@ -187,6 +206,7 @@ mod tests {
             ("limit=100000", "limit"),
             ("offset=-1", "offset"),
             ("sort=-", "sort"),
+            ("lead=first", "lead"),
             ("colour=red", "unknown parameter"),
             ("x=v9", "x"),
         ] {

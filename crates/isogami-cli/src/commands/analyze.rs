@@ -36,6 +36,7 @@ pub struct Args {
 struct Analyzed<'a> {
     #[serde(flatten)]
     analysis: &'a Analysis,
+    #[serde(skip_serializing_if = "Option::is_none")]
     margins: Option<MarginsReport>,
 }
 

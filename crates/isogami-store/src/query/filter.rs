@@ -222,16 +222,31 @@ pub(crate) fn index_order(sort: Sort) -> Result<Option<(&'static str, String)>, 
 }
 
 /// `ORDER BY …` for sorting the filtered rows (keys written `+key` so that no index is walked):
-/// missing values last, ties by insertion order in the same direction.
-pub(crate) fn sorted_order(sort: Sort) -> Result<String, QueryError> {
+/// missing values last, ties by insertion order in the same direction; buildable designs
+/// first when the query asks for it.
+pub(crate) fn sorted_order(query: &DesignQuery) -> Result<String, QueryError> {
+    let sort = sort_or_default(query.sort);
     let dir = if sort.descending { "DESC" } else { "ASC" };
     let (columns, nullable) = key_columns(sort.key)?;
     let nulls = if nullable { " NULLS LAST" } else { "" };
-    let keys: Vec<String> = columns
+    let mut keys: Vec<String> = columns
         .iter()
         .map(|c| format!("+{c} {dir}{nulls}"))
         .collect();
+    if query.buildable_first {
+        keys.insert(0, format!("{} DESC", buildable_sql()));
+    }
     Ok(format!("ORDER BY {}, +id {dir}", keys.join(", ")))
+}
+
+/// SQL that is 1 for a buildable design, 0 otherwise (the rule of
+/// [`DesignSummary::buildable`](crate::DesignSummary::buildable)).
+pub(crate) fn buildable_sql() -> String {
+    format!(
+        "(finite_covered IS NOT NULL AND open_t IS NOT NULL \
+         AND (shape_tolerance IS NULL OR shape_tolerance >= {:e}))",
+        isogami::catalog::FABRICATION_TOLERANCE
+    )
 }
 
 /// Checks limit and offset.

@@ -64,14 +64,15 @@ impl Store {
             // just taken tells which. Otherwise the matches are sorted, as (key, id) pairs
             // only, and the page's rows fetched by id.
             let wanted = query.offset + u64::from(query.limit);
-            let sql = match index_order(sort)?.filter(|_| total >= WALK_FACTOR * wanted) {
+            let walk = !query.buildable_first && total >= WALK_FACTOR * wanted;
+            let sql = match index_order(sort)?.filter(|_| walk) {
                 Some((index, order)) => format!(
                     "SELECT {DESIGN_COLUMNS}, checksum FROM designs INDEXED BY {index} {} {order} \
                      LIMIT ? OFFSET ?",
                     w.sql()
                 ),
                 None => {
-                    let order = sorted_order(sort)?;
+                    let order = sorted_order(query)?;
                     format!(
                         "SELECT {DESIGN_COLUMNS}, checksum FROM designs WHERE id IN \
                          (SELECT id FROM designs {} {order} LIMIT ? OFFSET ?) {order}",

@@ -371,6 +371,9 @@ pub struct DesignQuery {
     pub ranges: Vec<RangeFilter>,
     /// Order (default: spec, ascending).
     pub sort: Option<Sort>,
+    /// Buildable designs first (see [`DesignSummary::buildable`]), each part in the sort's
+    /// order: how a catalogue leads with what can be made.
+    pub buildable_first: bool,
     /// Rows per page, 1…[`MAX_LIMIT`].
     pub limit: u32,
     /// Rows skipped.
@@ -389,6 +392,7 @@ impl Default for DesignQuery {
             origins: Vec::new(),
             ranges: Vec::new(),
             sort: None,
+            buildable_first: false,
             limit: 50,
             offset: 0,
         }

@@ -222,6 +222,7 @@ fn random_query(rng: &mut Rng, all: &[DesignSummary]) -> DesignQuery {
             descending: rng.one_in(2),
         });
     }
+    q.buildable_first = rng.one_in(3);
     q.limit = rng.pick(&[1, 7, 50, 1000]);
     q.offset = if rng.one_in(2) { 0 } else { rng.next() % 40 };
     q
@@ -240,15 +241,24 @@ fn pages_equal_a_brute_force_filter_sort_and_slice() {
         let mut expected: Vec<&DesignSummary> =
             all.iter().filter(|d| matches(&q, d, None)).collect();
         expected.sort_by(|a, b| {
-            compare(
-                q.sort.unwrap_or(Sort {
-                    key: SortKey::Spec,
-                    descending: false,
-                }),
-                a,
-                b,
-                order,
-            )
+            // Buildable designs first when asked (DesignSummary::buildable, whose rule the
+            // SQL repeats), then the sort.
+            let lead = if q.buildable_first {
+                b.buildable().cmp(&a.buildable())
+            } else {
+                Ordering::Equal
+            };
+            lead.then_with(|| {
+                compare(
+                    q.sort.unwrap_or(Sort {
+                        key: SortKey::Spec,
+                        descending: false,
+                    }),
+                    a,
+                    b,
+                    order,
+                )
+            })
         });
         let page = s.page(&q).unwrap();
         assert_eq!(page.total as usize, expected.len(), "{q:?}");
@@ -262,6 +272,12 @@ fn pages_equal_a_brute_force_filter_sort_and_slice() {
         nonempty += usize::from(!page.rows.is_empty());
     }
     assert!(nonempty > 100, "{nonempty} non-empty pages");
+    let buildable = all.iter().filter(|d| d.buildable()).count();
+    assert!(
+        buildable > 0 && buildable < all.len(),
+        "{buildable} buildable designs of {}: the order's lead is tested",
+        all.len()
+    );
 }
 
 #[test]

@@ -75,11 +75,13 @@ pub struct Margins {
     /// The largest vertex displacement of [`TOLERANCE_LEVELS`] (relative to L) under which
     /// the design keeps its opening; 0 when it loses it already at the smallest level (a
     /// special design); None when the family has no shape parameters.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shape_tolerance: Option<Real>,
     /// At [`FABRICATION_TOLERANCE`]: the smaller largest area ratio of the two moved shapes,
     /// as a fraction of the design's (above 1 when both open further), each measured along its
     /// path up to [`PROBE_ARC_FACTOR`] times the arc length of the design's most open state;
     /// None when the family has no shape parameters.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fabrication_kept: Option<Real>,
 }
 
@@ -344,9 +346,11 @@ pub struct MarginsReport {
     pub max_area_ratio: Real,
     /// Parameter change (Euclidean norm) per unit of relative vertex displacement along the
     /// direction the tolerance was measured in; None for a family without shape parameters.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub params_per_displacement: Option<Real>,
     /// For a special design: the largest area ratio of a shape moved by the smallest level
     /// (10⁻⁶ L) both ways (the smaller).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub opening_off_shape: Option<Real>,
     /// For a special design: its first-order shape constraints, unit normals n in parameter
     /// space (a shape change δp keeps one DOF to first order when n·δp = 0 for every n).

@@ -2,7 +2,7 @@
 //! linkage analyses of one explored design, re-labelled with varied families, cells, joints
 //! and measures drawn from the ranges the exploration produces.
 
-use isogami::catalog::{CatalogEntry, FiniteFigures};
+use isogami::catalog::{CatalogEntry, FiniteFigures, Margins, TOLERANCE_LEVELS};
 use isogami::cell::CellDims;
 use isogami::deploy::EndReason;
 use isogami::measure::BehaviourClass;
@@ -97,6 +97,14 @@ pub fn design(base: &CatalogEntry, i: usize, rng: &mut Rng) -> DesignRecord {
     let raw_dof = rng.pick(&[1, 1, 2, 3, 7, 20]);
     let share = rng.uniform(0.5, 1.0);
     let covered = rng.pick(&[None, Some(1.0), Some(1.0), Some(share)]);
+    let level = TOLERANCE_LEVELS[(rng.next() % TOLERANCE_LEVELS.len() as u64) as usize];
+    let shape_tolerance = rng.pick(&[None, Some(0.0), Some(level), Some(level)]);
+    let margins = Margins {
+        open_t: rng.uniform(0.0, 1.0),
+        end_area_ratio: rng.uniform(0.9, 3.0),
+        shape_tolerance,
+        fabrication_kept: shape_tolerance.map(|_| rng.uniform(0.3, 1.1)),
+    };
     DesignRecord::from_parts(
         &design,
         &design.to_string(),
@@ -106,6 +114,8 @@ pub fn design(base: &CatalogEntry, i: usize, rng: &mut Rng) -> DesignRecord {
     )
     .unwrap()
     .with_finite(Some(&FiniteFigures { raw_dof, covered }))
+    .unwrap()
+    .with_margins(Some(&margins))
     .unwrap()
 }
 
