@@ -50,8 +50,9 @@ enum Command {
     /// A graded sheet: a finite sheet whose tiles each get their own shape so that it opens
     /// into a target outline (disc, ellipse, polygon), checked to open along one motion.
     Graded(commands::graded::Args),
-    /// Translate specs written before issue 21 (shape-dependent edge labels) into the current
-    /// labels: the same physical joints, canonical numbers.
+    /// Carry specs into today's edge labels: read as written today (printed back unchanged,
+    /// canonical) or, with --legacy, as written before issue 21 (shape-dependent labels; the
+    /// same physical joints in today's labels). Ambiguous texts are named on stderr.
     MigrateSpec(commands::migrate_spec::Args),
     /// Serve the material browser over the design database (runs the quick exploration
     /// first when the database does not exist).

@@ -9,7 +9,7 @@ from conftest import assert_same
 
 @pytest.mark.parametrize("spec", isogami.SAMPLE_OPENING_DESIGNS[:6] + ["IH90::1x1:xxx", "IH90::1x1:a--"])
 def test_analysis_equals_the_cli(cli, spec):
-    want = cli("analyze", "--design", spec, "--json")
+    want = cli("analyze", "--design", spec, "--json", "--no-margins")
     a = isogami.analyze(spec)
     assert isinstance(a, isogami.Analysis)
     assert all(isinstance(m, isogami.Motion) for m in a.modes)

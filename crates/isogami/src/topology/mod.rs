@@ -13,5 +13,6 @@ mod spec;
 pub use design::{Design, JointChoice};
 pub use error::DesignError;
 pub use json::{DesignJson, JointJson};
+pub use legacy::{MigratedSpec, SpecLabels};
 pub use named::{named_design, NAMED_DESIGNS, SAMPLE_OPENING_DESIGNS};
 pub(crate) use spec::truncate as quote_input;
