@@ -243,16 +243,8 @@ impl PyQuery {
                             type_name(value)
                         ))
                     })?;
-                    q.buildable_first = match text.as_str() {
-                        "buildable" => true,
-                        "all" => false,
-                        other => {
-                            return Err(errors::QueryError::new_err(format!(
-                            "lead '{}': expected 'buildable' (buildable designs first) or 'all'",
-                            other.escape_debug()
-                        )))
-                        }
-                    };
+                    q.lead(&text)
+                        .map_err(|e| errors::QueryError::new_err(e.to_string()))?;
                 }
                 ("limit", _) => {
                     if value.is_none() {

@@ -4,7 +4,6 @@ use crate::error::StoreResult;
 use crate::open::Store;
 use crate::records::{StageCount, WorkUnitRecord};
 use crate::shard::ShardStatus;
-use isogami::catalog::FABRICATION_TOLERANCE;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -196,13 +195,13 @@ impl Store {
                         count(CASE WHEN end_area_ratio < 0.95 * max_area_ratio THEN 1 END),
                         count(CASE WHEN open_t IS NOT NULL AND shape_tolerance IS NULL THEN 1 END),
                         count(CASE WHEN shape_tolerance = 0 THEN 1 END),
-                        count(CASE WHEN open_t IS NOT NULL
-                              AND (shape_tolerance IS NULL OR shape_tolerance >= ?1) THEN 1 END),
+                        count(CASE WHEN {} THEN 1 END),
                         count(CASE WHEN {} THEN 1 END)
                  FROM designs",
+                crate::query::filter::tolerance_met_sql(),
                 crate::query::filter::buildable_sql()
             ),
-            [FABRICATION_TOLERANCE],
+            [],
             |r| {
                 Ok(MarginCounts {
                     measured: r.get::<_, i64>(0)? as u64,

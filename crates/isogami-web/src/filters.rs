@@ -75,16 +75,9 @@ pub fn parse(pairs: &[(String, String)], extra: &[&str]) -> ApiResult<Request> {
                 query.sort_by(key, descending);
             }
             "lead" => {
-                query.buildable_first = match value.as_str() {
-                    "buildable" => true,
-                    "all" => false,
-                    other => {
-                        return Err(ApiError::bad_parameter(format!(
-                            "lead {:?}: expected 'buildable' (buildable designs first) or 'all'",
-                            truncate(other)
-                        )))
-                    }
-                };
+                query
+                    .lead(value)
+                    .map_err(|e| ApiError::bad_parameter(e.to_string()))?;
             }
             "limit" => {
                 let n: u32 = number(key, value)?;

@@ -242,9 +242,14 @@ pub(crate) fn sorted_order(query: &DesignQuery) -> Result<String, QueryError> {
 /// SQL that is 1 for a buildable design, 0 otherwise (the rule of
 /// [`DesignSummary::buildable`](crate::DesignSummary::buildable)).
 pub(crate) fn buildable_sql() -> String {
+    format!("(finite_covered IS NOT NULL AND {})", tolerance_met_sql())
+}
+
+/// SQL that is 1 for a design with margins whose shape tolerance reaches the fabrication
+/// tolerance (or whose family has no shape parameters), 0 otherwise.
+pub(crate) fn tolerance_met_sql() -> String {
     format!(
-        "(finite_covered IS NOT NULL AND open_t IS NOT NULL \
-         AND (shape_tolerance IS NULL OR shape_tolerance >= {:e}))",
+        "(open_t IS NOT NULL AND (shape_tolerance IS NULL OR shape_tolerance >= {:e}))",
         isogami::catalog::FABRICATION_TOLERANCE
     )
 }

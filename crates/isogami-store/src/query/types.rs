@@ -430,6 +430,16 @@ impl DesignQuery {
         self.sort = Some(Sort { key, descending });
         self
     }
+
+    /// Sets [`DesignQuery::buildable_first`] from its text: `buildable` (first) or `all`.
+    pub fn lead(&mut self, text: &str) -> Result<&mut DesignQuery, QueryError> {
+        self.buildable_first = match text {
+            "buildable" => true,
+            "all" => false,
+            other => return Err(QueryError::Lead(other.chars().take(60).collect())),
+        };
+        Ok(self)
+    }
 }
 
 /// One page of a query.
@@ -500,4 +510,7 @@ pub enum QueryError {
     /// A measure name that does not exist.
     #[error("unknown measure '{0}'")]
     UnknownName(String),
+    /// A `lead` that is neither `buildable` nor `all`.
+    #[error("lead '{0}': expected 'buildable' (buildable designs first) or 'all'")]
+    Lead(String),
 }
