@@ -283,6 +283,7 @@ function showView(v, { fromEditor, source = null }) {
   $('origin').textContent = origin === 'live' ? 'live (not in the database)' : `${origin} design`;
   $('origin').dataset.origin = origin;
   showSheetBadge(v);
+  showOtherCells(v);
   updateSave();
   const dragging = fromEditor && live && live.busy();
   if (dragging) followUps = true;
@@ -319,6 +320,20 @@ function showSheetBadge(v) {
   badge.dataset.sheet = s.kind;
   badge.title = s.title;
   badge.replaceChildren(s.text, Object.assign(document.createElement('span'), { className: 'visually-hidden', textContent: `: ${s.title}` }));
+}
+
+/** The specs of the same design on other cells of its family, stored with this one (cell
+ * twins): the catalogue lists it once, so the page names the others. */
+function showOtherCells(v) {
+  const line = $('other-cells');
+  const others = v.other_cells ?? [];
+  line.hidden = others.length === 0;
+  if (line.hidden) return;
+  const cells = others.map((s) => s.split(':')[2]?.replace('x', '×') ?? s);
+  line.replaceChildren(
+    `The same design (shape and motion) is also found on the ${cells.join(', ')} cell${others.length > 1 ? 's' : ''}, stored once as this one: `,
+    ...others.flatMap((s, i) => [i > 0 ? ', ' : '', Object.assign(document.createElement('code'), { textContent: s })]),
+  );
 }
 
 function renderFrame() {

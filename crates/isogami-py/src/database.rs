@@ -235,7 +235,14 @@ impl PyStoredDesign {
             .map(|l| to_python(py, l))
             .transpose()
     }
-    /// Pickles as its record, report and linkages exactly (``StoredDesign._from_json``) (see the `pickle` module).
+    /// The specs of the same design on other cells of its family (same shape and path),
+    /// stored with this one: the database keeps one row for them.
+    #[getter]
+    fn other_cells(&self) -> Vec<String> {
+        self.inner.other_cells.clone()
+    }
+    /// Pickles as its record, report, linkages and other cells exactly
+    /// (``StoredDesign._from_json``) (see the `pickle` module).
     fn __reduce__<'py>(
         &self,
         py: Python<'py>,
@@ -247,6 +254,7 @@ impl PyStoredDesign {
                 crate::pickle::json(py, &self.inner.summary)?,
                 crate::pickle::json(py, &self.inner.report)?,
                 crate::pickle::json(py, &self.inner.linkages)?,
+                crate::pickle::json(py, &self.inner.other_cells)?,
             ],
             &[],
         )?;
@@ -259,12 +267,19 @@ impl PyStoredDesign {
             crate::pickle::same(&o.inner.summary, &self.inner.summary)
                 && crate::pickle::same(&o.inner.report, &self.inner.report)
                 && o.inner.linkages == self.inner.linkages
+                && o.inner.other_cells == self.inner.other_cells
         })
     }
 
     /// A stored design from the JSON of its parts (for unpickling).
     #[staticmethod]
-    fn _from_json(summary: &str, report: &str, linkages: &str) -> PyResult<PyStoredDesign> {
+    #[pyo3(signature = (summary, report, linkages, other_cells = "[]"))]
+    fn _from_json(
+        summary: &str,
+        report: &str,
+        linkages: &str,
+        other_cells: &str,
+    ) -> PyResult<PyStoredDesign> {
         let bad = |e: serde_json::Error| {
             PyValueError::new_err(format!("not a stored design's JSON: {e}"))
         };
@@ -273,6 +288,7 @@ impl PyStoredDesign {
                 summary: serde_json::from_str(summary).map_err(bad)?,
                 report: serde_json::from_str(report).map_err(bad)?,
                 linkages: serde_json::from_str(linkages).map_err(bad)?,
+                other_cells: serde_json::from_str(other_cells).map_err(bad)?,
             },
         })
     }

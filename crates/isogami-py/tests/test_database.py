@@ -3,6 +3,7 @@ own query types); results checked against filtering every record in Python, and 
 reports against fresh deployments and the CLI."""
 
 import math
+import pickle
 import shutil
 from pathlib import Path
 
@@ -262,3 +263,39 @@ def test_margins_and_buildable_first(db, every):
     assert [r.spec for r in special] == sorted(r.spec for r in every if r.shape_tolerance == 0)
     with pytest.raises(isogami.QueryError, match="lead"):
         db.designs(lead="first")
+
+
+def test_cell_twins_are_stored_once_and_found_by_every_spec(cli_raw, tmp_path):
+    """The same design found on a 1×2 and a 2×1 cell is one record that lists its other cell;
+    its other spec finds it. Families by a rule: every family whose 1×2 and 2×1 cells both
+    have at most 8 unique edges."""
+    def edges(f, cell):
+        try:
+            return isogami.cell(f, None, cell).edge_count
+        except isogami.CellError:
+            return None
+
+    chosen = [f.name for f in isogami.families()
+              if all((edges(f, c) or 99) <= 8 for c in ("1x2", "2x1"))]
+    assert len(chosen) >= 3, chosen
+    path = tmp_path / "twins.db"
+    done = cli_raw("explore", "--families", ",".join(chosen), "--cells", "1x2,2x1",
+                   "--max-edges", "8", "--samples", "4", "--db", str(path))
+    assert done.returncode == 0, done.stderr
+    with isogami.open_database(path, check="full") as db:
+        twins = db.stats()["cell_twins"]
+        assert twins > 0
+        records = db.designs(limit=1000)
+        assert len(records) == db.count()
+        with_twins = [db.design(r.spec) for r in records]
+        with_twins = [s for s in with_twins if s.other_cells]
+        assert sum(len(s.other_cells) for s in with_twins) == twins
+        stored = {r.spec for r in records}
+        for s in with_twins:
+            for other in s.other_cells:
+                assert other not in stored
+                found = db.design(other)
+                assert found.record.spec == s.record.spec and other in found.other_cells
+                assert other.split(":")[:2] == s.record.spec.split(":")[:2]
+                assert other.split(":")[2] != s.record.spec.split(":")[2]
+            assert pickle.loads(pickle.dumps(s)).other_cells == s.other_cells

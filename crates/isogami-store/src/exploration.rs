@@ -261,11 +261,14 @@ pub fn explore_into(
         }
         Ok(())
     })?;
-    // The classes span the whole file: recomputed when units came in (or were never made), so
-    // a rerun that adds nothing leaves the file as it was.
+    // Twins and classes span the whole file: the twins are looked for on every run (a file
+    // made before they were stored gets them; with none to fold nothing is written), the
+    // classes recomputed when designs came in or went (or were never made), so a rerun that
+    // adds nothing leaves the file as it was.
+    let folded = store.refresh_cell_twins()?;
     let unclassed =
         store.design_count()? > 0 && store.motion_counts()?.is_none_or(|c| c.topologies == 0);
-    if committed > 0 || unclassed {
+    if committed > 0 || folded > 0 || unclassed {
         store.refresh_motion_classes()?;
     }
     let stats = store.stats()?;

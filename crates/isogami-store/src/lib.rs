@@ -57,6 +57,7 @@ mod schema;
 mod settings_diff;
 mod shard;
 mod stats;
+mod twins;
 mod verify;
 mod write;
 

@@ -91,8 +91,9 @@ impl StoreWriter {
             .iter()
             .any(|r| r.units_added + r.user_designs_added > 0)
         {
-            self.refresh_motion_classes()
-                .map_err(|e| (others.len().saturating_sub(1), e))?;
+            let last = others.len().saturating_sub(1);
+            self.refresh_cell_twins().map_err(|e| (last, e))?;
+            self.refresh_motion_classes().map_err(|e| (last, e))?;
         }
         Ok(reports)
     }
@@ -116,6 +117,16 @@ fn merge_one(tx: &rusqlite::Transaction<'_>, other: &Store) -> StoreResult<Merge
             report.designs_added += 1;
         }
         report.units_added += 1;
+    }
+    for (spec, kept) in other.cell_twins()? {
+        tx.prepare_cached(
+            "INSERT OR IGNORE INTO cell_twins(spec, kept, checksum) VALUES (?1, ?2, ?3)",
+        )?
+        .execute(rusqlite::params![
+            spec,
+            kept,
+            crate::checksum::of_values(&crate::rows::cell_twin_values(&spec, &kept))
+        ])?;
     }
     let (parts, joined, designs) = merge_parts(tx, other)?;
     report.parts_added = parts;

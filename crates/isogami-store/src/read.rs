@@ -58,6 +58,7 @@ pub(crate) fn typed(record: DesignRecord) -> StoreResult<StoredDesign> {
         summary: record.summary,
         report,
         linkages,
+        other_cells: Vec::new(),
     })
 }
 
@@ -156,14 +157,21 @@ impl Store {
         Ok(n as u64)
     }
 
-    /// One design by its spec, with its report and linkage analysis as the library's types.
-    /// The spec is matched exactly, then in the canonical form the library writes (so
-    /// `IH28:0.5:1x1:…` finds `IH28:0.50:1x1:…` if that is how it was stored).
+    /// One design by its spec, with its report and linkage analysis as the library's types
+    /// and the specs of its cell twins. The spec is matched exactly, then in the canonical
+    /// form the library writes (so `IH28:0.5:1x1:…` finds `IH28:0.50:1x1:…` if that is how it
+    /// was stored); the spec of a cell twin finds the design it is stored with (whose
+    /// summary names its own spec).
     pub fn design(&self, spec: &str) -> StoreResult<Option<StoredDesign>> {
-        self.design_record(spec)?.map(typed).transpose()
+        let Some(mut stored) = self.design_record(spec)?.map(typed).transpose()? else {
+            return Ok(None);
+        };
+        stored.other_cells = self.other_cells(&stored.summary.spec)?;
+        Ok(Some(stored))
     }
 
-    /// One design by its spec as stored (JSON documents verified but not parsed).
+    /// One design by its spec as stored (JSON documents verified but not parsed); matched as
+    /// [`design`](Self::design) matches it.
     pub fn design_record(&self, spec: &str) -> StoreResult<Option<DesignRecord>> {
         let sql = record_select("WHERE d.spec = ?1");
         let mut stmt = self.conn.prepare(&sql)?;
@@ -171,12 +179,18 @@ impl Store {
         if let Ok(d) = spec.parse::<isogami::topology::Design>() {
             candidates.push(d.to_string());
         }
-        for s in candidates {
-            let found = stmt
-                .query_row([&s], |r| Ok(record_from_row(r)))
-                .optional()?;
+        for s in &candidates {
+            let found = stmt.query_row([s], |r| Ok(record_from_row(r))).optional()?;
             if let Some(record) = found {
                 return record.map(Some);
+            }
+        }
+        for s in &candidates {
+            if let Some(kept) = self.stored_as(s)? {
+                let found = stmt
+                    .query_row([&kept], |r| Ok(record_from_row(r)))
+                    .optional()?;
+                return found.transpose();
             }
         }
         Ok(None)

@@ -199,6 +199,9 @@ pub struct StoredDesign {
     pub report: DeploymentReport,
     /// The linkage analysis, if one was stored.
     pub linkages: Option<LinkageAnalysis>,
+    /// The specs of the same design on other cells of its family (same shape and path),
+    /// stored with this one (cell twins; empty when it has none).
+    pub other_cells: Vec<String>,
 }
 
 /// Everything one work unit writes, in one transaction.

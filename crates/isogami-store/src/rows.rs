@@ -313,6 +313,11 @@ pub(crate) fn motion_class_values(topology: &str, representative: &str) -> [Valu
     [text(topology), text(representative)]
 }
 
+/// The values of a `cell_twins` row covered by its checksum.
+pub(crate) fn cell_twin_values(spec: &str, kept: &str) -> [Value; 2] {
+    [text(spec), text(kept)]
+}
+
 /// The values of a `meta` row covered by its checksum.
 pub(crate) fn meta_values(key: &str, value: &str) -> [Value; 2] {
     [text(key), text(value)]

@@ -24,6 +24,10 @@
 //!   that move alike across cells and families (`motions.rs`), with a checksum; recomputed by
 //!   writers, absent in files made before it existed.
 //!
+//! - `cell_twins` (optional): the spec of each explored design found again on another cell of
+//!   its family (same shape, same path) and the spec of the design it is stored with, which
+//!   keeps the only `designs` row (`twins.rs`), with a checksum; recomputed by writers.
+//!
 //! - `unit_parts` (optional): parts of work units split with `explore --unit-parts`, waiting
 //!   for their siblings (`parts.rs`): the library's part outcome as JSON with its seconds and
 //!   peak memory, and a checksum. Empty once every split unit is complete.
@@ -78,6 +82,12 @@ CREATE TABLE IF NOT EXISTS motion_classes (
 );
 CREATE INDEX IF NOT EXISTS motion_classes_representative ON motion_classes(representative);
 CREATE INDEX IF NOT EXISTS designs_topology ON designs(topology);
+CREATE TABLE IF NOT EXISTS cell_twins (
+    spec     TEXT PRIMARY KEY,
+    kept     TEXT NOT NULL,
+    checksum INTEGER NOT NULL
+);
+CREATE INDEX IF NOT EXISTS cell_twins_kept ON cell_twins(kept);
 CREATE TABLE IF NOT EXISTS unit_parts (
     work_unit      TEXT NOT NULL,
     part           INTEGER NOT NULL,

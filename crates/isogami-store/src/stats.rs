@@ -82,6 +82,9 @@ pub struct DbStats {
     pub designs: u64,
     /// Of these, designs saved by users.
     pub user_designs: u64,
+    /// Specs of explored designs found again on another cell of their family and stored with
+    /// that design (cell twins; not counted in `designs`).
+    pub cell_twins: u64,
     /// Designs per behaviour class ("none" when unclassified).
     pub by_behaviour: BTreeMap<String, u64>,
     /// Designs per linkage signature.
@@ -230,6 +233,7 @@ impl Store {
             work_units: units.len() as u64,
             designs,
             user_designs: user_designs as u64,
+            cell_twins: self.cell_twin_count()?,
             by_behaviour,
             by_linkage,
             stages,

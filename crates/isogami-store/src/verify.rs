@@ -11,6 +11,7 @@ impl Store {
     pub(crate) fn verify_rows(&self) -> StoreResult<()> {
         self.work_units()?;
         self.motion_classes()?;
+        self.cell_twins()?;
         self.parts()?;
         let orphans: i64 = self.conn.query_row(
             "SELECT (SELECT count(*) FROM designs WHERE id NOT IN (SELECT design FROM design_data))

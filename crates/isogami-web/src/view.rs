@@ -42,6 +42,9 @@ pub struct DesignView {
     pub linkages: Option<LinkageAnalysis>,
     /// For each tile, the indices of every linkage through it (ascending; empty for none).
     pub tile_linkages: Vec<Vec<usize>>,
+    /// The specs of the same design on other cells of its family, stored with this one
+    /// (empty for a live deployment or a design without cell twins).
+    pub other_cells: Vec<String>,
 }
 
 impl DesignView {
@@ -54,14 +57,16 @@ impl DesignView {
             ))
         })?;
         let geometry = sheet_geometry(&design).map_err(|e| ApiError::internal(e.to_string()))?;
-        Ok(DesignView::assemble(
+        let mut view = DesignView::assemble(
             stored.summary.spec.clone(),
             Some(stored.summary.origin),
             Some(stored.summary),
             stored.report,
             geometry,
             stored.linkages,
-        ))
+        );
+        view.other_cells = stored.other_cells;
+        Ok(view)
     }
 
     /// The view of a fresh deployment of `design`.
@@ -100,6 +105,7 @@ impl DesignView {
             geometry,
             linkages,
             tile_linkages,
+            other_cells: Vec::new(),
         }
     }
 }

@@ -326,9 +326,17 @@ pub fn stats_table(s: &DbStats) -> String {
     } else {
         String::new()
     };
+    let twins = if s.cell_twins > 0 {
+        format!(
+            "; {} more found again on another cell of their family, stored with it",
+            s.cell_twins
+        )
+    } else {
+        String::new()
+    };
     let _ = writeln!(
         o,
-        "{} work units, {} designs{user} (schema {}, isogami {})",
+        "{} work units, {} designs{user}{twins} (schema {}, isogami {})",
         s.work_units,
         s.designs,
         s.schema_version,

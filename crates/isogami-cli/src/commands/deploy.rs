@@ -3,8 +3,10 @@
 use crate::output::{emit, json_text, print_json, CliResult, Outputs};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami::api::{deploy, resolve_design, DeployRequest, FrameSelection};
+use isogami::catalog::{margins_report, CatalogSettings};
 use isogami::contact::{ContactModel, ContactSettings};
 use isogami::deploy::{DeploySettings, DeploymentReport, Method};
+use isogami::explore::TopologyOptions;
 use isogami::finite::periodic_singular_states;
 use isogami::kinematics::Mechanism;
 use isogami::measure::expansion_profile;
@@ -56,6 +58,10 @@ pub struct Args {
     /// (FILE-polar.svg).
     #[arg(long)]
     plot: Option<PathBuf>,
+    /// Skip the margins the text report ends with (shape tolerance, most open state, finite
+    /// sheet), which deploy shapes moved off the design and count a 6×6-cell patch.
+    #[arg(long)]
+    no_margins: bool,
 }
 
 /// Deploys one design and writes what was asked.
@@ -187,6 +193,19 @@ pub fn run(args: Args) -> CliResult {
     }
     for s in &singular {
         outln!(o, "{}", super::sheet::singular_warning("periodic", s));
+    }
+    // The margins are measured along the rigid-modes path of a one-DOF design.
+    if report.dof == 1 && method == Method::RigidModes && !args.no_margins {
+        let settings = CatalogSettings {
+            deploy: request.settings,
+            topology: TopologyOptions {
+                mobility: request.settings.mobility,
+                ..TopologyOptions::default()
+            },
+            ..CatalogSettings::default()
+        };
+        let margins = margins_report(&design, &settings).map_err(|e| format!("margins: {e}"))?;
+        super::margins_text::margin_lines(&mut o, &margins, 20.0);
     }
     emit(&o)
 }

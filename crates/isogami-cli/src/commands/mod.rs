@@ -12,6 +12,7 @@ pub mod graded;
 pub mod inverse;
 pub mod laser_args;
 pub mod linkages;
+pub(crate) mod margins_text;
 pub mod migrate_spec;
 pub mod print_args;
 pub mod serve;

@@ -482,3 +482,54 @@ fn db_motions_lists_shared_motions_and_stats_counts_them() {
     );
     assert!(stats.contains(&line), "{stats}");
 }
+
+/// `analyze` and `deploy` say whether a design's finite patch has a one-DOF sheet, as the
+/// catalogue stored it: for the first designs by spec of a quick exploration with and
+/// without a sheet (up to three of each), the text names the stored fraction or says there
+/// is none.
+#[test]
+fn analyze_and_deploy_say_whether_the_stored_design_has_a_one_dof_sheet() {
+    let d = dir("sheet-lines");
+    let db = d.path().join("q.db");
+    explore(&db, &[]);
+    let store = Store::open_read(&db, Check::Full).unwrap();
+    let mut rows = store.summaries().unwrap();
+    rows.sort_by(|a, b| a.spec.cmp(&b.spec));
+    let with: Vec<_> = rows
+        .iter()
+        .filter(|r| r.finite_covered.is_some())
+        .take(3)
+        .collect();
+    let without: Vec<_> = rows
+        .iter()
+        .filter(|r| r.finite_covered.is_none())
+        .take(3)
+        .collect();
+    assert!(
+        !with.is_empty() && !without.is_empty(),
+        "the quick run holds both kinds"
+    );
+    for r in with.iter().chain(&without) {
+        for command in ["analyze", "deploy"] {
+            let out = bin().args([command, "--design", &r.spec]).output().unwrap();
+            assert!(out.status.success(), "{command} {}", r.spec);
+            let text = String::from_utf8_lossy(&out.stdout);
+            let line = text
+                .lines()
+                .find(|l| l.starts_with("sheet "))
+                .unwrap_or_else(|| panic!("{command} {}: no sheet line in\n{text}", r.spec));
+            match r.finite_covered {
+                Some(c) => assert!(
+                    line.contains(&format!("keeping {:.0} %", 100.0 * c)),
+                    "{command} {}: {line}",
+                    r.spec
+                ),
+                None => assert!(
+                    line.contains("NO ONE-DOF SHEET"),
+                    "{command} {}: {line}",
+                    r.spec
+                ),
+            }
+        }
+    }
+}

@@ -9,4 +9,5 @@ mod query;
 mod roundtrip;
 mod safety;
 mod shards;
+mod twins;
 mod unit_memory;

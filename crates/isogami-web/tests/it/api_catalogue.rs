@@ -65,12 +65,26 @@ async fn stats_count_what_the_store_holds() {
             .map_or("none".to_string(), |b| b.as_str().into());
         *per_behaviour.entry(b).or_default() += 1;
     }
+    let mut units: BTreeMap<String, u64> = BTreeMap::new();
+    let store =
+        isogami_store::Store::open_read(&catalogue().db, isogami_store::Check::Full).unwrap();
+    for (unit, _) in store.work_units().unwrap() {
+        *units.entry(unit.family).or_default() += 1;
+    }
     let families = stats["families"].as_object().unwrap();
     assert_eq!(families.len(), per_family.len());
     for (family, n) in &per_family {
         assert_eq!(families[family]["designs"].as_u64(), Some(*n), "{family}");
-        assert_eq!(families[family]["units"].as_u64(), Some(1), "{family}");
+        assert_eq!(
+            families[family]["units"].as_u64(),
+            units.get(family).copied(),
+            "{family}"
+        );
     }
+    assert_eq!(
+        stats["cell_twins"].as_u64(),
+        Some(store.cell_twins().unwrap().len() as u64)
+    );
     let by_behaviour: BTreeMap<String, u64> =
         serde_json::from_value(stats["by_behaviour"].clone()).unwrap();
     assert_eq!(by_behaviour, per_behaviour);

@@ -114,6 +114,40 @@ fn check_view(view: &Value, what: &str) {
     }
 }
 
+/// A cell twin's spec opens the design it is stored with, which lists it among its other
+/// cells; every stored design lists exactly its twins.
+#[tokio::test]
+async fn a_twin_spec_opens_its_stored_design_with_its_other_cells() {
+    let app = app();
+    let store = Store::open_read(&catalogue().db, Check::Full).unwrap();
+    let twins = store.cell_twins().unwrap();
+    assert!(!twins.is_empty(), "the fixture holds cell twins");
+    for (twin, kept) in &twins {
+        let view = get(&app, &format!("/api/design?spec={}", enc(twin)))
+            .await
+            .ok();
+        assert_eq!(view["spec"], kept.as_str());
+        let others: Vec<&str> = view["other_cells"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_str().unwrap())
+            .collect();
+        assert!(others.contains(&twin.as_str()), "{twin}: {others:?}");
+    }
+    for s in summaries(&catalogue().db) {
+        let view = get(&app, &format!("/api/design?spec={}", enc(&s.spec)))
+            .await
+            .ok();
+        let want: Vec<&String> = twins
+            .iter()
+            .filter(|(_, k)| *k == s.spec)
+            .map(|(t, _)| t)
+            .collect();
+        assert_eq!(view["other_cells"].as_array().unwrap().len(), want.len());
+    }
+}
+
 #[tokio::test]
 async fn stored_views_agree_with_their_catalogue_rows() {
     let app = app();

@@ -355,6 +355,11 @@ pub struct MarginsReport {
     /// For a special design: its first-order shape constraints, unit normals n in parameter
     /// space (a shape change δp keeps one DOF to first order when n·δp = 0 for every n).
     pub constraints: Vec<Vec<Real>>,
+    /// The catalogue's finite 6×6-cell patch (raw DOF, and the fraction its completion to a
+    /// one-DOF sheet keeps, none when it has no such sheet), as the catalogue stores it; None
+    /// when it could not be counted.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub finite: Option<super::finite::FiniteFigures>,
 }
 
 /// The margins of `design` (deployed afresh with `settings`) and what explains them (see
@@ -380,6 +385,15 @@ pub fn margins_report(design: &Design, settings: &CatalogSettings) -> Result<Mar
         }
         _ => (None, Vec::new()),
     };
+    let cell = design.cell()?;
+    let finite = super::finite::figures_of_trajectory(
+        design,
+        &cell,
+        &path.mechanism,
+        &path.trajectory,
+        settings,
+    )
+    .ok();
     Ok(MarginsReport {
         design: design.to_string(),
         margins,
@@ -387,5 +401,6 @@ pub fn margins_report(design: &Design, settings: &CatalogSettings) -> Result<Mar
         params_per_displacement: mv.map(|m| m.params_per_displacement),
         opening_off_shape,
         constraints,
+        finite,
     })
 }

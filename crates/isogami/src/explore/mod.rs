@@ -33,7 +33,7 @@ pub mod plan;
 pub mod reduced;
 pub mod separate;
 
-pub use dedup::duplicates_across;
+pub use dedup::{cell_twins, duplicates_across, TwinCandidate};
 pub use dedup::{
     motion_invariant, sheet_symmetries, MotionIndex, MotionInvariant, Symmetry, SymmetryGroup,
 };

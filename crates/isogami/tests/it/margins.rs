@@ -5,8 +5,8 @@
 use super::common::Rng;
 use isogami::api::{deploy, DeployRequest, FrameSelection};
 use isogami::catalog::{
-    largest_area_ratio, margins, run_unit, shape_move, CatalogEntry, CatalogSettings, Margins,
-    FABRICATION_TOLERANCE, KEPT_FRACTION, TOLERANCE_LEVELS,
+    largest_area_ratio, margins, margins_report, run_unit, shape_move, CatalogEntry,
+    CatalogSettings, Margins, FABRICATION_TOLERANCE, KEPT_FRACTION, TOLERANCE_LEVELS,
 };
 use isogami::cell::CellDims;
 use isogami::math::{Real, Vec2};
@@ -290,4 +290,22 @@ fn a_databases_tolerances_agree_with_moves_in_random_directions() {
         println!("  {d}");
     }
     assert!(agree_fab as Real >= 0.98 * rows as Real);
+}
+
+/// The report `analyze` and `deploy` print from carries the finite patch's figures as the
+/// catalogue stored them (every third entry of the rule's units).
+#[test]
+fn the_margins_report_carries_the_catalogues_finite_figures() {
+    let s = settings();
+    let mut seen = (0, 0);
+    for e in entries().iter().step_by(3) {
+        let report = margins_report(&e.design, &s).unwrap();
+        assert_eq!(report.finite, e.finite, "{}", e.design);
+        match e.finite.and_then(|f| f.covered) {
+            Some(_) => seen.0 += 1,
+            None => seen.1 += 1,
+        }
+        assert_eq!(Some(report.margins), e.margins, "{}", e.design);
+    }
+    assert!(seen.0 > 0, "no entry with a one-DOF sheet among {seen:?}");
 }

@@ -23,7 +23,16 @@ use tower::ServiceExt;
 /// a 2×1 supercell give several values of every facet that varies in a quick exploration
 /// (family, cell, tile count, behaviour, linkage signature) and families with one, two and
 /// three shape parameters (so v1 and v2 are missing on some rows).
-const UNITS: [(u32, u8, u8); 5] = [(84, 1, 1), (59, 1, 1), (86, 1, 1), (22, 1, 1), (69, 2, 1)];
+/// IH1's 1×2 and 2×1 cells hold the same designs (cell twins), which the file stores once.
+const UNITS: [(u32, u8, u8); 7] = [
+    (84, 1, 1),
+    (59, 1, 1),
+    (86, 1, 1),
+    (22, 1, 1),
+    (69, 2, 1),
+    (1, 1, 2),
+    (1, 2, 1),
+];
 
 /// The quick exploration's settings (as `isogami explore --quick`), allowing 2×1 cells.
 pub fn catalog_settings() -> CatalogSettings {
@@ -68,6 +77,7 @@ pub fn catalogue() -> &'static Catalogue {
                 .unwrap();
         }
         // As `explore_into` does after committing units.
+        writer.refresh_cell_twins().unwrap();
         writer.refresh_motion_classes().unwrap();
         drop(writer);
         Catalogue {

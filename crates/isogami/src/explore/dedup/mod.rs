@@ -13,7 +13,8 @@
 //! [`orbits`] strings steps 2 and 3 together over the orbit representatives that the
 //! expansion found (step 1 is the keying itself); [`lattice`] is the shared lattice helper.
 //! [`across`] then finds the duplicates the per-cell steps cannot see, across cells and
-//! families, by the same motion invariant.
+//! families, by the same motion invariant; [`twins`] finds, among the designs a catalogue
+//! stores, the same design on two cells of its family (same shape, same path).
 //!
 //! Not covered: designs on different cells (e.g. a 2×1 design and its 90°-rotated 1×2 twin, or
 //! a 2×2 design invariant only under t1 + t2), symmetries of the isohedral type that the
@@ -27,9 +28,11 @@ pub mod motion;
 pub mod orbits;
 pub mod repeats;
 pub mod symmetry;
+pub mod twins;
 
 pub use across::duplicates_across;
 pub use motion::{motion_invariant, MotionIndex, MotionInvariant, MOTION_TOL};
 pub use orbits::{dedup_orbits, DedupResult, Kept};
 pub use repeats::{is_repeat, repeat_translations, RepeatTest};
 pub use symmetry::{joint_string, sheet_symmetries, Symmetry, SymmetryGroup};
+pub use twins::{cell_twins, TwinCandidate, PATH_TOL};
