@@ -4,7 +4,8 @@
 
 use crate::error::{ApiError, ApiResult};
 use isogami_store::query::MAX_LIMIT;
-use isogami_store::{DesignQuery, Facet, Measure, SortKey};
+use isogami_store::query::{QueryError, RangeFilter, Sort};
+use isogami_store::{DesignQuery, Facet, Measure};
 
 /// Most rows one API page returns (the store allows more; the browser pages).
 pub const MAX_PAGE: u32 = 500;
@@ -61,18 +62,19 @@ pub fn parse(pairs: &[(String, String)], extra: &[&str]) -> ApiResult<Request> {
                 query.select(facet(Facet::Origin)?);
             }
             "range" => {
-                let (m, lo, hi) = range(value)?;
-                query.range(m, lo, hi);
+                let r: RangeFilter = value.parse().map_err(|e| match e {
+                    QueryError::RangeForm(_) | QueryError::RangeBound { .. } => {
+                        ApiError::bad_parameter(e.to_string())
+                    }
+                    e => ApiError::bad_parameter(format!("range: {e}")),
+                })?;
+                query.range(r.measure, r.min, r.max);
             }
             "sort" => {
-                let (name, descending) = match value.strip_prefix('-') {
-                    Some(rest) => (rest, true),
-                    None => (value.as_str(), false),
-                };
-                let key: SortKey = name
+                let sort: Sort = value
                     .parse()
                     .map_err(|e| ApiError::bad_parameter(format!("sort: {e}")))?;
-                query.sort_by(key, descending);
+                query.sort_by(sort.key, sort.descending);
             }
             "lead" => {
                 query
@@ -124,31 +126,6 @@ fn number<T: std::str::FromStr>(key: &str, value: &str) -> ApiResult<T> {
             truncate(value)
         ))
     })
-}
-
-/// `measure:min:max`, either bound empty; bounds must be finite.
-fn range(value: &str) -> ApiResult<(Measure, Option<f64>, Option<f64>)> {
-    let parts: Vec<&str> = value.split(':').collect();
-    let [m, lo, hi] = parts[..] else {
-        return Err(ApiError::bad_parameter(format!(
-            "range must be measure:min:max, got {:?}",
-            truncate(value)
-        )));
-    };
-    let m = measure("range", m)?;
-    let bound = |text: &str| -> ApiResult<Option<f64>> {
-        if text.is_empty() {
-            return Ok(None);
-        }
-        match text.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(Some(v)),
-            _ => Err(ApiError::bad_parameter(format!(
-                "range bound {:?} on {m} is not a finite number",
-                truncate(text)
-            ))),
-        }
-    };
-    Ok((m, bound(lo)?, bound(hi)?))
 }
 
 /// At most 60 characters of user text, for messages.

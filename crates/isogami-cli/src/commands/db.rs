@@ -112,6 +112,10 @@ pub enum DbCommand {
         #[arg(long)]
         json: bool,
     },
+    /// List designs as the catalogue does: the browser's filters, sort and lead (buildable
+    /// designs first by default), each row with its finite sheet, shape tolerance and whether
+    /// it is buildable.
+    Designs(super::db_designs::Args),
     /// List every work unit with its wall time, peak memory (the exploring process's resident
     /// memory while it ran) and designs kept, slowest first: the figures for sizing a cluster
     /// run's tasks.
@@ -188,6 +192,7 @@ pub fn run(cmd: DbCommand) -> CliResult {
                 emit(&stats_table(&stats))
             }
         }
+        DbCommand::Designs(args) => super::db_designs::run(args),
         DbCommand::Units { db, top, json } => units_table(&db, top, json),
         DbCommand::Motions { db, all, json } => motions_table(&db, all, json),
         DbCommand::CheckShard { db, shard, json } => check_shard(&db, &shard, json),

@@ -4,6 +4,7 @@ pub mod analyze;
 pub mod cell;
 pub mod compare;
 pub mod db;
+pub mod db_designs;
 pub mod deploy;
 pub mod explore;
 pub mod export;

@@ -533,3 +533,80 @@ fn analyze_and_deploy_say_whether_the_stored_design_has_a_one_dof_sheet() {
         }
     }
 }
+
+/// `db designs` lists the catalogue as the browser does: buildable designs first, each group
+/// by largest area ratio; a range keeps exactly the matching designs; bad arguments are one
+/// line and exit 2. Checked against the store's own rows and the buildable rule written out.
+#[test]
+fn db_designs_lists_buildable_designs_first_and_filters_like_the_catalogue() {
+    let d = dir("db-designs");
+    let db = d.path().join("q.db");
+    explore(&db, &[]);
+    let db_arg = db.to_str().unwrap();
+    let all = Store::open_read(&db, Check::Full)
+        .unwrap()
+        .summaries()
+        .unwrap();
+    let run = |extra: &[&str]| -> serde_json::Value {
+        let out = bin()
+            .args(["db", "designs", "--db", db_arg, "--json", "--limit", "1000"])
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let page = run(&[]);
+    let rows = page["rows"].as_array().unwrap();
+    assert_eq!(page["total"].as_u64(), Some(all.len() as u64));
+    assert_eq!(rows.len(), all.len());
+    let rule = |r: &serde_json::Value| {
+        !r["finite_covered"].is_null()
+            && !r["open_t"].is_null()
+            && r["shape_tolerance"].as_f64().is_none_or(|t| t >= 0.0025)
+    };
+    let flags: Vec<bool> = rows
+        .iter()
+        .map(|r| r["buildable"].as_bool().unwrap())
+        .collect();
+    for (r, &b) in rows.iter().zip(&flags) {
+        assert_eq!(rule(r), b, "{}", r["spec"]);
+    }
+    assert!(
+        flags.contains(&true) && flags.contains(&false),
+        "both kinds: {flags:?}"
+    );
+    assert!(flags.windows(2).all(|w| w[0] >= w[1]), "buildable first");
+    for w in rows.windows(2) {
+        if w[0]["buildable"] == w[1]["buildable"] {
+            assert!(w[0]["max_area_ratio"].as_f64() >= w[1]["max_area_ratio"].as_f64());
+        }
+    }
+    let covered = run(&["--range", "finite_covered:0.9:", "--lead", "all"]);
+    let want = all
+        .iter()
+        .filter(|s| s.finite_covered.is_some_and(|c| c >= 0.9))
+        .count();
+    assert_eq!(covered["total"].as_u64(), Some(want as u64));
+    for bad in [
+        &["--range", "finite_covered:x:"][..],
+        &["--range", "nope:1:2"],
+        &["--sort", "nope"],
+        &["--lead", "some"],
+        &["--family", "IH999"],
+    ] {
+        let out = bin()
+            .args(["db", "designs", "--db", db_arg])
+            .args(bad)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{bad:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(err.trim().lines().count(), 1, "{bad:?}: {err}");
+        assert!(out.stdout.is_empty(), "{bad:?}");
+    }
+}

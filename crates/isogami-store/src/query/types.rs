@@ -222,6 +222,51 @@ pub struct Sort {
     pub descending: bool,
 }
 
+impl FromStr for Sort {
+    type Err = QueryError;
+    /// A sort key's name, `-` first for largest first (`-max_area_ratio`).
+    fn from_str(s: &str) -> Result<Sort, QueryError> {
+        let (name, descending) = match s.strip_prefix('-') {
+            Some(rest) => (rest, true),
+            None => (s, false),
+        };
+        Ok(Sort {
+            key: name.parse()?,
+            descending,
+        })
+    }
+}
+
+impl FromStr for RangeFilter {
+    type Err = QueryError;
+    /// `measure:min:max`, either bound empty for none; bounds must be finite (their order is
+    /// checked when the query runs).
+    fn from_str(s: &str) -> Result<RangeFilter, QueryError> {
+        let parts: Vec<&str> = s.split(':').collect();
+        let [m, lo, hi] = parts[..] else {
+            return Err(QueryError::RangeForm(clipped(s)));
+        };
+        let measure: Measure = m.parse()?;
+        let bound = |text: &str| -> Result<Option<f64>, QueryError> {
+            if text.is_empty() {
+                return Ok(None);
+            }
+            match text.parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(Some(v)),
+                _ => Err(QueryError::RangeBound {
+                    measure,
+                    text: clipped(text),
+                }),
+            }
+        };
+        Ok(RangeFilter {
+            measure,
+            min: bound(lo)?,
+            max: bound(hi)?,
+        })
+    }
+}
+
 /// A facet: a column whose distinct values are listed with counts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -513,4 +558,24 @@ pub enum QueryError {
     /// A `lead` that is neither `buildable` nor `all`.
     #[error("lead '{0}': expected 'buildable' (buildable designs first) or 'all'")]
     Lead(String),
+    /// A range text that is not `measure:min:max` (at most 60 characters of it).
+    #[error("range must be measure:min:max, got {0:?}")]
+    RangeForm(String),
+    /// A range bound that is not a finite number (at most 60 characters of it).
+    #[error("range bound {text:?} on {measure} is not a finite number")]
+    RangeBound {
+        /// The measure.
+        measure: Measure,
+        /// The bound's text.
+        text: String,
+    },
+}
+
+/// At most 60 characters of user text, for messages.
+fn clipped(s: &str) -> String {
+    let mut out: String = s.chars().take(60).collect();
+    if s.chars().count() > 60 {
+        out.push('…');
+    }
+    out
 }
