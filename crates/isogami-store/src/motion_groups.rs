@@ -202,11 +202,7 @@ impl Store {
     /// The designs matching `query` grouped by motion class (see the module docs); limit and
     /// offset are ignored. Every design row and class row read is checked against its checksum.
     pub fn motion_groups(&self, query: &DesignQuery) -> StoreResult<MotionGroups> {
-        let computed: bool = self.conn.query_row(
-            "SELECT count(*) > 0 FROM sqlite_master WHERE type = 'table' AND name = 'motion_classes'",
-            [],
-            |r| r.get(0),
-        )?;
+        let computed = crate::open::has_table(&self.conn, "motion_classes")?;
         let w = filters(query, None)?;
         let order = sorted_order(query)?;
         let class = if computed {

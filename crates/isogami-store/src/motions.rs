@@ -114,11 +114,7 @@ impl StoreWriter {
 impl Store {
     /// Whether the file has the classes table (made or opened by a writer since it existed).
     fn has_motion_classes(&self) -> StoreResult<bool> {
-        Ok(self.conn.query_row(
-            "SELECT count(*) > 0 FROM sqlite_master WHERE type = 'table' AND name = 'motion_classes'",
-            [],
-            |r| r.get(0),
-        )?)
+        crate::open::has_table(&self.conn, "motion_classes")
     }
 
     /// Every stored class with its variants, biggest first (then by representative); None when

@@ -382,3 +382,12 @@ impl StoreWriter {
         Ok(writer)
     }
 }
+
+/// Whether the file has the (optional) table `name`: files made before it existed lack it.
+pub(crate) fn has_table(conn: &rusqlite::Connection, name: &str) -> StoreResult<bool> {
+    Ok(conn.query_row(
+        "SELECT count(*) > 0 FROM sqlite_master WHERE type = 'table' AND name = ?1",
+        [name],
+        |r| r.get(0),
+    )?)
+}

@@ -59,11 +59,7 @@ fn part_values(
 }
 
 fn has_parts_table(conn: &Connection) -> StoreResult<bool> {
-    Ok(conn.query_row(
-        "SELECT count(*) > 0 FROM sqlite_master WHERE type = 'table' AND name = 'unit_parts'",
-        [],
-        |r| r.get(0),
-    )?)
+    crate::open::has_table(conn, "unit_parts")
 }
 
 /// Every part row (of `unit` only, when given), checked against its checksum and parsed.

@@ -122,12 +122,7 @@ impl Store {
     /// Peak memory per work unit id, checksum-verified; empty when the database has no
     /// `unit_memory` table (made before it existed).
     fn unit_memory(&self) -> StoreResult<HashMap<String, u64>> {
-        let exists: bool = self.conn.query_row(
-            "SELECT count(*) > 0 FROM sqlite_master WHERE type = 'table' AND name = 'unit_memory'",
-            [],
-            |r| r.get(0),
-        )?;
-        if !exists {
+        if !crate::open::has_table(&self.conn, "unit_memory")? {
             return Ok(HashMap::new());
         }
         let mut stmt = self

@@ -95,11 +95,7 @@ impl StoreWriter {
 impl Store {
     /// Whether the file has the twins table (made or opened by a writer since it existed).
     fn has_cell_twins(&self) -> StoreResult<bool> {
-        Ok(self.conn.query_row(
-            "SELECT count(*) > 0 FROM sqlite_master WHERE type = 'table' AND name = 'cell_twins'",
-            [],
-            |r| r.get(0),
-        )?)
+        crate::open::has_table(&self.conn, "cell_twins")
     }
 
     /// The specs of the same design on other cells of its family, stored with `spec` (spec
