@@ -3,7 +3,7 @@
 use crate::output::{emit, json_text, print_json, CliResult, Outputs};
 use indicatif::{ProgressBar, ProgressStyle};
 use isogami::api::{deploy, resolve_design, DeployRequest, FrameSelection};
-use isogami::catalog::{margins_report, CatalogSettings};
+use isogami::catalog::{margins_report_of_trajectory, CatalogSettings};
 use isogami::contact::{ContactModel, ContactSettings};
 use isogami::deploy::{DeploySettings, DeploymentReport, Method};
 use isogami::explore::TopologyOptions;
@@ -206,7 +206,7 @@ pub fn run(args: Args) -> CliResult {
         };
         // The deployment and its files stand on their own: margins that cannot be measured
         // are said, not a failure of the command.
-        match margins_report(&design, &settings) {
+        match margins_report_of_trajectory(&design, mech, &run.trajectory, &settings) {
             Ok(margins) => super::margins_text::margin_lines(&mut o, &margins, 20.0),
             Err(e) => outln!(o, "margins      not measured: {e}"),
         }

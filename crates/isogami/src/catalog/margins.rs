@@ -367,9 +367,20 @@ pub struct MarginsReport {
 pub fn margins_report(design: &Design, settings: &CatalogSettings) -> Result<MarginsReport> {
     let request = settings.deploy_request();
     let path = api::deploy_path(design, &request.settings, &mut |_| true)?;
-    let margins =
-        margins_of_trajectory(design, &path.mechanism, &path.trajectory, &request.settings)?;
-    let max_area_ratio = path.summary()?.max_area_ratio;
+    margins_report_of_trajectory(design, &path.mechanism, &path.trajectory, settings)
+}
+
+/// [`margins_report`] from a deployment already made with `settings`' deploy request (`traj`
+/// of `mech`): what `deploy` reports after its own run, without deploying the design again.
+pub fn margins_report_of_trajectory(
+    design: &Design,
+    mech: &Mechanism,
+    traj: &Trajectory,
+    settings: &CatalogSettings,
+) -> Result<MarginsReport> {
+    let request = settings.deploy_request();
+    let margins = margins_of_trajectory(design, mech, traj, &request.settings)?;
+    let max_area_ratio = summarize_steps(mech, traj)?.max_area_ratio;
     let mv = shape_move(design)?;
     let (opening_off_shape, constraints) = match (&mv, margins.is_special()) {
         (Some(mv), true) => {
@@ -386,14 +397,7 @@ pub fn margins_report(design: &Design, settings: &CatalogSettings) -> Result<Mar
         _ => (None, Vec::new()),
     };
     let cell = design.cell()?;
-    let finite = super::finite::figures_of_trajectory(
-        design,
-        &cell,
-        &path.mechanism,
-        &path.trajectory,
-        settings,
-    )
-    .ok();
+    let finite = super::finite::figures_of_trajectory(design, &cell, mech, traj, settings).ok();
     Ok(MarginsReport {
         design: design.to_string(),
         margins,

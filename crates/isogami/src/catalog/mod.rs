@@ -22,8 +22,8 @@ mod unit;
 pub use assess::{assess, Assessment, Rejection};
 pub use finite::{finite_figures, finite_request, FiniteFigures, FINITE_PATCH_CELLS};
 pub use margins::{
-    largest_area_ratio, margins, margins_report, shape_move, Margins, MarginsReport, ShapeMove,
-    FABRICATION_TOLERANCE, KEPT_FRACTION, TOLERANCE_LEVELS,
+    largest_area_ratio, margins, margins_report, margins_report_of_trajectory, shape_move, Margins,
+    MarginsReport, ShapeMove, FABRICATION_TOLERANCE, KEPT_FRACTION, TOLERANCE_LEVELS,
 };
 pub use part::{combine_parts, run_unit_part, PartClass, PartOutcome};
 pub use settings::CatalogSettings;
