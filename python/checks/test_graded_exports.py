@@ -23,7 +23,8 @@ from test_print_meshes import check_solid, read_3mf
 # A 2x2-cell rotating-squares sheet graded towards a disc, with the optimiser's default
 # iterations (a few seconds in a debug build): a sheet whose path check opens it along one
 # motion.
-GRADED = ["graded", "--design", "rotating-squares", "--region", "2x2", "--states", "4"]
+GRADED = ["graded", "--design", "rotating-squares", "--region", "2x2", "--states", "4",
+          "--allow-failed"]
 EDGE_MM = 20.0
 KERF_MM = 0.2  # the laser default
 

@@ -10,7 +10,10 @@
 // graded sheet downloads as laser and print files (the SVG in mm and what the shown
 // `isogami export --sheet` writes, the DXF with its header, the STL with triangles); an
 // uploaded SVG file is read by the library — a bad one shows its one-line error and starts
-// nothing, a good one is drawn and graded towards.
+// nothing, a good one is drawn and graded towards. A finished job shows the library's verdict
+// in its own words and the outline's fit figures, marks the worst boundary point on the
+// opened sheet beside the target, and — graded without the fall-back towards an L the sheet
+// cannot open into — fills the deepest overlapping pair of tiles with its depth in mm.
 
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -502,5 +505,115 @@ test('the polygon target from the keyboard: a labelled field of corners bound bo
   await byTestId(page, 'run').click();
   await page.waitForTimeout(300);
   assert.equal(posted, false);
+  assert.deepEqual(problems(page), []);
+});
+
+/** Waits for the page's job to end; the job's view from the API once it is done. */
+async function finishedJob(page) {
+  await page.waitForFunction(() => ['done', 'failed', 'stopped'].includes(document.body.dataset.gradedState), null, { timeout: 60000 });
+  assert.equal(await state(page), 'done', await page.locator('#notice').textContent());
+  const id = await page.evaluate(() => document.body.dataset.jobId);
+  return getJson(`${server.base}/api/graded/${id}`);
+}
+
+/** The centre and label of the worst-point marker drawn in an SVG of the page (null if none). */
+function worstMarker(page, testid) {
+  return page.evaluate((t) => {
+    const svg = document.querySelector(`[data-testid="${t}"]`);
+    const c = svg.querySelector('circle[data-worst]');
+    const label = svg.querySelector('text[data-worst-label]');
+    return c && { x: Number(c.getAttribute('cx')), y: Number(c.getAttribute('cy')), label: label?.textContent ?? null };
+  }, testid);
+}
+
+test('a finished job shows the library’s verdict, the fit figures and the worst boundary stretch', async () => {
+  await stopAll();
+  const page = await newPage(browser);
+  await page.goto(`${server.base}/graded.html`);
+  await page.waitForFunction(() => document.body.dataset.ready === 'true');
+  // 2×2 rotating squares towards a disc, 60 iterations: it opens but misses the 5 % tolerance.
+  await byTestId(page, 'rows').fill('2');
+  await byTestId(page, 'cols').fill('2');
+  await byTestId(page, 'iterations').fill('60');
+  assert.equal(await byTestId(page, 'tolerance').getAttribute('placeholder'), '0.05', 'the library’s default, from the server');
+  assert.equal(await byTestId(page, 'fall-back').isChecked(), true);
+  await byTestId(page, 'run').click();
+  const { result } = await finishedJob(page);
+  const verdict = byTestId(page, 'verdict');
+  assert.equal(await verdict.textContent(), result.verdict.text, 'the verdict is the library’s line');
+  assert.match(result.verdict.text, /^opens along one motion; MISSES the target: off by [\d.]+ % \(tolerance 5\.00 %\)$/);
+  assert.equal(await verdict.getAttribute('data-level'), 'misses');
+  assert.ok(await verdict.isVisible());
+  assert.equal(await byTestId(page, 'report-path').getAttribute('data-reached'), String(result.verdict.opens));
+  // The fit figures, in % of the target's equivalent radius.
+  const figures = await page.$$eval('[data-testid="fit-figures"] dl > div', (els) => els.map((e) => [e.dataset.key, e.querySelector('dd').textContent]));
+  assert.deepEqual(figures, ['hausdorff', 'mean', 'inside', 'outside'].map((k) => [k, `${(100 * result.fit[k]).toFixed(2)} %`]));
+  assert.ok(await byTestId(page, 'fit-figures').isVisible());
+  // The worst boundary point, marked and labelled on the opened sheet beside the target, and
+  // on the finished live drawing; not at the closed end.
+  for (const svg of ['player-sheet', 'live-sheet']) {
+    const mark = await worstMarker(page, svg);
+    assert.ok(mark, `${svg}: a worst-point marker`);
+    assert.ok(Math.hypot(mark.x - result.fit.worst[0], mark.y - result.fit.worst[1]) < 1e-5, `${svg}: at ${mark.x},${mark.y}, not ${result.fit.worst}`);
+    assert.equal(mark.label, 'worst');
+  }
+  assert.equal(await page.locator('[data-testid="player-sheet"] polygon.target').count(), 1);
+  assert.ok(await page.locator('[data-testid="player-sheet"] circle[data-worst]').isVisible());
+  await byTestId(page, 'state-slider').focus();
+  await page.keyboard.press('Home');
+  assert.equal(await worstMarker(page, 'player-sheet'), null, 'no marker at the closed end');
+  // No overlap: nothing filled, no button to find one.
+  assert.equal(result.verdict.deepest_overlap_tiles, null);
+  assert.ok(await byTestId(page, 'show-overlap').isHidden());
+  assert.equal(await page.locator('[data-testid="player-sheet"] polygon[data-overlap]').count(), 0);
+  assert.ok((await screenshot(browser, page, 'graded-verdict')) > 20);
+  assert.deepEqual(problems(page), []);
+});
+
+test('without the fall-back, a sheet that does not open: its deepest overlapping tiles are filled with their depth in mm', async () => {
+  await stopAll();
+  const page = await newPage(browser);
+  // A design whose 2×2 sheet, graded 30 iterations towards an L with no fall-back, ends with
+  // two tiles overlapping (about 0.3 mm at 20 mm edges) at its opened state: 4 s or so.
+  const design = 'IH53:0.5,0.027564102564,0.027564102564:1x1:aaaabbbb';
+  await page.goto(`${server.base}/graded.html?design=${encodeURIComponent(design)}`);
+  await page.waitForFunction(() => document.body.dataset.ready === 'true');
+  await byTestId(page, 'rows').fill('2');
+  await byTestId(page, 'cols').fill('2');
+  await byTestId(page, 'iterations').fill('30');
+  await page.getByLabel(/^polygon corners/).fill('0,0; 2,0; 2,1; 1,1; 1,2; 0,2');
+  await page.waitForFunction(() => document.querySelector('[data-testid="draw-pad"]').dataset.checked === 'true');
+  assert.equal(await byTestId(page, 'outline-error').textContent(), '');
+  await byTestId(page, 'fall-back').uncheck();
+  const words = shellSplit(await byTestId(page, 'graded-command').textContent());
+  assert.deepEqual(words.slice(-3), ['--no-fallback', '--out', 'graded.json']);
+  await byTestId(page, 'run').click();
+  const job = await finishedJob(page);
+  assert.equal(job.request.fall_back, false);
+  const { result } = job;
+  const v = result.verdict;
+  assert.equal(v.target_fraction, 1, 'the sheet graded towards the L itself');
+  assert.equal(v.opens, false);
+  assert.equal(await byTestId(page, 'verdict').textContent(), v.text);
+  assert.equal(await byTestId(page, 'verdict').getAttribute('data-level'), 'fails');
+  assert.ok(Array.isArray(v.deepest_overlap_tiles), `an overlap in this case (the library's verdict: ${v.text})`);
+  // The player goes to the deepest overlap's state: its two tiles filled, the depth labelled.
+  await byTestId(page, 'state-slider').focus();
+  await page.keyboard.press('Home');
+  await byTestId(page, 'show-overlap').click();
+  const k = Number(await byTestId(page, 'state-slider').inputValue());
+  const states = [...result.path.states].reverse();
+  assert.ok(Math.abs(states[k].opening - v.deepest_overlap_at) < 1e-9, `state ${k} is ${states[k].opening} open`);
+  assert.equal(await page.evaluate(() => document.querySelector('[data-testid="player-sheet"]').dataset.state), String(k));
+  const filled = await page.$$eval('[data-testid="player-sheet"] polygon.tile.overlap.deepest', (els) => els.map((e) => Number(e.dataset.tile)));
+  assert.deepEqual(filled.sort((a, b) => a - b), [...v.deepest_overlap_tiles].sort((a, b) => a - b));
+  const label = await page.$eval('[data-testid="player-sheet"] text[data-overlap-label]', (e) => e.textContent);
+  assert.equal(label, `${(20 * v.deepest_overlap).toFixed(3)} mm`);
+  assert.ok(v.text.includes(`tiles overlap ${(20 * v.deepest_overlap).toFixed(3)} mm at 20 mm edges`), 'the same depth as the verdict says');
+  assert.match(await byTestId(page, 'state-value').textContent(), /overlap [\d.]+ mm at 20 mm edges \(deepest\)$/);
+  // Their fill is the warning colour, not a plain tile's.
+  const fills = await page.$$eval('[data-testid="player-sheet"] polygon.tile', (els) => [...new Set(els.map((e) => getComputedStyle(e).fill))]);
+  assert.ok(fills.length >= 2, `tiles drawn in ${fills}`);
+  assert.ok((await screenshot(browser, page, 'graded-overlap')) > 20);
   assert.deepEqual(problems(page), []);
 });

@@ -3,16 +3,19 @@
 // star-shaped check of a drawn polygon (the library's rule, for a static site and instant
 // feedback; the server answers with the library's own message), the body of POST /api/graded
 // and the equivalent `isogami graded …` command, the tiles of a graded sheet placed from the
-// poses of a state, the bounds that frame them, and the report's lines. Pure functions over
-// plain data; graded.js draws the page.
+// poses of a state, the bounds that frame them, and the report's lines; of a finished run, the
+// library's verdict as it gives it (its one line, whether the sheet opens — `verdict.opens`, or
+// `path.reached` in a file written before the verdict —), the outline's fit figures, the worst
+// boundary point and the deepest overlap the drawing marks (which state, which tiles, how deep in
+// mm at the verdict's nominal edge). Pure functions over plain data; graded.js draws the page.
 //
 // Form state: { design, rows, cols, outline: 'disc' | 'ellipse' | 'polygon' | 'field' | 'svg',
 // aspect, points: [[x, y], …] (the drawn polygon, y up), from, to, degrees (a field target: the
 // area ratio at the two ends of a ramp and its direction), svg: { name, text } | null (an
 // uploaded SVG file; `text` null when restored from a job, which names it only), iterations,
 // states, t (the last two '' for the defaults: the page has no fields for them, but a job
-// restored from the server may have other values) } where numbers are the text of their
-// fields.
+// restored from the server may have other values), tolerance ('' for the library's default),
+// fallBack (false: `--no-fallback`) } where numbers are the text of their fields.
 
 import { shellWord } from './export-request.js';
 
@@ -24,6 +27,8 @@ export const DEFAULTS = Object.freeze({
   outline: 'disc',
   states: 8,
   iterations: 200, // the library's default (graded::SolveSettings)
+  tolerance: 0.05, // the library's graded::verdict::OUTLINE_TOLERANCE
+  fall_back: true,
 });
 
 /** A blank form: the design from `?design=` when given, else the server's default. */
@@ -44,6 +49,8 @@ export function emptyForm(settings, search = '') {
     iterations: String(d.iterations),
     states: '',
     t: '',
+    tolerance: '',
+    fallBack: true,
   };
 }
 
@@ -62,6 +69,8 @@ export function formFromJob(request, settings) {
     iterations: String(request.iterations),
     states: request.states === undefined || request.states === null || request.states === d.states ? '' : String(request.states),
     t: request.t === undefined || request.t === null ? '' : String(request.t),
+    tolerance: request.tolerance === undefined || request.tolerance === null ? '' : String(request.tolerance),
+    fallBack: request.fall_back !== false,
   };
   const text = String(request.outline ?? 'disc').trim();
   const [kind, rest = ''] = text.split(/:(.*)/s);
@@ -117,6 +126,14 @@ function wholeProblem(name, text, min, cap) {
   if (!Number.isInteger(v) || v < min) return `${name} must be a whole number of at least ${min}`;
   if (cap !== undefined && v > cap) return `${name} ${v} is above this server's limit of ${cap}`;
   return '';
+}
+
+/** The tolerance field's problem ('' is the library's default), in the library's words, or ''. */
+export function toleranceProblem(form) {
+  const t = String(form.tolerance ?? '').trim();
+  if (t === '') return '';
+  const v = Number(t);
+  return Number.isFinite(v) && v > 0 ? '' : `tolerance ${t} must be a positive fraction (0.05: 5 %)`;
 }
 
 /** The region's problem as one line (checked as typed against the server's caps), or ''. */
@@ -256,6 +273,8 @@ export function gradedBody(form) {
   body.iterations = Number(form.iterations);
   if (String(form.states ?? '').trim() !== '') body.states = Number(form.states);
   if (String(form.t ?? '').trim() !== '') body.t = Number(form.t);
+  if (String(form.tolerance ?? '').trim() !== '') body.tolerance = Number(form.tolerance);
+  if (form.fallBack === false) body.fall_back = false;
   return body;
 }
 
@@ -265,6 +284,7 @@ export function cliCommand(form) {
   return ['isogami', 'graded', '--design', shellWord(b.design), '--region', `${b.rows}x${b.cols}`,
     '--target', shellWord(outlineText(form)), ...(b.t === undefined ? [] : ['--t', String(b.t)]),
     ...(b.states === undefined ? [] : ['--states', String(b.states)]), '--iterations', String(b.iterations),
+    ...(b.tolerance === undefined ? [] : ['--tolerance', String(b.tolerance)]), ...(b.fall_back === false ? ['--no-fallback'] : []),
     '--out', 'graded.json'].join(' ');
 }
 
@@ -397,7 +417,9 @@ export function playerStates(result) {
 
 const pct = (v) => `${(100 * v).toFixed(2)} %`;
 
-/** The report in lines: fit, shapes, pins, the path check (DOF per state, overlaps named). */
+/** The report in lines: fit, shapes, pins, the path check (DOF per state, overlaps named with
+ * their depth). Whether the sheet opens is the library's (`opensOf`); the lines give the
+ * figures behind it. */
 export function reportLines(result) {
   const r = result.report;
   const p = result.path;
@@ -430,7 +452,7 @@ export function reportLines(result) {
   const closedMeans = tolerance !== undefined ? ` (closed means below ${tolerance.toExponential(0)} L)` : '';
   lines.push({
     key: 'path',
-    text: p.reached
+    text: opensOf(result)
       ? `Opens along one motion: the path check reached the closed tiling from the opened state in ${p.states.length} states, one DOF at each${from}, pins closed to ${gap.toExponential(1)} L, no overlap.`
       : `Does NOT open along one motion: ${[
         oneDof ? `one DOF at every state${from}` : `DOF ${dofs.join(' ')} at the states${from}, the opened one first`,
@@ -438,16 +460,138 @@ export function reportLines(result) {
         `closed-state spread ${p.closed_spread.toExponential(1)} rad`,
       ].join('; ')}.`,
   });
+  const edge = verdictEdgeMm(result.verdict);
   const overlaps = p.states
-    .map((s) => s.overlap && { a: s.overlap[0], b: s.overlap[1], opening: s.opening })
+    .map((s) => s.overlap && { a: s.overlap[0], b: s.overlap[1], opening: s.opening, depth: s.overlap_depth })
     .filter(Boolean);
+  const deep = (o) => (typeof o.depth === 'number' && o.depth > 0 ? ` (${mmText(o.depth, edge)} deep)` : '');
+  const crossing = p.self_intersecting ?? [];
   lines.push({
     key: 'overlaps',
-    text: overlaps.length
-      ? `Overlaps: ${overlaps.map((o) => `tiles ${o.a} and ${o.b} at ${(100 * o.opening).toFixed(0)} % open`).join(', ')}.`
-      : 'No two tiles overlap at any state of the path.',
+    text: `${overlaps.length
+      ? `Overlaps: ${overlaps.map((o) => `tiles ${o.a} and ${o.b} at ${(100 * o.opening).toFixed(0)} % open${deep(o)}`).join(', ')}.`
+      : 'No two tiles overlap at any state of the path.'}${crossing.length
+      ? ` Closed tile${crossing.length === 1 ? '' : 's'} ${crossing.join(', ')} cross${crossing.length === 1 ? 'es itself' : ' themselves'}.`
+      : ''}`,
   });
   return lines;
+}
+
+/** The edge length (mm) the library's verdict states its sizes at by default
+ * (graded::verdict::NOMINAL_EDGE_MM, the exports' default edge). */
+export const NOMINAL_EDGE_MM = 20;
+
+/** The edge length (mm) a verdict states its sizes at: the number in its text's "… mm at E mm
+ * edges", else the nominal one. */
+export function verdictEdgeMm(verdict) {
+  const m = /\bat ([\d.]+) mm edges\b/.exec(verdict?.text ?? '');
+  const e = m ? Number(m[1]) : NaN;
+  return Number.isFinite(e) && e > 0 ? e : NOMINAL_EDGE_MM;
+}
+
+/** A length in edge lengths L as the verdict says it: mm (3 decimals) at `edgeMm` edges. */
+export function mmText(l, edgeMm = NOMINAL_EDGE_MM) {
+  return `${(l * edgeMm).toFixed(3)} mm at ${edgeMm} mm edges`;
+}
+
+/** Whether the sheet opens along one motion: the library's verdict (`verdict.opens`), or the
+ * path check's `reached` in a file written before the library gave a verdict. */
+export function opensOf(result) {
+  const v = result?.verdict?.opens;
+  return typeof v === 'boolean' ? v : Boolean(result?.path?.reached);
+}
+
+/** The verdict to show, as the library gives it: its one line (`text`, null in an older file
+ * without a verdict), whether it opens, meets its target, and a level for the page's colour:
+ * 'passes' (opens and meets it), 'misses' (opens, misses it), 'fails' (does not open). */
+export function verdictView(result) {
+  const v = result?.verdict;
+  const opens = opensOf(result);
+  if (!v) return { text: null, opens, meets: null, partial: false, level: opens ? 'opens' : 'fails' };
+  return {
+    text: String(v.text),
+    opens,
+    meets: Boolean(v.meets_target),
+    partial: typeof v.target_fraction === 'number' && v.target_fraction < 1,
+    level: !opens ? 'fails' : v.meets_target ? 'passes' : 'misses',
+  };
+}
+
+/** The outline's fit to its target, in percent of the target's equivalent radius: the
+ * Hausdorff distance (the error judged), the mean, and how far inside and outside it the
+ * outline goes at most. Empty for a field target (or a file without the fit). */
+export function fitFigures(result) {
+  const f = result?.fit;
+  if (!f) return [];
+  return [
+    { key: 'hausdorff', label: 'Hausdorff (worst)', value: f.hausdorff },
+    { key: 'mean', label: 'mean', value: f.mean },
+    { key: 'inside', label: 'inside', value: f.inside },
+    { key: 'outside', label: 'outside', value: f.outside },
+  ].filter((x) => typeof x.value === 'number').map((x) => ({ ...x, text: pct(x.value) }));
+}
+
+/** The worst boundary point ([x, y], in the opened sheet's frame, as the target and the poses):
+ * where the outline is farthest from its target; null for a field or without a fit. */
+export function worstPoint(result) {
+  const w = result?.fit?.worst;
+  return Array.isArray(w) && w.length === 2 && w.every(Number.isFinite) ? [w[0], w[1]] : null;
+}
+
+/** The player's index (closed first, see playerStates) of the state with the path's deepest
+ * overlap: the verdict's (its opening and its two tiles), or in a file without a verdict the
+ * state whose overlap is deepest (the first overlapping one when no depths are given); null
+ * when no two tiles overlap. */
+export function deepestOverlapIndex(result) {
+  const states = playerStates(result);
+  const v = result?.verdict;
+  const same = (o, t) => Array.isArray(o) && ((o[0] === t[0] && o[1] === t[1]) || (o[0] === t[1] && o[1] === t[0]));
+  if (v) {
+    const tiles = v.deepest_overlap_tiles;
+    if (!Array.isArray(tiles)) return null;
+    let best = null;
+    states.forEach((st, k) => {
+      if (!same(st.overlap, tiles)) return;
+      const off = Math.abs(st.opening - (v.deepest_overlap_at ?? st.opening));
+      if (best === null || off < best.off) best = { k, off };
+    });
+    return best?.k ?? null;
+  }
+  let best = null;
+  states.forEach((st, k) => {
+    if (!st.overlap) return;
+    const depth = typeof st.overlap_depth === 'number' ? st.overlap_depth : 0;
+    if (best === null || depth > best.depth) best = { k, depth };
+  });
+  return best?.k ?? null;
+}
+
+/** What the drawing marks at player state `k`: that state's overlapping pair (its deepest),
+ * whether it is the path's deepest overlap (`deepestK`, from deepestOverlapIndex), its depth in
+ * L and in mm at the verdict's nominal edge, and the label; null when no two tiles overlap
+ * there. */
+export function overlapMark(result, k, deepestK = deepestOverlapIndex(result)) {
+  const st = playerStates(result)[k];
+  if (!st?.overlap) return null;
+  const [a, b] = st.overlap;
+  const deepest = k === deepestK;
+  const given = deepest && typeof result.verdict?.deepest_overlap === 'number' ? result.verdict.deepest_overlap : st.overlap_depth;
+  const depth = typeof given === 'number' ? given : null;
+  const edge = verdictEdgeMm(result.verdict);
+  return {
+    tiles: [a, b],
+    deepest,
+    depth,
+    mm: depth === null ? null : depth * edge,
+    label: `tiles ${a} and ${b} overlap${depth === null ? '' : ` ${mmText(depth, edge)}`}${deepest ? ' (deepest)' : ''}`,
+  };
+}
+
+/** Where an overlap's label goes: midway between the two tiles' centroids. */
+export function overlapAnchor(polygons, [a, b]) {
+  const [ax, ay] = centroid(polygons[a]);
+  const [bx, by] = centroid(polygons[b]);
+  return [(ax + bx) / 2, (ay + by) / 2];
 }
 
 /** A cost for a line of text. */

@@ -6,14 +6,20 @@
 // polls: iteration, cost, stage, a progress bar and the opened sheet as it stands drawn over
 // the target; at the end the report, a player through the path check's states (closed ↔
 // opened, the tiles placed from each state's poses, the fitted target at the opened end) and
-// the sheet's JSON as `isogami graded --out` writes it; a field's cells in a table (asked and
+// the sheet's JSON as `isogami graded --out` writes it; the library's verdict in its own words
+// (opens along one motion or not, meets the target within the tolerance or misses it, how deep
+// tiles overlap, whether the target asked was given up for the nearest sheet that opens), the
+// outline's fit figures, the worst boundary stretch marked on the opened sheet beside the target
+// and the deepest overlap's two tiles filled with their depth in mm (the player jumps to its
+// state); a field's cells in a table (asked and
 // achieved area ratio) and coloured by their error at the opened end; laser and print files of
 // the graded sheet (GET /api/graded/{id}/export, as `isogami export --sheet`). The polygon's corners are
 // also a text field bound both ways with the pad, and a corner focused on the pad moves with the arrow keys
 // and goes with Delete (the keyboard's ways to add, move and remove them). The job
 // is the server's: the URL names it (?job=ID), so a reload or a copied link shows it again, running or
 // finished, with the form and command that started it (echoed by the server); a page opened while a job
-// runs shows that job. On a static site nothing runs: the page shows the command. Before Grade, the
+// runs shows that job. The tolerance and whether to fall back to the nearest sheet that opens
+// are the CLI's `--tolerance` and `--no-fallback`. On a static site nothing runs: the page shows the command. Before Grade, the
 // design and region are checked for a one-DOF sheet (GET /api/sheet: the same library check the
 // job starts with); when there is none the page says so, why, and what to do instead (a larger
 // region, or a design of the same family that has one). Pure logic is in graded-model.js and
@@ -24,9 +30,10 @@ import { showNotice, clearNotice, debounce } from './dom.js';
 import { designHref } from './url.js';
 import { familyOfSpec, findNeighbour, neighbourHref, percentText, refusalReason, sheetCheckQuery } from './buildable.js';
 import {
-  DEFAULTS, EXPORTS, aspectProblem, bounds, cliCommand, cornersText, edgeProblem, emptyForm, errorColour, exportCommand, exportParams,
-  fieldProblem, fieldRows, formFromJob, gradedBody, hullArea, iterationsProblem, outlineAtArea, outlineText, parseCorners, playerStates,
-  posedPolygons, progressLine, regionProblem, reportLines, starProblem, svgProblem,
+  DEFAULTS, EXPORTS, aspectProblem, bounds, cliCommand, cornersText, deepestOverlapIndex, edgeProblem, emptyForm, errorColour, exportCommand,
+  exportParams, fieldProblem, fieldRows, fitFigures, formFromJob, gradedBody, hullArea, iterationsProblem, outlineAtArea, outlineText,
+  overlapAnchor, overlapMark, parseCorners, playerStates, posedPolygons, progressLine, regionProblem, reportLines, starProblem, svgProblem,
+  toleranceProblem, verdictView, worstPoint,
 } from './graded-model.js';
 
 const $ = (id) => document.getElementById(id);
@@ -51,7 +58,7 @@ let focusedCorner = null; // the corner last moved from the keyboard (kept focus
 let extra = { states: '', t: '' }; // a restored job's states and t (the page has no fields for them)
 let restorePending = false; // the attached job's first view fills the form
 let live = null; // { frame, target, count, done }
-let player = null; // { result, states, all, frame, playing, timer }
+let player = null; // { result, states, all, deepest, worst, frame, playing, timer }
 let sheetAsk = null; // the one-DOF sheet check in flight (AbortController)
 
 /** An SVG element. */
@@ -96,6 +103,8 @@ function form() {
     iterations: $('iterations').value,
     states: extra.states,
     t: extra.t,
+    tolerance: $('tolerance').value,
+    fallBack: $('fall-back').checked,
   };
 }
 
@@ -111,10 +120,12 @@ function check() {
   $('region-error').textContent = region;
   const iterations = iterationsProblem(f, limits);
   $('iterations-error').textContent = iterations;
+  const tolerance = toleranceProblem(f);
+  $('tolerance-error').textContent = tolerance;
   const outline = outlineProblem(f);
   $('outline-error').textContent = outline;
   $('command').textContent = cliCommand(f);
-  return !region && !iterations && !outline;
+  return !region && !iterations && !tolerance && !outline;
 }
 
 /** An element with children (graded.js builds few: no dom.js `h` here). */
@@ -375,8 +386,9 @@ function padClick(event) {
 }
 
 /** Draws `polygons` (and the target) into `svg` framed by `frame` [minX, minY, maxX, maxY],
- * y up; `overlap` marks two tiles. */
-function drawSheet(svg, polygons, { frame, target = null, overlap = null, cells = null }) {
+ * y up; `overlap` (overlapMark) fills two tiles and labels them with their depth; `worst`
+ * marks the worst boundary point ([x, y]). Labels are drawn upright, outside the flipped group. */
+function drawSheet(svg, polygons, { frame, target = null, overlap = null, worst = null, cells = null }) {
   const [x0, y0, x1, y1] = frame;
   const size = Math.max(x1 - x0, y1 - y0) || 1;
   const m = 0.05 * size;
@@ -385,17 +397,33 @@ function drawSheet(svg, polygons, { frame, target = null, overlap = null, cells 
   const half = size / 2 + m;
   svg.setAttribute('viewBox', `${cx - half} ${-cy - half} ${2 * half} ${2 * half}`);
   const g = s('g', { transform: 'scale(1,-1)' });
+  const labels = s('g', { class: 'labels', 'font-size': +(0.035 * size).toFixed(6), 'stroke-width': +(0.008 * size).toFixed(6) });
   polygons.forEach((poly, i) => {
-    const hit = overlap && (overlap[0] === i || overlap[1] === i);
-    g.append(s('polygon', { class: `tile${hit ? ' overlap' : ''}`, points: pointsAttr(poly), 'data-tile': i }));
+    const hit = overlap && overlap.tiles.includes(i);
+    g.append(s('polygon', {
+      class: `tile${hit ? ' overlap' : ''}${hit && overlap.deepest ? ' deepest' : ''}`, points: pointsAttr(poly), 'data-tile': i, 'data-overlap': hit ? '' : null,
+    }));
   });
+  if (overlap && overlap.tiles.every((t) => polygons[t])) {
+    const [x, y] = overlapAnchor(polygons, overlap.tiles);
+    labels.append(s('text', {
+      class: 'overlap-label', x: +x.toFixed(6), y: +(-y).toFixed(6), 'text-anchor': 'middle', 'data-overlap-label': '',
+    }));
+    labels.lastChild.textContent = overlap.mm === null ? 'overlap' : `${overlap.mm.toFixed(3)} mm`;
+  }
   for (const c of cells ?? []) {
     g.append(s('polygon', {
       class: 'field-cell', points: pointsAttr(c.opened), fill: errorColour(c.error), 'data-cell': c.cell, 'data-error': c.error.toFixed(6),
     }));
   }
   if (target?.length) g.append(s('polygon', { class: 'target', points: pointsAttr(target), 'data-target': '' }));
-  svg.replaceChildren(g);
+  if (worst) {
+    const r = 0.02 * size;
+    g.append(s('circle', { class: 'worst', cx: +worst[0].toFixed(6), cy: +worst[1].toFixed(6), r: +r.toFixed(6), 'data-worst': '' }));
+    labels.append(s('text', { class: 'worst-label', x: +(worst[0] + 1.4 * r).toFixed(6), y: +(-worst[1] - 1.4 * r).toFixed(6), 'data-worst-label': '' }));
+    labels.lastChild.textContent = 'worst';
+  }
+  svg.replaceChildren(g, labels);
 }
 
 async function main() {
@@ -411,6 +439,8 @@ async function main() {
   }
   const initial = emptyForm(settings, window.location.search);
   for (const key of ['design', 'rows', 'cols', 'iterations']) $(key).value = initial[key];
+  // Left empty, the tolerance is the library's default, which the placeholder shows.
+  $('tolerance').placeholder = String(settings.defaults?.tolerance ?? DEFAULTS.tolerance);
   const limits = settings.limits ?? {};
   if (limits.side !== undefined) {
     for (const key of ['rows', 'cols']) $(key).max = String(limits.side);
@@ -460,6 +490,7 @@ async function main() {
     showState(Number($('state-slider').value));
   });
   $('play').addEventListener('click', () => (player?.playing ? pause() : play()));
+  $('show-overlap').addEventListener('click', showDeepestOverlap);
   check();
   drawPad();
   document.body.dataset.ready = 'true';
@@ -479,7 +510,8 @@ async function main() {
 /** Fills the form with the request that started a job (its view's echo). */
 function restoreForm(request) {
   const f = formFromJob(request, settings);
-  for (const key of ['design', 'rows', 'cols', 'iterations', 'aspect']) $(key).value = f[key];
+  for (const key of ['design', 'rows', 'cols', 'iterations', 'aspect', 'tolerance']) $(key).value = f[key];
+  $('fall-back').checked = f.fallBack;
   $('field-from').value = f.from;
   $('field-to').value = f.to;
   $('field-degrees').value = f.degrees;
@@ -609,15 +641,17 @@ function drawSnapshot(job) {
     $('live-target-note').textContent = job.request.field ? '(none: a field target)' : '(sized to the sheet’s area at the start)';
   }
   let target = live.target;
+  let worst = null;
   if (done && !job.request.field) {
     target = job.result.report.target;
+    worst = worstPoint(job.result);
     $('live-target-note').textContent = '(at the fitted scale)';
   }
   const b = bounds(snap.polygons, [target]);
   live.frame = [Math.min(live.frame[0], b[0]), Math.min(live.frame[1], b[1]), Math.max(live.frame[2], b[2]), Math.max(live.frame[3], b[3])];
   live.count = snap.count;
   live.done = done;
-  drawSheet($('live-sheet'), snap.polygons, { frame: live.frame, target });
+  drawSheet($('live-sheet'), snap.polygons, { frame: live.frame, target, worst });
   $('live-sheet').removeAttribute('hidden');
   $('live-sheet').dataset.iteration = String(snap.iteration);
 }
@@ -633,22 +667,47 @@ function finish(job) {
   document.body.dataset.gradedState = job.state;
 }
 
+/** The library's verdict, in its own words, and the outline's fit figures. */
+function showVerdict(result) {
+  const v = verdictView(result);
+  const box = $('verdict');
+  box.textContent = v.text ?? 'This result has no verdict (written before the library gave one): see the report below.';
+  box.dataset.level = v.level;
+  box.dataset.opens = String(v.opens);
+  box.dataset.meets = String(v.meets);
+  const figures = fitFigures(result);
+  $('fit-figures').hidden = figures.length === 0;
+  $('fit-list').replaceChildren(...figures.map((f) => el('div', { 'data-key': f.key }, el('dt', {}, f.label), el('dd', {}, f.text))));
+}
+
 function showResult(job) {
   const result = job.result;
+  showVerdict(result);
   $('report').replaceChildren(...reportLines(result).map((l) => {
     const li = document.createElement('li');
     li.dataset.key = l.key;
     li.dataset.testid = `report-${l.key}`;
-    if (l.key === 'path') li.dataset.reached = String(result.path.reached);
+    if (l.key === 'path') li.dataset.reached = String(verdictView(result).opens);
     li.textContent = l.text;
     return li;
   }));
   const states = playerStates(result);
   const all = states.map((st) => posedPolygons(result.sheet, st.poses));
   const cells = fieldRows(result);
+  const worst = worstPoint(result);
   player = {
-    job, result, states, all, cells, frame: bounds(...all, [result.report.target], cells.map((c) => c.opened)), playing: false, timer: 0,
+    job,
+    result,
+    states,
+    all,
+    cells,
+    deepest: deepestOverlapIndex(result),
+    worst,
+    frame: bounds(...all, [result.report.target], cells.map((c) => c.opened), worst ? [[worst]] : []),
+    playing: false,
+    timer: 0,
   };
+  $('show-overlap').hidden = player.deepest === null;
   const slider = $('state-slider');
   slider.max = String(states.length - 1);
   slider.value = String(states.length - 1);
@@ -735,14 +794,24 @@ function showState(k) {
   const n = player.states.length;
   const st = player.states[k];
   const opened = k === n - 1;
+  const mark = overlapMark(player.result, k, player.deepest);
   drawSheet($('player-sheet'), player.all[k], {
     frame: player.frame,
     target: opened ? player.result.report.target : null,
-    overlap: st.overlap ?? null,
+    overlap: mark,
+    worst: opened ? player.worst : null,
     cells: opened ? player.cells : null,
   });
   $('player-sheet').dataset.state = String(k);
-  $('state-value').textContent = `${(100 * st.opening).toFixed(0)} % open${st.dof === null || st.dof === undefined ? '' : ` · DOF ${st.dof}`}${st.overlap ? ` · tiles ${st.overlap[0]} and ${st.overlap[1]} overlap` : ''}`;
+  $('state-value').textContent = `${(100 * st.opening).toFixed(0)} % open${st.dof === null || st.dof === undefined ? '' : ` · DOF ${st.dof}`}${mark ? ` · ${mark.label}` : ''}`;
+}
+
+/** Moves the player to the state of the path's deepest overlap. */
+function showDeepestOverlap() {
+  if (player?.deepest === null || player?.deepest === undefined) return;
+  pause();
+  $('state-slider').value = String(player.deepest);
+  showState(player.deepest);
 }
 
 function play() {

@@ -2,14 +2,17 @@
 // against the caps as typed, the outline's text, the star-shaped check (the library's rule and
 // words, on the same cases as its tests), the POST body and the command saying the same thing,
 // tiles placed from poses as GradedSheet::opened_polygon places them, the player's order, the
-// target sized to an area, and the report's lines.
+// target sized to an area, and the report's lines; the library's verdict shown as it gives it
+// (an older file without one read from its path check), the fit figures, the worst boundary
+// point, and the deepest overlap's state, tiles and depth in mm on a hand-made result.
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  DEFAULTS, EXPORTS, bounds, centroid, cliCommand, closedPolygons, convexHull, cornersText, edgeProblem, emptyForm, errorColour,
-  exportCommand, exportParams, fieldProblem, fieldRows, formFromJob, gradedBody, hullArea, iterationsProblem, outlineAtArea,
-  outlineText, parseCorners, playerStates, posedPolygons, regionProblem, reportLines, signedArea, starProblem, svgProblem,
+  DEFAULTS, EXPORTS, NOMINAL_EDGE_MM, bounds, centroid, cliCommand, closedPolygons, convexHull, cornersText, deepestOverlapIndex, edgeProblem,
+  emptyForm, errorColour, exportCommand, exportParams, fieldProblem, fieldRows, fitFigures, formFromJob, gradedBody, hullArea, iterationsProblem,
+  mmText, opensOf, outlineAtArea, outlineText, overlapAnchor, overlapMark, parseCorners, playerStates, posedPolygons, regionProblem, reportLines,
+  signedArea, starProblem, svgProblem, toleranceProblem, verdictEdgeMm, verdictView, worstPoint,
 } from '../src/graded-model.js';
 import { shellSplit } from './shell.mjs';
 
@@ -216,6 +219,8 @@ function echoOf(b, defaults = DEFAULTS) {
     t: b.t ?? null,
     states: b.states ?? defaults.states,
     iterations: b.iterations,
+    tolerance: b.tolerance ?? null,
+    fall_back: b.fall_back ?? true,
   };
 }
 
@@ -229,6 +234,7 @@ test('a job’s echoed request gives back the form and command that started it',
     { ...base, outline: 'field', from: '1.2', to: '1.8', degrees: '90' },
     { ...base, outline: 'field', from: '1.2', to: '1.8', degrees: '0' },
     { ...base, states: '4', t: '0.5' },
+    { ...base, tolerance: '0.02', fallBack: false },
   ];
   for (const f of forms) {
     const restored = formFromJob(echoOf(gradedBody(f)), null);
@@ -259,4 +265,121 @@ test('the polygon’s corners as text: written as the pad draws them, read back 
   assert.match(parseCorners('0,1;; 1,1').error, /^corner 2: "" is not/);
   assert.match(parseCorners('0,1; a,b').error, /^corner 2/);
   assert.match(parseCorners('0,1,2').error, /^corner 1/);
+});
+
+test('the tolerance and the fall-back: left out at their defaults, else --tolerance and --no-fallback', () => {
+  const base = { ...emptyForm(null), rows: '2', cols: '2' };
+  assert.equal(toleranceProblem(base), '', 'empty: the library’s default');
+  assert.deepEqual(Object.keys(gradedBody(base)).sort(), ['cols', 'design', 'iterations', 'rows', 'target']);
+  assert.doesNotMatch(cliCommand(base), /--tolerance|--no-fallback/);
+  const asked = { ...base, tolerance: ' 0.1 ', fallBack: false };
+  assert.equal(toleranceProblem(asked), '');
+  const body = gradedBody(asked);
+  assert.deepEqual([body.tolerance, body.fall_back], [0.1, false]);
+  const words = shellSplit(cliCommand(asked));
+  assert.deepEqual(words.slice(-5), ['--tolerance', '0.1', '--no-fallback', '--out', 'graded.json']);
+  for (const bad of ['0', '-0.1', 'five']) {
+    assert.equal(toleranceProblem({ ...base, tolerance: bad }), `tolerance ${bad} must be a positive fraction (0.05: 5 %)`);
+  }
+});
+
+// A hand-made result of three states (the path check lists the opened one first): tiles 3 and
+// 7 overlap at 50 % open, 1 and 2 (shallower) at 100 %; the library's verdict names the
+// deepest.
+function overlapping({ verdict = true } = {}) {
+  const state = (opening, overlap, depth) => ({ opening, dof: 1, joint_gap: 1e-7, overlap, overlap_depth: depth, poses: [] });
+  const result = {
+    sheet: { joints: [], nodes: [] },
+    report: {
+      tiles: 8, iterations: 30, cost: [1, 0.5], seconds: 0.2, joint_gap: 1e-7, max_outline_error: 0.1, median_outline_error: 0.05,
+      max_outside: 0.1, min_corner_fraction: 0.5, min_angle_degrees: 30, min_edge_fraction: 0.5, min_area_fraction: 0.5, target: [],
+    },
+    path: {
+      states: [state(1, [1, 2], 0.002), state(0.5, [7, 3], 0.01575), state(0, null, 0)], closed_spread: 0, reached: true,
+      self_intersecting: [], pin_tolerance: 1e-6, dof_from_opening: 0.1,
+    },
+    fit: { hausdorff: 0.1016, mean: 0.0468, inside: 0.1015, outside: 0.0018, radius: 3, worst: [0.5, -1.25] },
+  };
+  if (verdict) {
+    result.verdict = {
+      opens: false, meets_target: false, target_fraction: 1, error: 0.1016, tolerance: 0.05, deepest_overlap: 0.01575,
+      deepest_overlap_at: 0.5, deepest_overlap_tiles: [3, 7], widest_pin_gap: 1e-7, self_intersecting: 0, sheet_opening: 2,
+      periodic_opening: 2,
+      text: 'does NOT open along one motion; tiles overlap 0.315 mm at 20 mm edges (1.6e-2 L) deep at 50 % open; pins gap 0.000 mm at 20 mm edges (1.0e-7 L) at most; MISSES the target: off by 10.16 % (tolerance 5.00 %)',
+    };
+  }
+  return result;
+}
+
+test('the verdict is the library’s: its line and its opens, an older file’s read from its path check', () => {
+  const result = overlapping();
+  const v = verdictView(result);
+  assert.equal(v.text, result.verdict.text, 'shown as the library wrote it');
+  assert.deepEqual([v.opens, v.meets, v.level, v.partial], [false, false, 'fails', false]);
+  // The verdict's opens, not the path check's, decides the report's line.
+  assert.equal(opensOf(result), false);
+  assert.match(Object.fromEntries(reportLines(result).map((l) => [l.key, l.text])).path, /^Does NOT open along one motion/);
+  result.verdict = { ...result.verdict, opens: true, meets_target: false, target_fraction: 0.5 };
+  assert.deepEqual([verdictView(result).level, verdictView(result).partial], ['misses', true]);
+  result.verdict.meets_target = true;
+  assert.equal(verdictView(result).level, 'passes');
+  // A file written before the verdict: no line of its own, opens from path.reached.
+  const old = overlapping({ verdict: false });
+  assert.deepEqual(verdictView(old), { text: null, opens: true, meets: null, partial: false, level: 'opens' });
+  old.path.reached = false;
+  assert.equal(opensOf(old), false);
+  assert.equal(verdictView(old).level, 'fails');
+});
+
+test('the fit figures in percent and the worst boundary point', () => {
+  const result = overlapping();
+  assert.deepEqual(fitFigures(result).map((f) => [f.key, f.text]), [
+    ['hausdorff', '10.16 %'], ['mean', '4.68 %'], ['inside', '10.15 %'], ['outside', '0.18 %'],
+  ]);
+  assert.deepEqual(worstPoint(result), [0.5, -1.25]);
+  // A field target has no outline fit.
+  assert.deepEqual(fitFigures({ ...result, fit: null }), []);
+  assert.equal(worstPoint({ ...result, fit: null }), null);
+  assert.equal(worstPoint({ fit: { worst: [Number.NaN, 1] } }), null);
+});
+
+test('the deepest overlap: the verdict’s state and tiles, filled and labelled with their depth in mm', () => {
+  const result = overlapping();
+  // Closed first: state 1 of the player is 50 % open, where tiles 7 and 3 (the verdict's 3, 7) overlap.
+  assert.equal(deepestOverlapIndex(result), 1);
+  const mark = overlapMark(result, 1);
+  assert.deepEqual(mark.tiles, [7, 3]);
+  assert.equal(mark.deepest, true);
+  assert.equal(mark.depth, 0.01575);
+  assert.ok(Math.abs(mark.mm - 0.315) < 1e-12);
+  assert.equal(mark.label, 'tiles 7 and 3 overlap 0.315 mm at 20 mm edges (deepest)');
+  // Another state's overlap: marked with its own depth, not the deepest.
+  const other = overlapMark(result, 2);
+  assert.deepEqual([other.tiles, other.deepest, other.label], [[1, 2], false, 'tiles 1 and 2 overlap 0.040 mm at 20 mm edges']);
+  assert.equal(overlapMark(result, 0), null, 'the closed state: no overlap');
+  // The edge the verdict states its sizes at.
+  assert.equal(verdictEdgeMm(result.verdict), NOMINAL_EDGE_MM);
+  assert.equal(verdictEdgeMm({ text: 'does NOT open; tiles overlap 0.236 mm at 15 mm edges (1.6e-2 L) deep' }), 15);
+  assert.equal(mmText(0.01575, 15), '0.236 mm at 15 mm edges');
+  // The report names each overlap with its depth.
+  const lines = Object.fromEntries(reportLines(result).map((l) => [l.key, l.text]));
+  assert.equal(lines.overlaps, 'Overlaps: tiles 1 and 2 at 100 % open (0.040 mm at 20 mm edges deep), tiles 7 and 3 at 50 % open (0.315 mm at 20 mm edges deep).');
+  // No overlap in the verdict: nothing marked as deepest.
+  const clear = overlapping();
+  clear.verdict = { ...clear.verdict, deepest_overlap: 0, deepest_overlap_at: null, deepest_overlap_tiles: null };
+  assert.equal(deepestOverlapIndex(clear), null);
+  // A file without a verdict: the deepest by the states' own depths.
+  assert.equal(deepestOverlapIndex(overlapping({ verdict: false })), 1);
+  const flat = overlapping({ verdict: false });
+  for (const st of flat.path.states) delete st.overlap_depth;
+  assert.equal(deepestOverlapIndex(flat), 1, 'no depths: the first overlapping state, closed first');
+  assert.equal(overlapMark(flat, 1, 1).label, 'tiles 7 and 3 overlap (deepest)');
+  // Self-crossing closed tiles are named.
+  result.path.self_intersecting = [4];
+  assert.match(Object.fromEntries(reportLines(result).map((l) => [l.key, l.text])).overlaps, / Closed tile 4 crosses itself\.$/);
+});
+
+test('an overlap’s label sits midway between the two tiles’ centroids', () => {
+  const polygons = [[[0, 0], [2, 0], [2, 2], [0, 2]], [[4, 0], [6, 0], [6, 2], [4, 2]]];
+  assert.deepEqual(overlapAnchor(polygons, [0, 1]), [3, 1]);
 });

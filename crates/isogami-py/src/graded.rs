@@ -39,6 +39,10 @@ pub struct PyGradedRun {
     sheet: GradedSheet,
     report: Value,
     path: Value,
+    /// The verdict and the whole outline's fit (the JSON's `verdict` and `fit`; null in a
+    /// file written before they were measured).
+    verdict: Value,
+    fit: Value,
     /// A field target's cells (the JSON's `field`; empty for an outline).
     field: Vec<Value>,
     /// The JSON, as the CLI prints it (without the final newline).
@@ -53,6 +57,8 @@ impl PyGradedRun {
             sheet: run.sheet.clone(),
             report: serde_json::to_value(&run.report).map_err(json)?,
             path: serde_json::to_value(&run.path).map_err(json)?,
+            verdict: serde_json::to_value(&run.verdict).map_err(json)?,
+            fit: serde_json::to_value(run.fit).map_err(json)?,
             field: run
                 .field
                 .iter()
@@ -80,6 +86,8 @@ impl PyGradedRun {
             }
         };
         let (sheet, report, path) = (part("sheet")?, part("report")?, part("path")?);
+        let mut optional = |key: &str| whole.get_mut(key).map_or(Value::Null, Value::take);
+        let (verdict, fit) = (optional("verdict"), optional("fit"));
         let field = match whole.get_mut("field").map(Value::take) {
             None => Vec::new(),
             Some(Value::Array(cells)) => cells,
@@ -92,6 +100,8 @@ impl PyGradedRun {
             sheet,
             report,
             path,
+            verdict,
+            fit,
             field,
             text: text.trim_end().to_string(),
         })
@@ -286,6 +296,27 @@ impl PyGradedRun {
     /// The optimisation and the fit as a dict (the JSON's ``report``).
     fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.report)
+    }
+    /// Whether the sheet opens along one motion and meets its target, with the sizes, as a
+    /// dict (the JSON's ``verdict``: ``opens``, ``meets_target``, ``target_fraction``,
+    /// ``error``, ``tolerance``, ``deepest_overlap``, ``widest_pin_gap``, ``sheet_opening``,
+    /// ``periodic_opening``, ``text`` — the line ``isogami graded`` prints — and more); None
+    /// for a file written before verdicts.
+    fn verdict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.verdict)
+    }
+    /// The whole opened outline against the target as a dict (the JSON's ``fit``:
+    /// ``hausdorff``, ``mean``, ``inside``, ``outside`` relative to the target's equivalent
+    /// ``radius``, and the ``worst`` point); None for a field target or an older file.
+    fn fit<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.fit)
+    }
+    /// The sheet opens along one motion and meets its target (the verdict's ``opens`` and
+    /// ``meets_target``); False for a file written before verdicts.
+    #[getter]
+    fn passed(&self) -> bool {
+        let flag = |k: &str| self.verdict.get(k).and_then(Value::as_bool) == Some(true);
+        flag("opens") && flag("meets_target")
     }
     /// The check of the path from the opened state back to the closed tiling as a dict (the
     /// JSON's ``path``: ``states``, ``closed_spread``, ``reached``, and the measures the
@@ -561,8 +592,8 @@ fn region_of(region: &Bound<'_, PyAny>) -> PyResult<(usize, usize)> {
 /// >>> run.poses.shape, len(run.opened)
 /// ((16, 3), 16)
 #[pyfunction]
-#[pyo3(signature = (design, region=None, target="disc", t=None, states=None, iterations=None, *, field=None, progress=None, timeout=None),
-  text_signature = "(design, region=(3, 3), target='disc', t=None, states=8, iterations=200, *, field=None, progress=None, timeout=None)")]
+#[pyo3(signature = (design, region=None, target="disc", t=None, states=None, iterations=None, *, field=None, tolerance=None, fall_back=true, progress=None, timeout=None),
+  text_signature = "(design, region=(3, 3), target='disc', t=None, states=8, iterations=200, *, field=None, tolerance=None, fall_back=True, progress=None, timeout=None)")]
 #[allow(clippy::too_many_arguments)]
 pub fn graded(
     py: Python<'_>,
@@ -573,6 +604,8 @@ pub fn graded(
     states: Option<&Bound<'_, PyAny>>,
     iterations: Option<&Bound<'_, PyAny>>,
     field: Option<&Bound<'_, PyAny>>,
+    tolerance: Option<f64>,
+    fall_back: bool,
     progress: Option<Bound<'_, PyAny>>,
     timeout: Option<f64>,
 ) -> PyResult<PyGradedRun> {
@@ -596,6 +629,8 @@ pub fn graded(
         cols,
         t,
         states: count_or("states", states, 0, defaults.states)?,
+        tolerance,
+        fall_back,
         ..defaults
     }
     .with_target(target);

@@ -42,7 +42,7 @@ def run():
 def test_the_json_is_the_clis(run, cli_raw):
     assert isinstance(run, isogami.GradedRun)
     done = cli_raw(
-        "graded", "--design", "rotating-squares", "--region", "2x2",
+        "graded", "--design", "rotating-squares", "--region", "2x2", "--allow-failed",
         "--target", RHOMBUS, "--iterations", "60", "--json",
     )
     assert done.returncode == 0, done.stderr
@@ -50,6 +50,8 @@ def test_the_json_is_the_clis(run, cli_raw):
     whole = json.loads(run.to_json())
     assert run.report() == whole["report"] and run.path_check() == whole["path"]
     assert run.reached == whole["path"]["reached"]
+    assert run.verdict() == whole["verdict"] and run.fit() == whole["fit"]
+    assert run.passed == (whole["verdict"]["opens"] and whole["verdict"]["meets_target"])
     assert run.joint_gap == whole["report"]["joint_gap"]
     assert run.max_outline_error == whole["report"]["max_outline_error"]
     assert "GradedRun(" in repr(run) and "16 tiles" in repr(run)
@@ -108,7 +110,7 @@ def test_an_svg_target_is_the_outline_drawn(run, tmp_path, cli_raw):
     path.write_text(RHOMBUS_SVG)
     drawn = isogami.graded("rotating-squares", "2x2", f"@{path}", iterations=60)
     done = cli_raw(
-        "graded", "--design", "rotating-squares", "--region", "2x2",
+        "graded", "--design", "rotating-squares", "--region", "2x2", "--allow-failed",
         "--target", f"@{path}", "--iterations", "60", "--json",
     )
     assert done.returncode == 0, done.stderr
@@ -212,7 +214,7 @@ def test_save_and_load_round_trip(run, tmp_path, cli_raw):
     # What the CLI's --out writes loads too, and says the same.
     out = tmp_path / "cli.json"
     done = cli_raw(
-        "graded", "--design", "rotating-squares", "--region", "2x2",
+        "graded", "--design", "rotating-squares", "--region", "2x2", "--allow-failed",
         "--target", RHOMBUS, "--iterations", "60", "--out", str(out),
     )
     assert done.returncode == 0, done.stderr
@@ -244,7 +246,7 @@ def field_run():
 
 def test_a_field_target_gives_each_cells_ratio_as_the_clis_json(field_run, cli_raw):
     done = cli_raw(
-        "graded", "--design", "rotating-squares", "--region", "3x3",
+        "graded", "--design", "rotating-squares", "--region", "3x3", "--allow-failed",
         "--target", FIELD, "--iterations", "40", "--json",
     )
     assert done.returncode == 0, done.stderr
@@ -325,3 +327,25 @@ def test_bad_fields_and_exports_raise_one_line_errors(run):
         with pytest.raises(error, match=message) as caught:
             call()
         assert "\n" not in str(caught.value), str(caught.value)
+
+
+def test_the_verdict_is_the_librarys_and_the_tolerance_and_fall_back_reach_it():
+    """The verdict a run carries is the one `isogami graded` prints (its `text`), judged at
+    the tolerance asked; `fall_back=False` gives the sheet graded towards the target itself
+    (rotating squares, 2x2 cells, an L: it does not open), the default the nearest that does.
+    A bad tolerance is the library's refusal as an exception."""
+    ell = "polygon:0,0;2,0;2,1;1,1;1,2;0,2"
+    exact = isogami.graded("rotating-squares", (2, 2), ell, iterations=60, fall_back=False)
+    verdict = exact.verdict()
+    assert verdict["target_fraction"] == 1.0 and not verdict["opens"] and not exact.passed
+    assert "does NOT open along one motion" in verdict["text"]
+    near = isogami.graded("rotating-squares", (2, 2), ell, iterations=60)
+    assert near.verdict()["opens"] and 0 < near.verdict()["target_fraction"] < 1
+    assert near.fit()["hausdorff"] == near.verdict()["error"]
+    loose = isogami.graded("rotating-squares", (2, 2), ell, iterations=60,
+                           tolerance=near.verdict()["error"] * 1.01)
+    assert loose.passed and loose.verdict()["meets_target"]
+    with pytest.raises(isogami.IsogamiError, match="tolerance"):
+        isogami.graded("rotating-squares", (2, 2), tolerance=0.0)
+    with pytest.raises(isogami.IsogamiError, match="unreachable target"):
+        isogami.graded("rotating-squares", (2, 2), "ellipse:100,1")

@@ -40,6 +40,24 @@ pub struct Args {
     /// target with more: 1,600 rotating squares 5.3 % from a disc at 200, 2.6 % at 400).
     #[arg(long, default_value_t = GradedRequest::default().solve.max_iterations)]
     iterations: usize,
+    /// Largest error that meets the target, a fraction: the outline's Hausdorff distance to
+    /// the target over the target's equivalent radius, or a field's largest relative cell
+    /// error [default: 0.05].
+    #[arg(long)]
+    tolerance: Option<f64>,
+    /// Edge length in millimetres at which the verdict says its sizes (overlap depth, pin
+    /// gap).
+    #[arg(long, default_value_t = graded::verdict::NOMINAL_EDGE_MM)]
+    edge_mm: f64,
+    /// Write the sheet (to --out, and print it) even when it does not open along one motion
+    /// or misses its target; without it such a sheet is an error (exit code 2) and no file
+    /// is written.
+    #[arg(long)]
+    allow_failed: bool,
+    /// Only the sheet graded towards the target: when it does not open, no search for the
+    /// nearest sheet that does (the target blended with the design's own outline).
+    #[arg(long)]
+    no_fallback: bool,
     /// Write the graded sheet and its report as JSON to this file.
     #[arg(long)]
     out: Option<PathBuf>,
@@ -86,9 +104,17 @@ pub fn run(args: Args) -> CliResult {
         cols: args.region.1,
         t: args.t,
         states: args.states,
+        tolerance: args.tolerance,
+        fall_back: !args.no_fallback,
         ..GradedRequest::default()
     }
     .with_target(args.target.clone());
+    if !(args.edge_mm.is_finite() && args.edge_mm > 0.0) {
+        return Err(format!(
+            "--edge-mm {} must be a positive length",
+            args.edge_mm
+        ));
+    }
     if args.iterations == 0 {
         return Err("--iterations must be at least 1".into());
     }
@@ -109,6 +135,17 @@ pub fn run(args: Args) -> CliResult {
     )
     .map_err(|e| e.to_string())?;
     bar.finish_and_clear();
+    if !(run.verdict.passed() || args.allow_failed) {
+        emit(&summary(&run, &args, false))?;
+        return Err(format!(
+            "the graded sheet {} (--allow-failed writes it anyway)",
+            if run.verdict.opens {
+                "misses its target"
+            } else {
+                "does not open along one motion"
+            }
+        ));
+    }
     let text = json_text(&run)?;
     if let Some(path) = &args.out {
         write_atomic(path, (text.clone() + "\n").as_bytes())?;
@@ -116,11 +153,11 @@ pub fn run(args: Args) -> CliResult {
     if args.json {
         return emit(&(text + "\n"));
     }
-    emit(&summary(&run, &args))
+    emit(&summary(&run, &args, true))
 }
 
-/// The human summary.
-fn summary(run: &GradedRun, args: &Args) -> String {
+/// The human summary (`written`: the file was written).
+fn summary(run: &GradedRun, args: &Args, written: bool) -> String {
     let r = &run.report;
     let p = &run.path;
     let mut o = String::new();
@@ -138,17 +175,26 @@ fn summary(run: &GradedRun, args: &Args) -> String {
         run.sheet.nodes.len(),
         run.sheet.path.len() + 1
     );
-    o += &match r.max_field_error {
-        Some(e) => format!(
-            "fit         area ratio within {e:.4} of the field in each of {} cells\n",
-            r.field_cells
+    let v = &run.verdict;
+    o += &match (r.max_field_error, &run.fit) {
+        (Some(e), _) => format!(
+            "fit         area ratio within {e:.4} of the field in each of {} cells ({:.2} % at most); the whole sheet opens ×{:.3}{}\n",
+            r.field_cells,
+            100.0 * v.error,
+            v.sheet_opening,
+            v.periodic_opening
+                .map_or(String::new(), |p| format!(" (the design's periodic sheet: ×{p:.3} at most)"))
         ),
-        None => format!(
-            "fit         outline within {:.2} % (median {:.2} %), {:.2} % outside at most\n",
+        (None, Some(f)) => format!(
+            "fit         outline {:.2} % from the target at most (Hausdorff, both ways), {:.2} % on average, {:.2} % inside and {:.2} % outside at most; tips within {:.2} % (median {:.2} %)\n",
+            100.0 * f.hausdorff,
+            100.0 * f.mean,
+            100.0 * f.inside,
+            100.0 * f.outside,
             100.0 * r.max_outline_error,
             100.0 * r.median_outline_error,
-            100.0 * r.max_outside
         ),
+        (None, None) => "fit         no outline measured\n".into(),
     };
     o += &format!(
         "shapes      smallest angle {:.1}°, corners keep ≥ {:.0} % of their sine, edges ≥ {:.0} % of their length, tiles ≥ {:.0} % of their area\n",
@@ -174,7 +220,8 @@ fn summary(run: &GradedRun, args: &Args) -> String {
         overlaps_line(p),
         p.closed_spread
     );
-    if let Some(path) = &args.out {
+    o += &format!("verdict     {}\n", v.line(args.edge_mm));
+    if let (Some(path), true) = (&args.out, written) {
         o += &format!("written     {}\n", path.display());
     }
     o
@@ -229,6 +276,7 @@ mod tests {
             dof: Some(1),
             smallest: None,
             overlap,
+            overlap_depth: if overlap.is_some() { 1e-3 } else { 0.0 },
             poses: Vec::new(),
         }
     }
@@ -245,6 +293,7 @@ mod tests {
                 state(0.0, 8.4e-4, Some((0, 1))),
             ],
             closed_spread: 1.5,
+            self_intersecting: Vec::new(),
             reached: false,
             pin_tolerance: graded::deploy::PIN_TOLERANCE,
             dof_from_opening: graded::deploy::DOF_FROM_OPENING,
@@ -260,6 +309,7 @@ mod tests {
         let clean = PathCheck {
             states: vec![state(1.0, 8e-7, None), state(0.0, 1e-15, None)],
             closed_spread: 0.0,
+            self_intersecting: Vec::new(),
             reached: true,
             pin_tolerance: graded::deploy::PIN_TOLERANCE,
             dof_from_opening: graded::deploy::DOF_FROM_OPENING,
@@ -271,6 +321,7 @@ mod tests {
                 .map(|k| state(k as f64 / 4.0, 0.0, Some((k, k + 1))))
                 .collect(),
             closed_spread: 0.0,
+            self_intersecting: Vec::new(),
             reached: false,
             pin_tolerance: graded::deploy::PIN_TOLERANCE,
             dof_from_opening: graded::deploy::DOF_FROM_OPENING,

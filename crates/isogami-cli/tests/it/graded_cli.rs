@@ -20,6 +20,8 @@ fn a_graded_sheet_is_written_and_its_numbers_hold() {
         "2x2",
         "--target",
         "polygon:0,-1;1.3,0;0,1;-1.3,0",
+        // 2×2 cells draw the rhombus coarsely: beyond the default tolerance.
+        "--allow-failed",
         "--out",
         out.to_str().unwrap(),
     ]);
@@ -87,6 +89,9 @@ fn bad_requests_are_refused_in_one_line_and_write_nothing() {
         (vec!["--states", "0"], "states"),
         (vec!["--t", "1.5"], "t = 1.5"),
         (vec!["--design", "IH99::1x1:a"], "IH99"),
+        (vec!["--target", "ellipse:100,1"], "unreachable target"),
+        (vec!["--tolerance", "0"], "tolerance"),
+        (vec!["--edge-mm", "0"], "--edge-mm"),
     ] {
         let mut all = vec!["graded", "--region", "2x2"];
         if args[0] != "--design" {
@@ -199,4 +204,55 @@ fn a_field_target_is_met_cell_by_cell() {
             "cell in column {x}: {ratio} vs {want}"
         );
     }
+}
+
+/// A sheet that misses its target (2×2 cells of rotating squares are too coarse for a disc
+/// within 5 %, the default tolerance) is an error in one line with exit code 2, after the
+/// summary that says by how much, and its file is not written; with `--allow-failed` the
+/// same run writes it, and a looser `--tolerance` lets it pass. The verdict in the file
+/// matches what the summary printed.
+#[test]
+fn a_sheet_that_misses_its_target_is_an_error_unless_allowed() {
+    let dir = scratch("graded-verdict");
+    let out = dir.path().join("sheet.json");
+    let base = [
+        "graded",
+        "--design",
+        "rotating-squares",
+        "--region",
+        "2x2",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let run = isogami(&base);
+    let err = String::from_utf8_lossy(&run.stderr);
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert_eq!(run.status.code(), Some(2), "{err}");
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(err.contains("misses its target"), "{err}");
+    assert!(
+        text.contains("verdict     opens along one motion; MISSES the target"),
+        "{text}"
+    );
+    assert!(!out.exists(), "a failed sheet was written");
+    let allowed = isogami(&[&base[..], &["--allow-failed"]].concat());
+    assert!(allowed.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    let verdict = &v["verdict"];
+    assert_eq!(verdict["opens"], true);
+    assert_eq!(verdict["meets_target"], false);
+    let error = verdict["error"].as_f64().unwrap();
+    assert!(
+        error > 0.05 && error == v["fit"]["hausdorff"].as_f64().unwrap(),
+        "{v}"
+    );
+    let loose = format!("{}", error * 1.01);
+    std::fs::remove_file(&out).unwrap();
+    let passed = isogami(&[&base[..], &["--tolerance", &loose]].concat());
+    assert!(
+        passed.status.success(),
+        "{}",
+        String::from_utf8_lossy(&passed.stderr)
+    );
+    assert!(out.exists());
 }

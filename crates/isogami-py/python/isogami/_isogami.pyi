@@ -1048,8 +1048,12 @@ class GradedRun:
     def field_cells(self) -> FloatArray: ...
     @property
     def max_field_error(self) -> Optional[float]: ...
+    @property
+    def passed(self) -> bool: ...
     def report(self) -> Dict[str, Any]: ...
     def path_check(self) -> Dict[str, Any]: ...
+    def verdict(self) -> Optional[Dict[str, Any]]: ...
+    def fit(self) -> Optional[Dict[str, Any]]: ...
     def to_json(self) -> str: ...
     def save(self, path: Union[str, PathLike[str]]) -> None: ...
     @overload
@@ -1137,12 +1141,16 @@ def graded(
     iterations: int = 200,
     *,
     field: Union[Tuple[float, float], Tuple[float, float, float], Sequence[float], None] = None,
+    tolerance: Optional[float] = None,
+    fall_back: bool = True,
     progress: Optional[GradedProgress] = None,
     timeout: Optional[float] = None,
 ) -> GradedRun:
     """A design's finite sheet graded so that it opens into ``target`` (disc, ellipse:A,B,
     polygon:x,y;..., or @file.svg) or meets a field of area ratio (``target="field:FROM,TO[,DEGREES]"``
-    or ``field=(from, to[, degrees])``), and the check that it opens along one motion."""
+    or ``field=(from, to[, degrees])``), and the check that it opens along one motion. When
+    that sheet does not open, the nearest sheet found that does (``fall_back``); the run's
+    ``verdict()`` says whether it opens and meets the target within ``tolerance``."""
 
 def load_graded(path: Union[str, PathLike[str]]) -> GradedRun:
     """The graded run ``GradedRun.save`` or ``isogami graded --out`` wrote."""

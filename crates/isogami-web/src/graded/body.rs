@@ -2,7 +2,9 @@
 //! `isogami graded`'s flags (a left-out field is the flag's default; `target` — or its older
 //! name `outline` — is `--target`'s text, read by the library's own parser, and `svg` the text
 //! of the file `--target @FILE.svg` names, read by `graded::outline_from_svg`), checked against
-//! this server's caps.
+//! this server's caps; then the library's own refusals of the request ([`refusal`]: its setup
+//! refuses a target too thin for the sheet's tiles, a field past the design's opening, a
+//! tolerance out of range) answered as 400s before a job starts.
 
 use super::limits::GradedLimits;
 use crate::error::{ApiError, ApiResult};
@@ -11,7 +13,8 @@ use axum::extract::rejection::BytesRejection;
 use axum::http::StatusCode;
 use isogami::api::resolve_design;
 use isogami::graded::{
-    outline_from_svg, parse_outline, parse_target, GradedRequest, Outline, Target,
+    outline_from_svg, parse_outline, parse_target, setup, GradedError, GradedRequest, Outline,
+    Target,
 };
 use serde::Deserialize;
 use serde_json::{json, Value};
@@ -50,6 +53,13 @@ pub struct GradedBody {
     pub states: Option<usize>,
     /// Iterations of the fit (`--iterations`).
     pub iterations: Option<usize>,
+    /// Largest error that meets the target, a fraction (`--tolerance`; default the library's:
+    /// `graded::verdict::OUTLINE_TOLERANCE` or `FIELD_TOLERANCE`). Checked by the library.
+    pub tolerance: Option<f64>,
+    /// When the sheet graded towards the target does not open, give the nearest one that does
+    /// (default true; false is `--no-fallback`: the sheet graded towards the target, whatever
+    /// its path).
+    pub fall_back: Option<bool>,
 }
 
 /// 400 `bad_target`: the library's message about the outline.
@@ -62,6 +72,10 @@ fn bad_target(message: String) -> ApiError {
          field:FROM,TO[,DEGREES] or an SVG file with one closed shape",
     )
 }
+
+/// What to do about a target the sheet cannot reach.
+pub const UNREACHABLE_HINT: &str = "grade a larger region or towards a rounder target; a \
+     field's area ratios within what the design's own sheet opens to";
 
 /// 400 `over_limit`: a count above this server's cap.
 fn over_limit(message: String) -> ApiError {
@@ -208,6 +222,8 @@ impl GradedBody {
                 r.states, limits.max_states
             )));
         }
+        r.tolerance = self.tolerance;
+        r.fall_back = self.fall_back.unwrap_or(r.fall_back);
         r.solve.max_iterations = self.iterations.unwrap_or(r.solve.max_iterations);
         if r.solve.max_iterations == 0 {
             return Err(ApiError::bad_parameter("iterations must be at least 1"));
@@ -244,6 +260,33 @@ impl GradedBody {
     }
 }
 
+/// The library's own refusal of `request`, run through its setup (the design's finite sheet
+/// deployed and opened, about 0.2 s for 150 tiles): a target the sheet cannot reach
+/// (`GradedError::Unreachable`: an outline too thin for its tiles, a field past the design's
+/// periodic opening) or cannot use is 400 `bad_target`, a setting or region it refuses (a
+/// tolerance that is not a positive fraction, a field on fewer than 2×2 cells) 400
+/// `bad_parameter`, both with the library's one-line message. Any other failure of the setup
+/// (a design whose sheet does not open, say) is left to the job, which reports it as its
+/// error, as before: Ok here.
+pub fn refusal(request: &GradedRequest) -> ApiResult<()> {
+    let Err(e) = setup(request) else {
+        return Ok(());
+    };
+    match &e {
+        isogami::Error::Graded(GradedError::Unreachable(_)) => Err(ApiError::new(
+            StatusCode::BAD_REQUEST,
+            "bad_target",
+            e.to_string(),
+            UNREACHABLE_HINT,
+        )),
+        isogami::Error::Graded(GradedError::BadTarget(_)) => Err(bad_target(e.to_string())),
+        isogami::Error::Graded(GradedError::BadSetting(_) | GradedError::BadRegion(_)) => {
+            Err(ApiError::bad_parameter(e.to_string()))
+        }
+        _ => Ok(()),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -271,6 +314,13 @@ mod tests {
         assert_eq!((r.rows, r.cols), (2, 4));
         assert_eq!(r.outline, Outline::Ellipse { a: 1.4, b: 1.0 });
         assert_eq!((r.t, r.states, r.solve.max_iterations), (Some(0.5), 4, 60));
+        // Left out: the library's tolerance and its fall-back; given: as `--tolerance` and
+        // `--no-fallback`.
+        assert_eq!((r.tolerance, r.fall_back), (None, true));
+        let r = body(json!({"tolerance": 0.02, "fall_back": false}))
+            .request(&limits)
+            .unwrap();
+        assert_eq!((r.tolerance, r.fall_back), (Some(0.02), false));
         // `target` is `outline`'s newer name, and takes a field too.
         let r = body(json!({"target": "field:1.2,1.8,90"}))
             .request(&limits)
@@ -325,8 +375,49 @@ mod tests {
         ];
         for (v, kind, names) in cases {
             let e = body(v.clone()).request(&limits).unwrap_err();
+            assert_eq!(e.status, StatusCode::BAD_REQUEST, "{v}");
             assert_eq!(e.kind, kind, "{v}: {e:?}");
             assert!(e.message.contains(names), "{v}: {}", e.message);
+        }
+    }
+
+    #[test]
+    fn the_librarys_refusals_are_400s_in_its_words() {
+        let limits = GradedLimits::default();
+        let request = |v: Value| body(v).request(&limits).unwrap();
+        // Too thin for 16 tiles: the library's Unreachable, a bad target.
+        let r = request(json!({"rows": 2, "cols": 2, "target": "ellipse:100,1"}));
+        let e = refusal(&r).unwrap_err();
+        assert_eq!((e.status, e.kind), (StatusCode::BAD_REQUEST, "bad_target"));
+        assert_eq!(e.message, setup(&r).unwrap_err().to_string());
+        assert!(
+            e.message.starts_with("unreachable target: "),
+            "{}",
+            e.message
+        );
+        // A field past the design's periodic opening (rotating squares open to 2).
+        let e = refusal(&request(
+            json!({"rows": 2, "cols": 2, "target": "field:3,3"}),
+        ))
+        .unwrap_err();
+        assert_eq!(e.kind, "bad_target", "{}", e.message);
+        // A tolerance the library refuses, and a field on one cell: bad parameters.
+        for v in [
+            json!({"rows": 2, "cols": 2, "tolerance": -1}),
+            json!({"rows": 1, "cols": 1, "target": "field:1.3,1.5"}),
+        ] {
+            let e = refusal(&request(v.clone())).unwrap_err();
+            assert_eq!(
+                (e.status, e.kind),
+                (StatusCode::BAD_REQUEST, "bad_parameter"),
+                "{v}"
+            );
+        }
+        // A reachable target is the job's.
+        refusal(&request(json!({"rows": 2, "cols": 2}))).unwrap();
+        // Types are checked on reading.
+        for v in [json!({"tolerance": "5 %"}), json!({"fall_back": 1})] {
+            assert!(serde_json::from_value::<GradedBody>(v).is_err());
         }
     }
 }

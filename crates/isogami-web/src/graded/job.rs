@@ -4,13 +4,13 @@
 //! `isogami graded --out` writes. The registry, stopping and the job's life are
 //! [`crate::jobs`]'.
 
-use super::body::outline_view;
+use super::body::{outline_view, UNREACHABLE_HINT};
 use super::limits::GradedLimits;
 use crate::error::ApiError;
 use crate::jobs::{Caps, Job, JobError, JobKind, JobRegistry, JobState};
 use axum::http::StatusCode;
 use isogami::api::{graded_sheet, GradedRun};
-use isogami::graded::{AreaField, GradedProgress, GradedRequest, GradedSheet};
+use isogami::graded::{AreaField, GradedError, GradedProgress, GradedRequest, GradedSheet};
 use serde::Serialize;
 use serde_json::Value;
 use std::sync::Arc;
@@ -39,6 +39,11 @@ pub struct Echo {
     pub states: usize,
     /// Most iterations of the fit.
     pub iterations: usize,
+    /// The largest error that meets the target asked for (null: the library's default).
+    pub tolerance: Option<f64>,
+    /// Whether the nearest sheet that opens is given when the one graded towards the target
+    /// does not (false: `--no-fallback`).
+    pub fall_back: bool,
 }
 
 impl Echo {
@@ -57,6 +62,8 @@ impl Echo {
             t: request.t,
             states: request.states,
             iterations: request.solve.max_iterations,
+            tolerance: request.tolerance,
+            fall_back: request.fall_back,
         }
     }
 }
@@ -180,13 +187,16 @@ impl JobKind for Graded {
     }
 
     fn explain(e: &isogami::Error) -> JobError {
-        ApiError::new(
-            StatusCode::UNPROCESSABLE_ENTITY,
-            "graded_failed",
-            e.to_string(),
-            "try another design, a smaller region or another outline",
-        )
-        .into()
+        // The request's refusals are 400s before a job starts (`body::refusal`); should the
+        // library refuse a target later in a run, the job says so in the same words.
+        let (kind, hint) = match e {
+            isogami::Error::Graded(GradedError::Unreachable(_)) => ("bad_target", UNREACHABLE_HINT),
+            _ => (
+                "graded_failed",
+                "try another design, a smaller region or another outline",
+            ),
+        };
+        ApiError::new(StatusCode::UNPROCESSABLE_ENTITY, kind, e.to_string(), hint).into()
     }
 }
 

@@ -1,6 +1,7 @@
 //! The caps a graded-sheet job obeys on this server, and the settings the browser's page
 //! reads (`GET /api/graded`).
 
+use isogami::graded::verdict::{FIELD_TOLERANCE, OUTLINE_TOLERANCE};
 use isogami::graded::{GradedRequest, MAX_GRADED_CELLS, MAX_STATES};
 use serde_json::{json, Value};
 use std::time::Duration;
@@ -54,7 +55,8 @@ impl Default for GradedLimits {
 }
 
 impl GradedLimits {
-    /// What the page needs: the request's defaults and these caps.
+    /// What the page needs: the request's defaults (the tolerance an outline target is met
+    /// within, and a field's) and these caps.
     pub fn describe(&self) -> Value {
         let d = GradedRequest::default();
         json!({
@@ -65,6 +67,9 @@ impl GradedLimits {
                 "outline": "disc",
                 "states": d.states,
                 "iterations": d.solve.max_iterations,
+                "tolerance": OUTLINE_TOLERANCE,
+                "field_tolerance": FIELD_TOLERANCE,
+                "fall_back": d.fall_back,
             },
             "limits": {
                 "side": self.max_side.min(MAX_GRADED_CELLS),

@@ -13,7 +13,7 @@
 //! | module | what |
 //! |---|---|
 //! | [`limits`] | the caps and what `GET /api/graded` tells the page |
-//! | [`body`] | the posted JSON → the library's `GradedRequest`, checked against the caps |
+//! | [`body`] | the posted JSON → the library's `GradedRequest`, checked against the caps, then by the library's setup (its refusals: 400s) |
 //! | [`job`] | one run: progress, snapshots, stop reasons, the result as the CLI writes it; the kind of job ([`crate::jobs`]: the registry, a few running at a time, ended ones forgotten) |
 
 pub mod body;

@@ -4,9 +4,10 @@
 
 use crate::error::{ApiError, ApiResult};
 use crate::export::export_graded_bounded;
+use crate::export::heavy_permit;
 use crate::export::query::parse_graded_export;
 use crate::filters::{get as param, pairs, truncate};
-use crate::graded::body::{outline_of, svg_outline};
+use crate::graded::body::{outline_of, refusal, svg_outline};
 use crate::graded::job::Echo;
 use crate::graded::{outline_view, GradedBody, GradedJob, GradedView};
 use crate::jobs::accepted;
@@ -78,8 +79,10 @@ pub async fn svg(
     Ok(Json(view))
 }
 
-/// `POST /api/graded`: checks the request (400 with a one-line message), refuses a job over
-/// the running cap (409), starts the run on the blocking pool and answers 202 `{id}`.
+/// `POST /api/graded`: checks the request (400 with a one-line message), then asks the
+/// library's setup whether it refuses it (400 with its message: a target the sheet cannot
+/// reach, a tolerance out of range; see `body::refusal`), refuses a job over the running cap
+/// (409), starts the run on the blocking pool and answers 202 `{id}`.
 pub async fn start(
     State(state): State<AppState>,
     body: Result<Bytes, BytesRejection>,
@@ -89,6 +92,15 @@ pub async fn start(
     let outline_text = body.outline_text();
     // An SVG target is read off the async workers (see `svg`).
     let request = off_runtime(move || body.request(&limits)).await?;
+    // The setup deploys the design's finite sheet: one of the heavy permits finite sheets
+    // take, so that a burst of posts cannot run many at once.
+    let (permit, _) = heavy_permit(state.heavy().clone(), state.settings().sim_timeout).await?;
+    let checked = request.clone();
+    off_runtime(move || {
+        let _permit = permit;
+        refusal(&checked)
+    })
+    .await?;
     let echo = Echo::of(&request, &outline_text);
     let job = state.graded_jobs().start(echo, &limits)?;
     let id = job.id();

@@ -2,8 +2,10 @@
 //! stands on the way, and its result is the library's for the same request (the asked tiles,
 //! the same report and path check), downloadable as `isogami graded --out` writes it; bad
 //! bodies and outlines are 400s with one-line messages (the library's own for an outline) and
-//! start nothing; a stop ends a run as `stopped`; the running cap refuses one more job; the
-//! time limit stops a run.
+//! start nothing — a target the library finds unreachable too (its setup's refusal, its
+//! words) —; a done job's result carries the library's verdict and outline fit; `fall_back`
+//! and `tolerance` reach the library; a stop ends a run as `stopped`; the running cap refuses
+//! one more job; the time limit stops a run.
 
 use crate::common;
 
@@ -161,6 +163,24 @@ async fn a_small_job_runs_to_the_end_with_snapshots_and_the_librarys_result() {
         assert_eq!(state["poses"].as_array().unwrap().len(), tiles.len());
     }
     assert_eq!(result["path"]["reached"], run.path.reached);
+    // The library's verdict and the outline's fit travel with the result, as the library
+    // gives them: the one-line verdict the page shows, the worst boundary point it marks.
+    assert_eq!(
+        result["verdict"],
+        serde_json::to_value(&run.verdict).unwrap()
+    );
+    assert_eq!(result["fit"], serde_json::to_value(run.fit).unwrap());
+    assert_eq!(result["verdict"]["opens"], run.path.reached);
+    assert_eq!(result["verdict"]["text"], run.verdict.text.as_str());
+    assert_eq!(result["verdict"]["tolerance"], 0.05);
+    assert_eq!(result["fit"]["worst"].as_array().unwrap().len(), 2);
+    for state in result["path"]["states"].as_array().unwrap() {
+        assert!(
+            state["overlap_depth"].as_f64().unwrap() >= 0.0,
+            "{}",
+            state["overlap_depth"]
+        );
+    }
 
     // Snapshots: one polygon per tile, taken while it ran; the last is the result's opened
     // state.
@@ -219,6 +239,33 @@ async fn bad_bodies_and_outlines_are_400s_with_one_line_messages_and_start_nothi
         (r#"{"t": 2}"#.into(), "bad_parameter", "t = 2"),
         (r#"{"design": "nope"}"#.into(), "bad_design", "nope"),
         (r#"{"colour": 1}"#.into(), "bad_parameter", "colour"),
+        (
+            r#"{"tolerance": "5 %"}"#.into(),
+            "bad_parameter",
+            "expected f64",
+        ),
+        (
+            r#"{"fall_back": "no"}"#.into(),
+            "bad_parameter",
+            "expected a boolean",
+        ),
+        // The library's refusals, from its setup: a tolerance out of range, a target the
+        // sheet cannot reach.
+        (
+            r#"{"rows": 2, "cols": 2, "tolerance": -0.1}"#.into(),
+            "bad_parameter",
+            "tolerance -0.1",
+        ),
+        (
+            r#"{"rows": 2, "cols": 2, "target": "ellipse:100,1"}"#.into(),
+            "bad_target",
+            "unreachable target: ",
+        ),
+        (
+            r#"{"rows": 2, "cols": 2, "target": "field:3,3"}"#.into(),
+            "bad_target",
+            "unreachable target: ",
+        ),
         ("not json".into(), "bad_parameter", "request body"),
     ];
     for (body, kind, names) in &cases {
@@ -234,6 +281,29 @@ async fn bad_bodies_and_outlines_are_400s_with_one_line_messages_and_start_nothi
     // The library's own message, word for word, for a posted outline and a checked one.
     let reply = post(&app, "/api/graded", format!(r#"{{"outline": "{star}"}}"#)).await;
     assert_eq!(reply.json()["error"], library.as_str());
+    // And for a target too thin for a 2×2 sheet's 16 tiles (the library's Unreachable).
+    let thin = GradedRequest {
+        rows: 2,
+        cols: 2,
+        outline: parse_outline("ellipse:100,1").unwrap(),
+        ..GradedRequest::default()
+    };
+    let unreachable = isogami::graded::setup(&thin).unwrap_err().to_string();
+    assert!(
+        unreachable.starts_with("unreachable target: "),
+        "{unreachable}"
+    );
+    let reply = post(
+        &app,
+        "/api/graded",
+        r#"{"rows": 2, "cols": 2, "target": "ellipse:100,1"}"#,
+    )
+    .await;
+    assert_eq!(
+        assert_error(&reply, StatusCode::BAD_REQUEST, "unreachable"),
+        "bad_target"
+    );
+    assert_eq!(reply.json()["error"], unreachable.as_str());
     let reply = get(&app, &format!("/api/graded/outline?outline={}", enc(star))).await;
     assert_eq!(
         assert_error(&reply, StatusCode::BAD_REQUEST, "outline"),
@@ -260,6 +330,18 @@ async fn bad_bodies_and_outlines_are_400s_with_one_line_messages_and_start_nothi
     assert_eq!(settings["running"], serde_json::json!([]), "no job started");
     assert_eq!(settings["limits"]["side"], 8);
     assert_eq!(settings["defaults"]["design"], "rotating-squares");
+    assert_eq!(
+        (
+            &settings["defaults"]["tolerance"],
+            &settings["defaults"]["field_tolerance"],
+            &settings["defaults"]["fall_back"]
+        ),
+        (
+            &json!(isogami::graded::verdict::OUTLINE_TOLERANCE),
+            &json!(isogami::graded::verdict::FIELD_TOLERANCE),
+            &json!(true)
+        )
+    );
     let reply = get(&app, "/api/graded/1").await;
     assert_eq!(
         assert_error(&reply, StatusCode::NOT_FOUND, "job 1"),
@@ -569,5 +651,59 @@ async fn an_svg_outline_is_read_by_the_library_and_graded_towards() {
     assert_eq!(
         get(&app, "/api/graded").await.ok()["running"],
         serde_json::json!([])
+    );
+}
+
+/// An L that rotating squares' 2×2 sheet does not open into when graded towards it at 30
+/// iterations (measured: 0.2 s that way, 1.7 s with the fall-back's search).
+const L_TARGET: &str = "polygon:0,0;2,0;2,1;1,1;1,2;0,2";
+
+#[tokio::test]
+async fn fall_back_and_tolerance_reach_the_library() {
+    let app = app();
+    let body = |extra: &str| {
+        format!(r#"{{"rows": 2, "cols": 2, "target": "{L_TARGET}", "iterations": 30{extra}}}"#)
+    };
+    // Without the fall-back: the sheet graded towards the L itself, which does not open.
+    let id = start(&app, &body(r#", "fall_back": false, "tolerance": 0.5"#)).await;
+    let end = until_ended(&app, id).await.pop().unwrap();
+    assert_eq!(end["state"], "done", "{}", end["error"]);
+    assert_eq!(
+        (&end["request"]["fall_back"], &end["request"]["tolerance"]),
+        (&json!(false), &json!(0.5))
+    );
+    let verdict = &end["result"]["verdict"];
+    assert_eq!(verdict["target_fraction"], 1.0, "{verdict}");
+    assert_eq!(verdict["opens"], false, "{verdict}");
+    assert_eq!(verdict["opens"], end["result"]["path"]["reached"]);
+    assert_eq!(verdict["tolerance"], 0.5, "the tolerance asked");
+    assert!(
+        verdict["text"]
+            .as_str()
+            .unwrap()
+            .starts_with("does NOT open along one motion"),
+        "{verdict}"
+    );
+    // With it (the default): the nearest sheet that opens, part of the way to the L.
+    let id = start(&app, &body("")).await;
+    let end = until_ended(&app, id).await.pop().unwrap();
+    assert_eq!(end["state"], "done", "{}", end["error"]);
+    assert_eq!(
+        (&end["request"]["fall_back"], &end["request"]["tolerance"]),
+        (&json!(true), &Value::Null)
+    );
+    let verdict = &end["result"]["verdict"];
+    assert_eq!(verdict["opens"], true, "{verdict}");
+    assert!(
+        verdict["target_fraction"].as_f64().unwrap() < 1.0,
+        "{verdict}"
+    );
+    assert_eq!(verdict["tolerance"], 0.05);
+    assert!(
+        verdict["text"]
+            .as_str()
+            .unwrap()
+            .contains("the target asked does not open"),
+        "{verdict}"
     );
 }

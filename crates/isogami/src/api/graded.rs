@@ -3,10 +3,16 @@
 
 use crate::error::Result;
 use crate::graded::field::{cell_ratios, FieldCell};
+use crate::graded::measures::{
+    opened_boundary, outer_boundary, outline_fit, sheet_opening, tip_outline,
+};
+use crate::graded::verdict::{FIELD_TOLERANCE, OUTLINE_TOLERANCE};
 use crate::graded::{
-    check_path, grade, GradedProgress, GradedReport, GradedRequest, GradedSheet, PathCheck,
+    grade_until_open, GradedProgress, GradedReport, GradedRequest, GradedSheet, GradedVerdict,
+    OutlineFit, PathCheck,
 };
 use crate::math::Real;
+use crate::math::Vec2;
 use crate::stop::KeepGoing;
 use serde::Serialize;
 
@@ -24,6 +30,10 @@ pub struct GradedRun {
     /// `max_field_error`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub field: Vec<FieldResult>,
+    /// An outline target: the whole opened outline against it (None for a field).
+    pub fit: Option<OutlineFit>,
+    /// Whether the sheet opens along one motion and meets its target, with the sizes.
+    pub verdict: GradedVerdict,
 }
 
 /// One cell a field target is measured on, in the graded sheet: the quadrilateral of four
@@ -60,24 +70,61 @@ pub fn field_results(sheet: &GradedSheet, cells: &[FieldCell]) -> Vec<FieldResul
         .collect()
 }
 
-/// States of the path check.
-pub const PATH_STEPS: usize = 20;
+pub use crate::graded::homotopy::PATH_STEPS;
 
-/// Grades `request`'s sheet and checks its path. `progress` is called after every accepted
-/// step of the optimisation with the iteration, the cost and the sheet as it stands (false
-/// stops it: a cancelled error); `keep_going` is polled by the path check too.
+/// Grades `request`'s sheet and checks its path; when the sheet asked for does not open
+/// along one motion, the nearest one found that does (see [`crate::graded::homotopy`]).
+/// `progress` is called after every accepted step of the first optimisation with the
+/// iteration, the cost and the sheet as it stands (false stops it: a cancelled error);
+/// `keep_going` is polled throughout.
 pub fn graded_sheet(
     request: &GradedRequest,
     progress: &mut dyn FnMut(&GradedProgress) -> bool,
     keep_going: KeepGoing<'_>,
 ) -> Result<GradedRun> {
-    let (sheet, problem, report) = grade(request, progress, keep_going)?;
-    let path = check_path(&sheet, &problem, PATH_STEPS, keep_going)?;
-    let field = field_results(&sheet, &problem.field);
+    let graded = grade_until_open(request, progress, keep_going)?;
+    let (sheet, problem) = (&graded.sheet, &graded.problem);
+    let field = field_results(sheet, &problem.field);
+    let cycle = outer_boundary(sheet);
+    let fit = if problem.field.is_empty() {
+        let target: Vec<Vec2> = graded
+            .report
+            .target
+            .iter()
+            .map(|p| Vec2::new(p[0], p[1]))
+            .collect();
+        outline_fit(
+            &tip_outline(sheet, &cycle, &problem.tips),
+            &opened_boundary(sheet, &cycle),
+            &target,
+        )
+    } else {
+        None
+    };
+    let (error, tolerance) = match fit {
+        Some(f) => (f.hausdorff, request.tolerance.unwrap_or(OUTLINE_TOLERANCE)),
+        None => (
+            field
+                .iter()
+                .map(|c| (c.ratio / c.target - 1.0).abs())
+                .fold(0.0, Real::max),
+            request.tolerance.unwrap_or(FIELD_TOLERANCE),
+        ),
+    };
+    let verdict = GradedVerdict::new(
+        &graded.path,
+        error,
+        tolerance,
+        graded.target_fraction,
+        sheet_opening(sheet, &cycle),
+        problem.periodic_opening,
+    );
     Ok(GradedRun {
-        sheet,
-        report,
-        path,
+        sheet: graded.sheet,
+        report: graded.report,
+        path: graded.path,
         field,
+        fit,
+        verdict,
     })
 }

@@ -224,7 +224,7 @@ impl Problem {
         every: bool,
         out: &mut Rows,
     ) {
-        let weight = self.weights.bounds;
+        let weight = self.weights.contact;
         let last = self.openings.len() - 1;
         for (k, contact) in self.contacts.iter().enumerate() {
             // Most pairs are apart: their rows are found from the corners' places alone, and

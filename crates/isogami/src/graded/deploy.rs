@@ -12,7 +12,7 @@
 use super::model::{GradedSheet, OpenedPose};
 use super::problem::{Problem, PROJECTION_STIFFNESS};
 pub use super::rank::{dof, RANK_TOLERANCE};
-use crate::geometry::interiors_overlap;
+use crate::geometry::{interiors_overlap, is_simple_problem, overlap_depth};
 use crate::math::{DVec, Real};
 use crate::stop::KeepGoing;
 use serde::{Deserialize, Serialize};
@@ -29,8 +29,13 @@ pub struct PathState {
     /// The two smallest singular values of the pins' Jacobian past the rigid motions,
     /// relative to the largest (the mechanism's mode, then the next).
     pub smallest: Option<[Real; 2]>,
-    /// A pair of tiles whose opened interiors overlap, if any.
+    /// The pair of tiles whose opened interiors overlap deepest, if any.
     pub overlap: Option<(usize, usize)>,
+    /// How deep that pair overlaps: the deepest a point of one tile's boundary lies inside
+    /// the other (length scales; 0 without an overlap). Absent from checks written before it
+    /// was measured: 0.
+    #[serde(default)]
+    pub overlap_depth: Real,
     /// The tiles' poses at this state (the closed shapes placed: what a player draws).
     pub poses: Vec<OpenedPose>,
 }
@@ -50,8 +55,14 @@ pub struct PathCheck {
     /// Largest difference between two tiles' rotations at zero opening (radians): zero when
     /// the path reaches the closed tiling.
     pub closed_spread: Real,
-    /// Every state has closed pins and no overlap, one DOF where counted from
-    /// [`DOF_FROM_OPENING`] open, and the path ends in the closed tiling.
+    /// Closed tiles that are not simple polygons (an edge crossing another of the same tile):
+    /// the cut pattern is then no tiling. Absent from checks written before it was checked:
+    /// none.
+    #[serde(default)]
+    pub self_intersecting: Vec<usize>,
+    /// Every closed tile is a simple polygon, every state has closed pins and no overlap, one
+    /// DOF where counted from [`DOF_FROM_OPENING`] open, and the path ends in the closed
+    /// tiling.
     pub reached: bool,
     /// The gap under which a pin counts as closed ([`PIN_TOLERANCE`]), and the opening from
     /// which a state must have one DOF ([`DOF_FROM_OPENING`]): carried with the check, so
@@ -72,7 +83,35 @@ fn dof_from_opening() -> Real {
     DOF_FROM_OPENING
 }
 
+impl Default for PathCheck {
+    /// No states, not reached (a path not checked yet).
+    fn default() -> Self {
+        PathCheck {
+            states: Vec::new(),
+            closed_spread: 0.0,
+            self_intersecting: Vec::new(),
+            reached: false,
+            pin_tolerance: PIN_TOLERANCE,
+            dof_from_opening: DOF_FROM_OPENING,
+        }
+    }
+}
+
 impl PathCheck {
+    /// The state whose tiles overlap deepest (the first of equals; None without an overlap).
+    pub fn deepest_overlap(&self) -> Option<&PathState> {
+        self.states
+            .iter()
+            .filter(|s| s.overlap.is_some())
+            .reduce(|a, b| {
+                if b.overlap_depth > a.overlap_depth {
+                    b
+                } else {
+                    a
+                }
+            })
+    }
+
     /// The state whose pins open widest (the first of equals; None for no states).
     pub fn widest_gap(&self) -> Option<&PathState> {
         self.states
@@ -135,12 +174,14 @@ pub fn check_path(
         previous = Some(here);
         Problem::unpack(&mut work, &z);
         let counted = dof(&work);
+        let deepest = overlap(&work);
         states.push(PathState {
             opening: fraction,
             joint_gap: work.joint_gap(),
             dof: counted.map(|c| c.0),
             smallest: counted.map(|c| c.1),
-            overlap: overlap(&work),
+            overlap: deepest.map(|d| d.0),
+            overlap_depth: deepest.map_or(0.0, |d| d.1),
             poses: work.opened.clone(),
         });
     }
@@ -149,7 +190,9 @@ pub fn check_path(
         .iter()
         .fold((Real::MAX, Real::MIN), |(l, h), &t| (l.min(t), h.max(t)));
     let closed_spread = hi - lo;
+    let self_intersecting = self_intersecting(sheet);
     let reached = closed_spread < 1e-6
+        && self_intersecting.is_empty()
         && states.iter().all(|s| {
             s.pins_closed()
                 && s.overlap.is_none()
@@ -158,15 +201,23 @@ pub fn check_path(
     Ok(PathCheck {
         states,
         closed_spread,
+        self_intersecting,
         reached,
         pin_tolerance: PIN_TOLERANCE,
         dof_from_opening: DOF_FROM_OPENING,
     })
 }
 
-/// A pair of tiles whose opened interiors overlap (pinned neighbours touch only at their
-/// pin), if any.
-pub fn overlap(sheet: &GradedSheet) -> Option<(usize, usize)> {
+/// The closed tiles of `sheet` that are not simple polygons at [`OVERLAP_TOLERANCE`].
+pub fn self_intersecting(sheet: &GradedSheet) -> Vec<usize> {
+    (0..sheet.tiles.len())
+        .filter(|&i| is_simple_problem(&sheet.closed_polygon(i), OVERLAP_TOLERANCE).is_some())
+        .collect()
+}
+
+/// The pair of tiles whose opened interiors overlap deepest (pinned neighbours touch only at
+/// their pin), with the depth ([`overlap_depth`]), if any pair overlaps.
+pub fn overlap(sheet: &GradedSheet) -> Option<((usize, usize), Real)> {
     let polys: Vec<_> = (0..sheet.tiles.len())
         .map(|i| sheet.opened_polygon(i))
         .collect();
@@ -179,6 +230,7 @@ pub fn overlap(sheet: &GradedSheet) -> Option<(usize, usize)> {
             )
         })
         .collect();
+    let mut deepest: Option<((usize, usize), Real)> = None;
     for i in 0..polys.len() {
         for k in i + 1..polys.len() {
             let (a, b) = (boxes[i], boxes[k]);
@@ -186,11 +238,14 @@ pub fn overlap(sheet: &GradedSheet) -> Option<(usize, usize)> {
                 continue;
             }
             if interiors_overlap(&polys[i], &polys[k], OVERLAP_TOLERANCE) {
-                return Some((i, k));
+                let depth = overlap_depth(&polys[i], &polys[k], OVERLAP_TOLERANCE);
+                if deepest.is_none_or(|d| depth > d.1) {
+                    deepest = Some(((i, k), depth));
+                }
             }
         }
     }
-    None
+    deepest
 }
 
 #[cfg(test)]
@@ -205,6 +260,7 @@ mod tests {
         let check = PathCheck {
             states: Vec::new(),
             closed_spread: 0.0,
+            self_intersecting: Vec::new(),
             reached: true,
             pin_tolerance: PIN_TOLERANCE,
             dof_from_opening: DOF_FROM_OPENING,

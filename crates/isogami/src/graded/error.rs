@@ -12,6 +12,10 @@ pub enum GradedError {
     /// The target cannot be used.
     #[error("bad target: {0}")]
     BadTarget(String),
+    /// The target is beyond what the design's sheet can reach (too thin for its tiles, a
+    /// field opening past the design's periodic sheet).
+    #[error("unreachable target: {0}")]
+    Unreachable(String),
     /// A setting is out of range.
     #[error("bad setting: {0}")]
     BadSetting(String),

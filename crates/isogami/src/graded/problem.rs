@@ -53,6 +53,8 @@ pub struct Weights {
     pub prior: Real,
     /// Shape bounds.
     pub bounds: Real,
+    /// Contacts: a corner of one tile inside another (see [`super::contact`]).
+    pub contact: Real,
     /// Fraction of its starting area the triangle of every corner (its two edges) keeps.
     pub corner_fraction: Real,
     /// Fraction of its starting sine every corner keeps (0.3 keeps a right angle within
@@ -77,6 +79,7 @@ impl Default for Weights {
             smooth: 0.3,
             prior: 1e-3,
             bounds: 30.0,
+            contact: 30.0,
             corner_fraction: 0.15,
             angle_fraction: 0.3,
             edge_fraction: 0.15,
@@ -116,6 +119,9 @@ pub struct Problem {
     pub outline: Outline,
     /// Scale of the outline (its radius at scale 1 times this).
     pub scale: Real,
+    /// The fit blended from where the outline points started (see [`FitBlend`]); None: the
+    /// target itself.
+    pub fit_from: Option<FitBlend>,
     /// Lattice-neighbour tile pairs with the same corner count.
     pub neighbours: Vec<(usize, usize)>,
     /// Cells whose opened area ratio is fitted to a target field (empty: an outline target).
@@ -128,12 +134,33 @@ pub struct Problem {
     pub corner_area_start: Vec<Vec<Real>>,
     /// Starting edge lengths, per tile per edge.
     pub edge_start: Vec<Vec<Real>>,
+    /// Concave tiles' triangles: (nodes counter-clockwise, twice their starting area), a
+    /// fixed ear-clipping triangulation of each tile with a reflex corner. Every triangle
+    /// keeps a fraction of its area, so a concave tile stays a simple polygon turned the
+    /// same way (its corners' bounds alone let a reflex corner pass through a far edge).
+    pub triangles: Vec<([usize; 3], Real)>,
     /// Weights.
     pub weights: Weights,
+    /// The largest area ratio the design's periodic sheet reaches along its path (None when
+    /// the problem was not set up from a deployment).
+    pub periodic_opening: Option<Real>,
     /// When false, only the pins, the opening and the one-sided rows of the pins' turning (its
     /// fraction of the mean, the angular gaps) count: the closing projection and the path
     /// check's.
     pub full: bool,
+}
+
+/// A fit part of the way from where every outline point started to the target: point k is
+/// asked to lie at (1 − λ)·r₀ₖ + λ·s·ρ(φ) from the centre (the tips exactly, the other
+/// boundary corners at most), r₀ₖ its distance at the start. At λ = 0 the start meets it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitBlend {
+    /// How far towards the target, in [0, 1].
+    pub lambda: Real,
+    /// r₀ of every tip, in the order of [`Problem::tips`].
+    pub tips: Vec<Real>,
+    /// r₀ of every other boundary corner, in the order of [`Problem::inside`].
+    pub inside: Vec<Real>,
 }
 
 /// The residuals and their Jacobian rows. Sparse rows are stored flat (row r's entries are
@@ -677,16 +704,21 @@ impl Problem {
         if !self.full {
             return out;
         }
-        // Target fit: radial error |p| − s·ρ(p).
-        let fit = |i: usize, n: usize, one_sided: bool, out: &mut Rows| {
+        // Target fit: radial error |p| − s·ρ(p); blended, |p| − ((1 − λ)·r₀ + λ·s·ρ(p)).
+        let fit = |i: usize, n: usize, from: Option<Real>, one_sided: bool, out: &mut Rows| {
             let (p, jp) = self.corner(z, nodes, last, i, n);
             let r = p.norm().max(1e-300);
             let (rho, drho) = self.outline.radius(p);
-            let value = r - self.scale * rho;
+            let (value, g) = match (from, &self.fit_from) {
+                (Some(r0), Some(b)) => (
+                    r - ((1.0 - b.lambda) * r0 + b.lambda * self.scale * rho),
+                    p / r - drho * (b.lambda * self.scale),
+                ),
+                _ => (r - self.scale * rho, p / r - drho * self.scale),
+            };
             if one_sided && value <= 0.0 && !every {
                 return;
             }
-            let g = p / r - drho * self.scale;
             let e = (0..2).flat_map(|row| {
                 jp.row(row)
                     .iter()
@@ -694,11 +726,16 @@ impl Problem {
             });
             out.push(w.fit * value, e);
         };
-        for &(i, n) in &self.tips {
-            fit(i, n, false, &mut out);
+        let from = |k: usize, tips: bool| {
+            self.fit_from
+                .as_ref()
+                .map(|b| if tips { b.tips[k] } else { b.inside[k] })
+        };
+        for (k, &(i, n)) in self.tips.iter().enumerate() {
+            fit(i, n, from(k, true), false, &mut out);
         }
-        for &(i, n) in &self.inside {
-            fit(i, n, true, &mut out);
+        for (k, &(i, n)) in self.inside.iter().enumerate() {
+            fit(i, n, from(k, false), true, &mut out);
         }
         // Area-ratio field: (opened area − target × closed area) / starting closed area.
         for cell in &self.field {
@@ -817,8 +854,59 @@ impl Problem {
                 }
             }
         }
+        // Concave tiles: every triangle of their fixed triangulation keeps a fraction of its
+        // area. c = cross(b − a, c − a); ∂c/∂b = (c−a).perp, ∂c/∂c = −(b−a).perp.
+        for &([ia, ib, ic], c0) in &self.triangles {
+            let (pa, pb, pc) = (x(ia), x(ib), x(ic));
+            let (ab, ac) = (pb - pa, pc - pa);
+            let value = w.corner_fraction * c0 - crate::math::cross(&ab, &ac);
+            if every || value > 0.0 {
+                let db = Vec2::new(ac.y, -ac.x);
+                let dc = Vec2::new(-ab.y, ab.x);
+                let da = -(db + dc);
+                let k = -w.bounds;
+                out.push(
+                    w.bounds * value,
+                    [
+                        (node_col(ia), k * da.x),
+                        (node_col(ia) + 1, k * da.y),
+                        (node_col(ib), k * db.x),
+                        (node_col(ib) + 1, k * db.y),
+                        (node_col(ic), k * dc.x),
+                        (node_col(ic) + 1, k * dc.y),
+                    ],
+                );
+            }
+        }
         out
     }
+}
+
+/// The triangles of every tile of `tiles` (node lists over `start`) with a reflex corner
+/// (starting sine below −[`SINE_FLOOR`]): a fixed ear-clipping triangulation, each triangle
+/// with twice its starting area (see [`Problem::triangles`]).
+pub fn reflex_triangles(
+    tiles: &[Vec<usize>],
+    start: &[Vec2],
+    sines: &[Vec<Real>],
+) -> Vec<([usize; 3], Real)> {
+    let mut out = Vec::new();
+    for (t, s) in tiles.iter().zip(sines) {
+        if !s.iter().any(|&v| v < -SINE_FLOOR) {
+            continue;
+        }
+        let poly: Vec<Vec2> = t.iter().map(|&n| start[n]).collect();
+        let Some(tris) = crate::geometry::triangulate(&poly) else {
+            continue;
+        };
+        for [a, b, c] in tris {
+            let c0 = crate::math::cross(&(poly[b] - poly[a]), &(poly[c] - poly[a]));
+            if c0 > 0.0 {
+                out.push(([t[a], t[b], t[c]], c0));
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -847,9 +935,35 @@ mod tests {
             states: 2,
             ..outline.clone()
         };
-        for request in [outline, field] {
+        // A concave tile (a 221° reflex corner): its triangles' rows.
+        let concave = GradedRequest {
+            design: super::super::CONCAVE_DESIGN.into(),
+            ..outline.clone()
+        };
+        assert!(!setup(&concave).unwrap().1.triangles.is_empty());
+        for request in [outline, field, concave] {
             jacobian_matches_finite_differences(&request, false);
         }
+        // A blended fit (the fall-back's): tips part of the way from their start, the other
+        // boundary corners held to 90 % of theirs, so that their rows are active.
+        let (sheet, mut problem) = setup(&pushed).unwrap();
+        let r0 = |points: &[(usize, usize)], f: Real| -> Vec<Real> {
+            points
+                .iter()
+                .map(|&(i, n)| f * sheet.opened_corner(i, n).norm())
+                .collect()
+        };
+        problem.fit_from = Some(FitBlend {
+            lambda: 0.4,
+            tips: r0(&problem.tips, 1.0),
+            inside: r0(&problem.inside, 0.9),
+        });
+        problem.full = true;
+        let z = Problem::pack(&sheet);
+        let mut without = problem.clone();
+        without.inside.clear();
+        assert!(problem.rows(&z).values.len() > without.rows(&z).values.len());
+        jacobian_at(&problem, &z);
         // Contact rows active: a tile pushed into its neighbour in the opened state.
         jacobian_matches_finite_differences(&pushed, true);
         // Contact rows active in a state part of the way (rotations only), along

@@ -135,6 +135,37 @@ impl Outline {
         }
     }
 
+    /// How much longer than wide: the square root of the ratio of the outline's principal
+    /// second moments of area about its centroid (an ellipse's axis ratio; 1 for a disc).
+    pub fn elongation(&self) -> Real {
+        match self {
+            Outline::Disc => 1.0,
+            Outline::Ellipse { a, b } => a.max(*b) / a.min(*b),
+            Outline::Polygon(p) => {
+                let c = polygon_centroid(p);
+                let (mut xx, mut yy, mut xy) = (0.0, 0.0, 0.0);
+                let n = p.len();
+                for k in 0..n {
+                    let (u, v) = (p[k] - c, p[(k + 1) % n] - c);
+                    let w = cross(&u, &v);
+                    xx += w * (u.y * u.y + u.y * v.y + v.y * v.y);
+                    yy += w * (u.x * u.x + u.x * v.x + v.x * v.x);
+                    xy += w * (u.x * v.y + 2.0 * u.x * u.y + 2.0 * v.x * v.y + v.x * u.y);
+                }
+                // Second moments (the common factor 1/12, 1/24 for xy, cancels in the ratio).
+                let (ixx, iyy, ixy) = (xx / 12.0, yy / 12.0, xy / 24.0);
+                let mean = 0.5 * (ixx + iyy);
+                let spread = (0.25 * (ixx - iyy) * (ixx - iyy) + ixy * ixy).sqrt();
+                let (big, small) = (mean + spread, mean - spread);
+                if small > 0.0 {
+                    (big / small).sqrt()
+                } else {
+                    Real::INFINITY
+                }
+            }
+        }
+    }
+
     /// Radius ρ(φ) of the outline at scale 1 in the direction of `p` (not the origin), and
     /// its gradient with respect to p.
     pub fn radius(&self, p: Vec2) -> (Real, Vec2) {
@@ -243,6 +274,32 @@ pub fn parse_outline(text: &str) -> Result<Outline, GradedError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Elongation from second moments: an ellipse's axis ratio, and the same for an
+    /// ellipse drawn as a polygon at any turn; a 3 × 1 rectangle's is 3; a disc's and a
+    /// square's 1.
+    #[test]
+    fn elongation_is_the_axis_ratio() {
+        assert_eq!(Outline::Disc.elongation(), 1.0);
+        assert_eq!(Outline::Ellipse { a: 1.0, b: 4.0 }.elongation(), 4.0);
+        for turn in [0.0, 0.4, 1.3] {
+            let (a, b) = (2.5, 1.0);
+            let (s, c) = Real::sin_cos(turn);
+            let p: Vec<Vec2> = (0..720)
+                .map(|k| {
+                    let t = std::f64::consts::TAU * k as Real / 720.0;
+                    let (x, y) = (a * t.cos(), b * t.sin());
+                    Vec2::new(c * x - s * y, s * x + c * y)
+                })
+                .collect();
+            let e = Outline::Polygon(p).elongation();
+            assert!((e - a / b).abs() < 1e-3, "turn {turn}: {e}");
+        }
+        let rect = parse_outline("polygon:0,0;3,0;3,1;0,1").unwrap();
+        assert!((rect.elongation() - 3.0).abs() < 1e-12);
+        let square = parse_outline("polygon:0,0;1,0;1,1;0,1").unwrap();
+        assert!((square.elongation() - 1.0).abs() < 1e-12);
+    }
 
     /// The radius gradient of every outline matches central differences.
     #[test]
