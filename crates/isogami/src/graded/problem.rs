@@ -809,19 +809,9 @@ impl Problem {
                     let c0 = self.corner_area_start[i][v];
                     let bound = |value: Real, dn: Vec2, dp: Vec2, out: &mut Rows| {
                         if every || value > 0.0 {
-                            let da = -(dn + dp);
                             let k = -o * w.bounds;
-                            out.push(
-                                w.bounds * value,
-                                [
-                                    (node_col(inx), k * dn.x),
-                                    (node_col(inx) + 1, k * dn.y),
-                                    (node_col(ip), k * dp.x),
-                                    (node_col(ip) + 1, k * dp.y),
-                                    (node_col(ia), k * da.x),
-                                    (node_col(ia) + 1, k * da.y),
-                                ],
-                            );
+                            let rows = [(inx, dn), (ip, dp), (ia, -(dn + dp))];
+                            push_three_nodes(out, w.bounds * value, rows.map(|(n, g)| (n, g * k)));
                         }
                     };
                     // The corner's triangle keeps a fraction of its area: tiles do not
@@ -863,23 +853,26 @@ impl Problem {
             if every || value > 0.0 {
                 let db = Vec2::new(ac.y, -ac.x);
                 let dc = Vec2::new(-ab.y, ab.x);
-                let da = -(db + dc);
-                let k = -w.bounds;
-                out.push(
+                let rows = [(ia, -(db + dc)), (ib, db), (ic, dc)];
+                push_three_nodes(
+                    &mut out,
                     w.bounds * value,
-                    [
-                        (node_col(ia), k * da.x),
-                        (node_col(ia) + 1, k * da.y),
-                        (node_col(ib), k * db.x),
-                        (node_col(ib) + 1, k * db.y),
-                        (node_col(ic), k * dc.x),
-                        (node_col(ic) + 1, k * dc.y),
-                    ],
+                    rows.map(|(n, g)| (n, g * -w.bounds)),
                 );
             }
         }
         out
     }
+}
+
+/// Pushes a row over three nodes' columns: `entries` are (node, gradient of the row).
+fn push_three_nodes(out: &mut Rows, value: Real, entries: [(usize, Vec2); 3]) {
+    out.push(
+        value,
+        entries
+            .into_iter()
+            .flat_map(|(n, g)| [(node_col(n), g.x), (node_col(n) + 1, g.y)]),
+    );
 }
 
 /// The triangles of every tile of `tiles` (node lists over `start`) with a reflex corner
