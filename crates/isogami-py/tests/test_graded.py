@@ -335,14 +335,14 @@ def test_the_verdict_is_the_librarys_and_the_tolerance_and_fall_back_reach_it():
     (rotating squares, 2x2 cells, an L: it does not open), the default the nearest that does.
     A bad tolerance is the library's refusal as an exception."""
     ell = "polygon:0,0;2,0;2,1;1,1;1,2;0,2"
-    exact = isogami.graded("rotating-squares", (2, 2), ell, iterations=60, fall_back=False)
+    exact = isogami.graded("rotating-squares", (2, 2), ell, fall_back=False)
     verdict = exact.verdict()
     assert verdict["target_fraction"] == 1.0 and not verdict["opens"] and not exact.passed
     assert "does NOT open along one motion" in verdict["text"]
-    near = isogami.graded("rotating-squares", (2, 2), ell, iterations=60)
+    near = isogami.graded("rotating-squares", (2, 2), ell)
     assert near.verdict()["opens"] and 0 < near.verdict()["target_fraction"] < 1
     assert near.fit()["hausdorff"] == near.verdict()["error"]
-    loose = isogami.graded("rotating-squares", (2, 2), ell, iterations=60,
+    loose = isogami.graded("rotating-squares", (2, 2), ell,
                            tolerance=near.verdict()["error"] * 1.01)
     assert loose.passed and loose.verdict()["meets_target"]
     with pytest.raises(isogami.IsogamiError, match="tolerance"):
